@@ -1,0 +1,27 @@
+// A built OpenCL program on one device, with an in-order profiling queue.
+#pragma once
+
+#include "cl/devices.hpp"
+
+#include <string>
+
+namespace clmarch {
+
+struct DeviceProgram {
+  DeviceEntry device;
+  cl::Context context;
+  cl::CommandQueue queue;
+  cl::Program program;
+  /// Wall time of clBuildProgram; small when the driver's cache (PoCL's kcache) already holds it.
+  double build_ms = 0.0;
+  /// The device compiler's messages for a successful build (warnings are bugs: tests keep it clean).
+  std::string build_log;
+};
+
+/// Builds source for the device (OpenCL C 1.2). Throws DeviceError with the build log on failure.
+DeviceProgram build_device_program(const DeviceEntry& device, const std::string& source);
+
+/// Milliseconds between the start and end of a profiled event.
+double event_milliseconds(const cl::Event& event);
+
+}  // namespace clmarch

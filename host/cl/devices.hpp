@@ -1,0 +1,37 @@
+// OpenCL platforms and devices: listing them and picking the one a render runs on.
+#pragma once
+
+#include <CL/opencl.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace clmarch {
+
+/// One device, numbered in the order `clmarch devices` prints.
+struct DeviceEntry {
+  int index = 0;
+  cl::Platform platform;
+  cl::Device device;
+  std::string platform_name;
+  std::string name;
+  bool is_gpu = false;
+  bool is_cpu = false;
+
+  /// "NAME (PLATFORM)", for messages and --stats.
+  std::string label() const;
+};
+
+/// Every device of every platform; empty when no platform exists.
+std::vector<DeviceEntry> list_devices();
+
+/// The device with this index, or by default the first GPU, else the first CPU, else the first
+/// device. Throws InputError for an unknown index and DeviceError when there is no device.
+DeviceEntry select_device(std::optional<int> index);
+
+/// Pixels per work-item that suit the device: explicit vector packets on CPUs (PoCL does not
+/// vectorise the per-pixel march loop), one pixel per work-item on GPUs.
+int default_lanes(const DeviceEntry& device);
+
+}  // namespace clmarch

@@ -1,0 +1,59 @@
+// Shared scene options.
+#include "cli/scene_options.hpp"
+
+#include "common/errors.hpp"
+#include "scene/scene_loader.hpp"
+
+#include <fmt/format.h>
+
+#include <regex>
+
+namespace clmarch {
+
+void add_scene_options(CLI::App& command, SceneOptions& options) {
+  command.add_option("scene", options.scene_path, "Scene file (YAML or JSON), e.g. scenes/torus.yaml")->required();
+  command.add_option("--size", options.size, "Image size WxH, overriding render.width/height (e.g. --size 320x180)");
+  command.add_option("--set", options.sets,
+                     "Override any scene key: key.path=value, e.g. --set render.epsilon=1e-5 "
+                     "--set camera.position=[0,0,1e6] (list items by index: sdf.union.0.sphere.radius=2)")
+      ->take_all();
+  command.add_option("--device", options.device, "OpenCL device index from `clmarch devices` (default: first GPU, else first CPU)");
+  command.add_option("--lanes", options.lanes, "Pixels each work-item marches as one vector (default: 16 on CPUs, 1 on GPUs)")
+      ->check(CLI::IsMember({1, 4, 8, 16}));
+}
+
+std::pair<int, int> parse_size(const std::string& text) {
+  static const std::regex pattern(R"(^(\d{1,6})x(\d{1,6})$)");
+  std::smatch match;
+  if (!std::regex_match(text, match, pattern)) {
+    throw InputError(fmt::format("--size {}: expected WIDTHxHEIGHT, e.g. 640x360", text));
+  }
+  const int width = std::stoi(match[1].str());
+  const int height = std::stoi(match[2].str());
+  if (width < 1 || height < 1 || width > 65536 || height > 65536) {
+    throw InputError(fmt::format("--size {}: width and height must be in [1, 65536]", text));
+  }
+  return {width, height};
+}
+
+Scene load_scene_with_options(const SceneOptions& options) {
+  std::vector<SceneOverride> overrides;
+  for (const std::string& set : options.sets) overrides.push_back(parse_override(set));
+  std::optional<std::pair<int, int>> size;
+  if (!options.size.empty()) size = parse_size(options.size);
+  Scene scene = load_scene_file(options.scene_path, overrides);
+  if (size) {
+    scene.render.width = size->first;
+    scene.render.height = size->second;
+  }
+  return scene;
+}
+
+OpenClOptions opencl_options(const SceneOptions& options) {
+  OpenClOptions out;
+  out.device = options.device;
+  out.lanes = options.lanes;
+  return out;
+}
+
+}  // namespace clmarch

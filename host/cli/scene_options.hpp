@@ -1,0 +1,36 @@
+// Options every command that renders a scene shares: the scene file, --size, --set, --device,
+// --lanes; and loading the scene they describe.
+#pragma once
+
+#include "render/opencl_renderer.hpp"
+#include "scene/scene.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace clmarch {
+
+struct SceneOptions {
+  std::string scene_path;
+  std::string size;
+  std::vector<std::string> sets;
+  std::optional<int> device;
+  std::optional<int> lanes;
+};
+
+/// Registers the shared options on a subcommand.
+void add_scene_options(CLI::App& command, SceneOptions& options);
+
+/// Loads the scene with --set applied, then --size. Throws InputError.
+Scene load_scene_with_options(const SceneOptions& options);
+
+/// The OpenCL settings the options ask for.
+OpenClOptions opencl_options(const SceneOptions& options);
+
+/// Parses "WxH" (each 1..65536); throws InputError naming --size.
+std::pair<int, int> parse_size(const std::string& text);
+
+}  // namespace clmarch

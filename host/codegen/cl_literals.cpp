@@ -1,0 +1,21 @@
+// OpenCL C spellings of host values.
+#include "codegen/cl_literals.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace clmarch {
+
+std::string cl_float(double value) {
+  // 9 significant digits round-trip every float.
+  std::string text = fmt::format("{:.9g}", static_cast<float>(value));
+  if (text.find_first_of(".en") == std::string::npos) text += ".0";
+  return text + "f";
+}
+
+std::string cl_float4(const glm::dvec3& v) {
+  return fmt::format("(float4)({}, {}, {}, 0.0f)", cl_float(v.x), cl_float(v.y), cl_float(v.z));
+}
+
+}  // namespace clmarch

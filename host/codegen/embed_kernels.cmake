@@ -1,0 +1,10 @@
+# Writes OUTPUT: a C++ table of the files in INPUTS ('|'-separated), name -> contents, as raw string literals.
+string(REPLACE "|" ";" INPUTS "${INPUTS}")
+set(body "// Generated from kernels/ by embed_kernels.cmake; do not edit.\n#include \"codegen/embedded_kernels.hpp\"\n\nnamespace clmarch {\n\nconst std::vector<EmbeddedFile>& embedded_kernel_files() {\n  static const std::vector<EmbeddedFile> files = {\n")
+foreach(input IN LISTS INPUTS)
+  get_filename_component(name ${input} NAME)
+  file(READ ${input} contents)
+  string(APPEND body "    {\"${name}\", R\"CLMARCH_EMBED(${contents})CLMARCH_EMBED\"},\n")
+endforeach()
+string(APPEND body "  };\n  return files;\n}\n\n}  // namespace clmarch\n")
+file(WRITE ${OUTPUT} "${body}")

@@ -1,0 +1,17 @@
+// The kernels/ files, compiled into the program (see embed_kernels.cmake).
+#pragma once
+
+#include <string_view>
+#include <vector>
+
+namespace clmarch {
+
+struct EmbeddedFile {
+  std::string_view name;
+  std::string_view contents;
+};
+
+/// Every file of kernels/, by base name.
+const std::vector<EmbeddedFile>& embedded_kernel_files();
+
+}  // namespace clmarch

@@ -1,0 +1,175 @@
+// Code generation of the scene's distance function: one statement per node, in SSA temporaries,
+// so that the dumped kernel reads as the tree it came from.
+#include "codegen/sdf_codegen.hpp"
+
+#include "codegen/cl_literals.hpp"
+
+#include <fmt/format.h>
+
+#include <glm/gtc/matrix_access.hpp>
+
+namespace clmarch {
+namespace {
+
+glm::dvec3 default_albedo() { return glm::dvec3(1.0); }
+
+std::string primitive_call(const Primitive& primitive, const std::string& p) {
+  struct Visitor {
+    const std::string& p;
+    std::string operator()(const Sphere& s) const {
+      return fmt::format("sd_sphere({}, {}, {})", p, cl_float4(s.center), cl_float(s.radius));
+    }
+    std::string operator()(const Box& b) const {
+      return fmt::format("sd_box({}, {}, {})", p, cl_float4(b.center), cl_float4(b.half_size));
+    }
+    std::string operator()(const RoundBox& b) const {
+      return fmt::format("sd_round_box({}, {}, {}, {})", p, cl_float4(b.center), cl_float4(b.half_size),
+                         cl_float(b.radius));
+    }
+    std::string operator()(const BoxFrame& b) const {
+      return fmt::format("sd_box_frame({}, {}, {}, {})", p, cl_float4(b.center), cl_float4(b.half_size),
+                         cl_float(b.thickness));
+    }
+    std::string operator()(const Torus& t) const {
+      return fmt::format("sd_torus({}, {}, {}, {})", p, cl_float4(t.center), cl_float(t.major_radius),
+                         cl_float(t.minor_radius));
+    }
+    std::string operator()(const Plane& s) const {
+      return fmt::format("sd_plane({}, {}, {})", p, cl_float4(s.normal), cl_float(s.offset));
+    }
+    std::string operator()(const Capsule& c) const {
+      return fmt::format("sd_capsule({}, {}, {}, {})", p, cl_float4(c.a), cl_float4(c.b), cl_float(c.radius));
+    }
+    std::string operator()(const Cylinder& c) const {
+      return fmt::format("sd_cylinder({}, {}, {}, {})", p, cl_float4(c.center), cl_float(c.radius),
+                         cl_float(c.half_height));
+    }
+  };
+  return std::visit(Visitor{p}, primitive);
+}
+
+/// Emits the statements of one function body; with_color also tracks the albedo.
+class SdfEmitter {
+ public:
+  explicit SdfEmitter(bool with_color) : with_color_(with_color) {}
+
+  struct Value {
+    std::string distance;
+    std::string color;  // empty without color
+  };
+
+  Value emit(const Node& node, const std::string& p, const glm::dvec3& inherited_color) {
+    const glm::dvec3 color = node.color.value_or(inherited_color);
+    const std::string local_p = emit_transform(node.transform, p);
+    Value value = is_primitive(node.kind) ? emit_primitive(node, local_p, color) : emit_operator(node, local_p, color);
+    if (node.transform.scale != 1.0) {
+      // p was divided by the scale, so distances in the local frame are scaled back.
+      const std::string scaled = fresh("d");
+      line(fmt::format("vfloat {} = {} * {};", scaled, value.distance, cl_float(node.transform.scale)));
+      value.distance = scaled;
+    }
+    return value;
+  }
+
+  std::string body() const { return body_; }
+
+ private:
+  std::string fresh(const char* prefix) { return fmt::format("{}{}", prefix, counter_++); }
+  void line(const std::string& text) { body_ += "  " + text + "\n"; }
+
+  std::string emit_transform(const Transform& transform, const std::string& p) {
+    if (transform.is_identity()) return p;
+    // localFromWorld = S^-1 R^T (p - translate)
+    const glm::dmat3 local_from_world = glm::transpose(transform.world_from_local_rotation()) / transform.scale;
+    const glm::dvec3 r0 = glm::row(local_from_world, 0), r1 = glm::row(local_from_world, 1),
+                     r2 = glm::row(local_from_world, 2);
+    const std::string q = fresh("p");
+    line(fmt::format("vec3v {} = v3_transform(v3_sub({}, v3_from({})), {}, {}, {}, {}, {}, {}, {}, {}, {});", q, p,
+                     cl_float4(transform.translate), cl_float(r0.x), cl_float(r0.y), cl_float(r0.z), cl_float(r1.x),
+                     cl_float(r1.y), cl_float(r1.z), cl_float(r2.x), cl_float(r2.y), cl_float(r2.z)));
+    return q;
+  }
+
+  Value emit_primitive(const Node& node, const std::string& p, const glm::dvec3& color) {
+    Value value{fresh("d"), ""};
+    line(fmt::format("vfloat {} = {};  /* {} */", value.distance, primitive_call(node.primitive, p),
+                     node_kind_name(node.kind)));
+    if (with_color_) {
+      value.color = fresh("c");
+      line(fmt::format("vec3v {} = v3_from({});", value.color, cl_float4(color)));
+    }
+    return value;
+  }
+
+  Value emit_operator(const Node& node, const std::string& p, const glm::dvec3& color) {
+    Value acc = emit(node.children.front(), p, color);
+    for (std::size_t i = 1; i < node.children.size(); ++i) {
+      const Value next = emit(node.children[i], p, color);
+      acc = combine(node, acc, next);
+    }
+    return acc;
+  }
+
+  Value combine(const Node& node, const Value& a, const Value& b) {
+    Value out{fresh("d"), ""};
+    const std::string k = cl_float(node.smooth_k);
+    const std::string& da = a.distance;
+    const std::string& db = b.distance;
+    std::string distance, color;
+    switch (node.kind) {
+      case NodeKind::Union:
+        distance = fmt::format("op_union({}, {})", da, db);
+        color = fmt::format("v3_select({}, {}, MASK({} <= {}))", b.color, a.color, da, db);
+        break;
+      case NodeKind::Intersection:
+        distance = fmt::format("op_intersection({}, {})", da, db);
+        color = fmt::format("v3_select({}, {}, MASK({} >= {}))", b.color, a.color, da, db);
+        break;
+      case NodeKind::Subtraction:
+        distance = fmt::format("op_subtraction({}, {})", da, db);
+        color = fmt::format("v3_select({}, {}, MASK({} >= -{}))", b.color, a.color, da, db);
+        break;
+      case NodeKind::SmoothUnion:
+        distance = fmt::format("op_smooth_union({}, {}, {})", da, db, k);
+        color = fmt::format("v3_mix({}, {}, smooth_union_blend({}, {}, {}))", b.color, a.color, da, db, k);
+        break;
+      case NodeKind::SmoothIntersection:
+        distance = fmt::format("op_smooth_intersection({}, {}, {})", da, db, k);
+        color = fmt::format("v3_mix({}, {}, smooth_intersection_blend({}, {}, {}))", b.color, a.color, da, db, k);
+        break;
+      case NodeKind::SmoothSubtraction:
+        distance = fmt::format("op_smooth_subtraction({}, {}, {})", da, db, k);
+        color = fmt::format("v3_mix({}, {}, smooth_subtraction_blend({}, {}, {}))", a.color, b.color, da, db, k);
+        break;
+      default:
+        throw std::logic_error("combine() called on a primitive");
+    }
+    if (with_color_) {
+      out.color = fresh("c");
+      line(fmt::format("vec3v {} = {};", out.color, color));
+    }
+    line(fmt::format("vfloat {} = {};", out.distance, distance));
+    return out;
+  }
+
+  bool with_color_;
+  int counter_ = 0;
+  std::string body_;
+};
+
+}  // namespace
+
+std::string generate_sdf_functions(const Node& root) {
+  SdfEmitter distance_only(false);
+  const SdfEmitter::Value d = distance_only.emit(root, "p", default_albedo());
+  SdfEmitter with_color(true);
+  const SdfEmitter::Value dc = with_color.emit(root, "p", default_albedo());
+  return fmt::format(
+      "/* Distance to the scene. */\n"
+      "SDF_INLINE vfloat map(vec3v p) {{\n{}  return {};\n}}\n\n"
+      "/* Distance to the scene and the albedo there. */\n"
+      "SDF_INLINE vfloat map_color(vec3v p, vec3v* albedo) {{\n{}  *albedo = {};\n  return {};\n}}\n",
+      distance_only.body(), d.distance, with_color.body(), dc.color, dc.distance);
+}
+
+}  // namespace clmarch

@@ -1,0 +1,40 @@
+// The error kinds that reach the user, each with its exit code (docs/cli.md).
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace clmarch {
+
+/// Process exit codes.
+enum ExitCode : int {
+  kExitOk = 0,
+  /// `clmarch check`: the renders disagree beyond the tolerances.
+  kExitCheckFailed = 1,
+  /// Bad scene file, option or output path.
+  kExitBadInput = 2,
+  /// An OpenCL platform, device, build or launch failed.
+  kExitDeviceFault = 3,
+  /// Writing an output file failed.
+  kExitOutputFailed = 4,
+};
+
+/// Bad input from the user; the message is one line naming the file or option, what and why.
+class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// An OpenCL failure; the message names the device and the failing call (and may carry a build log).
+class DeviceError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Writing a result failed (disk full, permissions changed under us).
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+}  // namespace clmarch

@@ -1,0 +1,56 @@
+// Temporary-then-rename file writing.
+#include "image/atomic_file.hpp"
+
+#include "common/errors.hpp"
+
+#include <fmt/format.h>
+#include <fmt/std.h>
+
+#include <fstream>
+#include <system_error>
+
+#include <unistd.h>
+
+namespace clmarch {
+
+void write_atomically(const std::filesystem::path& target,
+                      const std::function<void(const std::filesystem::path& temp)>& write) {
+  std::filesystem::path temp = target;
+  temp.replace_filename(fmt::format(".{}.clmarch-{}{}", target.stem().string(), getpid(), target.extension().string()));
+  try {
+    write(temp);
+    std::error_code error;
+    std::filesystem::rename(temp, target, error);
+    if (error) throw OutputError(fmt::format("{}: cannot write: {}", target.string(), error.message()));
+  } catch (...) {
+    std::error_code ignored;
+    std::filesystem::remove(temp, ignored);
+    throw;
+  }
+}
+
+void write_file_atomically(const std::filesystem::path& path, const std::string& text) {
+  write_atomically(path, [&](const std::filesystem::path& temp) {
+    std::ofstream out(temp, std::ios::binary);
+    out << text;
+    out.close();
+    if (!out) throw OutputError(fmt::format("{}: cannot write", path.string()));
+  });
+}
+
+void check_output_folder(const std::filesystem::path& path, const std::string& option) {
+  std::filesystem::path folder = path.parent_path();
+  if (folder.empty()) folder = ".";
+  std::error_code error;
+  if (!std::filesystem::is_directory(folder, error)) {
+    throw InputError(fmt::format("{} {}: folder {} does not exist", option, path.string(), folder.string()));
+  }
+  if (access(folder.c_str(), W_OK) != 0) {
+    throw InputError(fmt::format("{} {}: folder {} is not writable", option, path.string(), folder.string()));
+  }
+  if (std::filesystem::is_directory(path, error)) {
+    throw InputError(fmt::format("{} {}: is a folder, expected a file name", option, path.string()));
+  }
+}
+
+}  // namespace clmarch

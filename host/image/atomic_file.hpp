@@ -1,0 +1,24 @@
+// Output files appear whole or not at all: written to a temporary name beside the target, then
+// renamed over it.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string>
+
+namespace clmarch {
+
+/// Calls write(temp_path) with a temporary path in the target's folder that keeps the target's
+/// extension, then renames it to target. On any exception the temporary file is removed and the
+/// exception propagates.
+void write_atomically(const std::filesystem::path& target,
+                      const std::function<void(const std::filesystem::path& temp)>& write);
+
+/// Writes text to path atomically. Throws OutputError on failure.
+void write_file_atomically(const std::filesystem::path& path, const std::string& text);
+
+/// Fails with InputError (naming option) unless path's folder exists and is writable; checked
+/// before a render starts so that a bad path costs nothing.
+void check_output_folder(const std::filesystem::path& path, const std::string& option);
+
+}  // namespace clmarch

@@ -1,0 +1,76 @@
+// OpenImageIO output; every file goes through write_atomically.
+#include "image/image_writer.hpp"
+
+#include "common/errors.hpp"
+#include "image/atomic_file.hpp"
+
+#include <OpenImageIO/imageio.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace clmarch {
+namespace {
+
+bool is_float_format(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext == ".exr" || ext == ".hdr";
+}
+
+/// Interleaves the given planes and writes them with OpenImageIO as format.
+void write_interleaved(const std::filesystem::path& path, const FrameBuffers& buffers, const std::vector<Channel>& channels,
+                       OIIO::TypeDesc format, bool srgb) {
+  const std::size_t pixels = static_cast<std::size_t>(buffers.width) * buffers.height;
+  const std::size_t nc = channels.size();
+  std::vector<float> interleaved(pixels * nc);
+  for (std::size_t c = 0; c < nc; ++c) {
+    const std::vector<float>& plane = buffers.plane(channels[c]);
+    for (std::size_t i = 0; i < pixels; ++i) interleaved[i * nc + c] = srgb ? linear_to_srgb(plane[i]) : plane[i];
+  }
+  write_atomically(path, [&](const std::filesystem::path& temp) {
+    auto out = OIIO::ImageOutput::create(temp.string());
+    if (!out) throw OutputError(fmt::format("{}: cannot write: {}", path.string(), OIIO::geterror()));
+    OIIO::ImageSpec spec(buffers.width, buffers.height, static_cast<int>(nc), format);
+    spec.channelnames.clear();
+    for (Channel c : channels) spec.channelnames.emplace_back(kChannelNames[static_cast<int>(c)]);
+    if (srgb) spec.attribute("oiio:ColorSpace", "sRGB");
+    const bool ok = out->open(temp.string(), spec) && out->write_image(OIIO::TypeDesc::FLOAT, interleaved.data()) &&
+                    out->close();
+    if (!ok) throw OutputError(fmt::format("{}: cannot write: {}", path.string(), out->geterror()));
+  });
+}
+
+}  // namespace
+
+float linear_to_srgb(float linear) {
+  const float x = std::clamp(std::isnan(linear) ? 0.0f : linear, 0.0f, 1.0f);
+  return x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1.0f / 2.4f) - 0.055f;
+}
+
+void check_image_path(const std::filesystem::path& path, const std::string& option) {
+  check_output_folder(path, option);
+  auto out = OIIO::ImageOutput::create(path.string());
+  if (!out) {
+    throw InputError(fmt::format("{} {}: cannot write images with extension '{}' (try .png, .exr, .tif or .jpg)", option,
+                                 path.string(), path.extension().string()));
+  }
+}
+
+void write_color_image(const std::filesystem::path& path, const FrameBuffers& buffers) {
+  const std::vector<Channel> rgb = {Channel::R, Channel::G, Channel::B};
+  if (is_float_format(path)) {
+    write_interleaved(path, buffers, rgb, OIIO::TypeDesc::FLOAT, false);
+  } else {
+    write_interleaved(path, buffers, rgb, OIIO::TypeDesc::UINT8, true);
+  }
+}
+
+void write_buffers_exr(const std::filesystem::path& path, const FrameBuffers& buffers) {
+  const std::vector<Channel> all = {Channel::R,     Channel::G,  Channel::B,  Channel::Depth,
+                                    Channel::Steps, Channel::NX, Channel::NY, Channel::NZ};
+  write_interleaved(path, buffers, all, OIIO::TypeDesc::FLOAT, false);
+}
+
+}  // namespace clmarch

@@ -1,0 +1,25 @@
+// Writing renders with OpenImageIO: the color image in any format it writes, and the multi-channel
+// float EXR of all buffers.
+#pragma once
+
+#include "render/frame_buffers.hpp"
+
+#include <filesystem>
+#include <string>
+
+namespace clmarch {
+
+/// Fails with InputError (naming option) unless OpenImageIO can write path's extension and its
+/// folder is writable.
+void check_image_path(const std::filesystem::path& path, const std::string& option);
+
+/// Writes R, G, B: float and linear for float formats (exr, hdr), 8-bit sRGB-encoded otherwise.
+void write_color_image(const std::filesystem::path& path, const FrameBuffers& buffers);
+
+/// Writes every channel (R, G, B, depth, steps, N.x, N.y, N.z) as one float EXR.
+void write_buffers_exr(const std::filesystem::path& path, const FrameBuffers& buffers);
+
+/// The sRGB transfer function of a linear value, clamped to [0, 1].
+float linear_to_srgb(float linear);
+
+}  // namespace clmarch

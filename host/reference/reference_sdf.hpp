@@ -1,0 +1,74 @@
+// CPU reference of the distance field: evaluates the scene IR's node tree directly in double.
+// Deliberately shares no code with kernels/, so the two can be compared pixel by pixel; the
+// formulas are Inigo Quilez's, and each says whether it returns an exact distance or a bound.
+#pragma once
+
+#include "scene/scene.hpp"
+
+#include <glm/glm.hpp>
+
+namespace clmarch {
+
+/// The field at a point: signed distance and the albedo of the surface there.
+struct SdfSample {
+  double distance;
+  glm::dvec3 color;
+};
+
+/// Signed distance of the whole tree at the world point p (throws std::invalid_argument on a
+/// malformed tree: operator without children, smooth_k <= 0, parameters of the wrong kind).
+double reference_distance(const Node& root, const glm::dvec3& p);
+/// Distance and albedo at p; colors follow the rules of op_union and friends below.
+SdfSample reference_sample(const Node& root, const glm::dvec3& p);
+
+// Primitives, p in the primitive's local frame. All are exact signed distances.
+
+/// |p - c| - r.
+double sd_sphere(const glm::dvec3& p, const Sphere& sphere);
+/// Axis-aligned box.
+double sd_box(const glm::dvec3& p, const Box& box);
+/// Box with edges rounded by radius; half_size includes the rounding.
+double sd_round_box(const glm::dvec3& p, const RoundBox& box);
+/// The twelve edges of a box as square bars 2 * thickness wide, flush with the box's faces.
+double sd_box_frame(const glm::dvec3& p, const BoxFrame& frame);
+/// Torus around the y axis (lying in the xz plane).
+double sd_torus(const glm::dvec3& p, const Torus& torus);
+/// dot(n, p) + offset, negative on the side the normal points away from.
+double sd_plane(const glm::dvec3& p, const Plane& plane);
+/// Segment a-b thickened by radius.
+double sd_capsule(const glm::dvec3& p, const Capsule& capsule);
+/// Capped cylinder along y.
+double sd_cylinder(const glm::dvec3& p, const Cylinder& cylinder);
+
+// Operators on distances. Union of exact distances is exact outside and a bound inside;
+// intersection, subtraction and the smooth operators return bounds.
+
+/// min(a, b).
+double op_union(double a, double b);
+/// max(a, b).
+double op_intersection(double a, double b);
+/// a minus b: max(a, -b).
+double op_subtraction(double a, double b);
+/// Polynomial smooth minimum with blend radius k > 0.
+double op_smooth_union(double a, double b, double k);
+/// Polynomial smooth maximum with blend radius k > 0.
+double op_smooth_intersection(double a, double b, double k);
+/// Smooth a minus b with blend radius k > 0.
+double op_smooth_subtraction(double a, double b, double k);
+
+// The same operators on samples: same distance, plus the color rule of the scene format.
+
+/// Color of the nearer operand (the first on a tie).
+SdfSample op_union(const SdfSample& a, const SdfSample& b);
+/// Color of the farther operand (the first on a tie).
+SdfSample op_intersection(const SdfSample& a, const SdfSample& b);
+/// Color of a where a >= -b, else of b.
+SdfSample op_subtraction(const SdfSample& a, const SdfSample& b);
+/// Color mix(b, a, h) with the blend weight h of the distance.
+SdfSample op_smooth_union(const SdfSample& a, const SdfSample& b, double k);
+/// Color mix(b, a, h) with the blend weight h of the distance.
+SdfSample op_smooth_intersection(const SdfSample& a, const SdfSample& b, double k);
+/// Color mix(a, b, h) with the blend weight h of the distance.
+SdfSample op_smooth_subtraction(const SdfSample& a, const SdfSample& b, double k);
+
+}  // namespace clmarch

@@ -1,0 +1,34 @@
+// Per-pixel output of a render, as planes of float, with the channel names of the --buffers EXR
+// (part of the contract: R, G, B, depth, steps, N.x, N.y, N.z).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+namespace clmarch {
+
+/// Output channels; the order is also the plane order of the OpenCL output buffer.
+enum class Channel { R, G, B, Depth, Steps, NX, NY, NZ };
+inline constexpr int kChannelCount = 8;
+/// EXR channel names, indexed by Channel.
+inline constexpr const char* kChannelNames[kChannelCount] = {"R", "G", "B", "depth", "steps", "N.x", "N.y", "N.z"};
+
+/// Row-major planes, pixel (i, j) at j * width + i, j = 0 the top row. Linear color, depth +inf on
+/// a miss, steps = distance evaluations of the march, N = unit normal (0 on a miss).
+struct FrameBuffers {
+  int width = 0;
+  int height = 0;
+  std::array<std::vector<float>, kChannelCount> planes;
+
+  FrameBuffers() = default;
+  FrameBuffers(int w, int h) : width(w), height(h) {
+    for (auto& plane : planes) plane.assign(static_cast<std::size_t>(w) * h, 0.0f);
+  }
+  std::vector<float>& plane(Channel c) { return planes[static_cast<int>(c)]; }
+  const std::vector<float>& plane(Channel c) const { return planes[static_cast<int>(c)]; }
+  float& at(Channel c, int i, int j) { return plane(c)[static_cast<std::size_t>(j) * width + i]; }
+  float at(Channel c, int i, int j) const { return plane(c)[static_cast<std::size_t>(j) * width + i]; }
+};
+
+}  // namespace clmarch

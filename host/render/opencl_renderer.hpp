@@ -1,0 +1,57 @@
+// Renders a scene on an OpenCL device: generate the program, build it, march, read the buffers back.
+#pragma once
+
+#include "codegen/kernel_source.hpp"
+#include "render/frame_buffers.hpp"
+#include "scene/scene.hpp"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace clmarch {
+
+struct OpenClOptions {
+  /// Device index of `clmarch devices`; default: first GPU, else first CPU.
+  std::optional<int> device;
+  /// Pixels per work-item; default from the device (default_lanes).
+  std::optional<int> lanes;
+  KernelPurpose purpose = KernelPurpose::Shaded;
+  /// Where to write the exact program source before building; empty: nowhere.
+  std::string dump_kernel_path;
+};
+
+/// Figures of one OpenCL render (--stats).
+struct RenderStats {
+  std::string device;
+  int lanes = 1;
+  double build_ms = 0.0;
+  /// From the march kernel's profiling event.
+  double kernel_ms = 0.0;
+  /// Sum of the steps buffer: march iterations over all pixels.
+  std::uint64_t steps = 0;
+  double rays_per_s = 0.0;
+};
+
+struct RenderResult {
+  FrameBuffers buffers;
+  RenderStats stats;
+};
+
+/// Renders scene at scene.render.width x height. Without shading in the purpose, R, G, B stay 0;
+/// without normals, N stays 0.
+RenderResult render_opencl(const Scene& scene, const OpenClOptions& options);
+
+/// The scene's generated map() and map_color() evaluated at points on the device.
+struct PointSamples {
+  std::vector<float> distance;
+  /// Distance as map_color() computes it (must equal distance).
+  std::vector<float> color_distance;
+  std::vector<glm::vec3> albedo;
+};
+PointSamples eval_points_opencl(const Scene& scene, const std::vector<glm::dvec3>& points, const OpenClOptions& options);
+
+}  // namespace clmarch

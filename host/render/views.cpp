@@ -1,0 +1,55 @@
+// Debug views from the buffers.
+#include "render/views.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace clmarch {
+namespace {
+
+void set_gray(FrameBuffers& b, std::size_t i, float v) {
+  b.plane(Channel::R)[i] = v;
+  b.plane(Channel::G)[i] = v;
+  b.plane(Channel::B)[i] = v;
+}
+
+}  // namespace
+
+void apply_view(FrameBuffers& buffers, View view, const RenderSettings& settings) {
+  const std::size_t pixels = buffers.plane(Channel::Depth).size();
+  const auto& depth = buffers.plane(Channel::Depth);
+  switch (view) {
+    case View::Shaded:
+      return;
+    case View::Normals:
+      for (std::size_t i = 0; i < pixels; ++i) {
+        const bool hit = std::isfinite(depth[i]);
+        buffers.plane(Channel::R)[i] = hit ? buffers.plane(Channel::NX)[i] * 0.5f + 0.5f : 0.0f;
+        buffers.plane(Channel::G)[i] = hit ? buffers.plane(Channel::NY)[i] * 0.5f + 0.5f : 0.0f;
+        buffers.plane(Channel::B)[i] = hit ? buffers.plane(Channel::NZ)[i] * 0.5f + 0.5f : 0.0f;
+      }
+      return;
+    case View::Depth: {
+      float nearest = std::numeric_limits<float>::infinity();
+      float farthest = 0.0f;
+      for (float d : depth) {
+        if (!std::isfinite(d)) continue;
+        nearest = std::min(nearest, d);
+        farthest = std::max(farthest, d);
+      }
+      const float range = std::max(farthest - nearest, 1e-30f);
+      for (std::size_t i = 0; i < pixels; ++i) {
+        set_gray(buffers, i, std::isfinite(depth[i]) ? 1.0f - 0.8f * (depth[i] - nearest) / range : 0.0f);
+      }
+      return;
+    }
+    case View::Steps:
+      for (std::size_t i = 0; i < pixels; ++i) {
+        set_gray(buffers, i, buffers.plane(Channel::Steps)[i] / static_cast<float>(settings.max_steps));
+      }
+      return;
+  }
+}
+
+}  // namespace clmarch

@@ -1,0 +1,51 @@
+// Lookups over the node-kind list and the transform maths of the scene IR.
+#include "scene/scene.hpp"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace clmarch {
+
+std::string_view node_kind_name(NodeKind kind) {
+  switch (kind) {
+#define CLMARCH_PRIMITIVE(k, name) case NodeKind::k: return name;
+#define CLMARCH_OPERATOR(k, name) case NodeKind::k: return name;
+#include "scene/node_kinds.def"
+  }
+  return "?";
+}
+
+std::optional<NodeKind> node_kind_from_name(std::string_view name) {
+  for (NodeKind kind : kAllNodeKinds) {
+    if (node_kind_name(kind) == name) return kind;
+  }
+  return std::nullopt;
+}
+
+bool is_primitive(NodeKind kind) {
+  switch (kind) {
+#define CLMARCH_PRIMITIVE(k, name) case NodeKind::k: return true;
+#define CLMARCH_OPERATOR(k, name) case NodeKind::k: return false;
+#include "scene/node_kinds.def"
+  }
+  return false;
+}
+
+bool is_smooth_operator(NodeKind kind) {
+  return kind == NodeKind::SmoothUnion || kind == NodeKind::SmoothIntersection ||
+         kind == NodeKind::SmoothSubtraction;
+}
+
+bool Transform::is_identity() const {
+  return translate == glm::dvec3(0.0) && rotate_degrees == glm::dvec3(0.0) && scale == 1.0;
+}
+
+glm::dmat3 Transform::world_from_local_rotation() const {
+  const glm::dvec3 r = glm::radians(rotate_degrees);
+  glm::dmat4 m(1.0);
+  m = glm::rotate(m, r.z, glm::dvec3(0, 0, 1));
+  m = glm::rotate(m, r.y, glm::dvec3(0, 1, 0));
+  m = glm::rotate(m, r.x, glm::dvec3(1, 0, 0));
+  return glm::dmat3(m);
+}
+
+}  // namespace clmarch

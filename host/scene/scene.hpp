@@ -1,0 +1,152 @@
+// The scene IR: a validated scene file. The one definition shared by the code generator, the
+// OpenCL renderer and the CPU reference; each interprets it on its own.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+namespace clmarch {
+
+/// Kinds of SDF nodes, from node_kinds.def.
+enum class NodeKind {
+#define CLMARCH_PRIMITIVE(kind, name) kind,
+#define CLMARCH_OPERATOR(kind, name) kind,
+#include "scene/node_kinds.def"
+};
+
+/// Every node kind, in list order (for tests and lookups).
+inline constexpr NodeKind kAllNodeKinds[] = {
+#define CLMARCH_PRIMITIVE(kind, name) NodeKind::kind,
+#define CLMARCH_OPERATOR(kind, name) NodeKind::kind,
+#include "scene/node_kinds.def"
+};
+
+/// The scene-file name of a kind ("smooth_union").
+std::string_view node_kind_name(NodeKind kind);
+/// The kind with a scene-file name, if any.
+std::optional<NodeKind> node_kind_from_name(std::string_view name);
+/// True for leaves (primitives), false for operators.
+bool is_primitive(NodeKind kind);
+/// True for the smooth operators, which take a blend radius k.
+bool is_smooth_operator(NodeKind kind);
+
+// Primitive parameters, in the node's local frame (formulas: docs/scene-format.md).
+struct Sphere { glm::dvec3 center{0.0}; double radius = 1.0; };
+struct Box { glm::dvec3 center{0.0}; glm::dvec3 half_size{0.5}; };
+/// A box whose edges are rounded by radius; half_size includes the rounding.
+struct RoundBox { glm::dvec3 center{0.0}; glm::dvec3 half_size{0.5}; double radius = 0.1; };
+/// The edges of a box, as bars of the given thickness.
+struct BoxFrame { glm::dvec3 center{0.0}; glm::dvec3 half_size{0.5}; double thickness = 0.05; };
+/// A torus in the xz plane.
+struct Torus { glm::dvec3 center{0.0}; double major_radius = 1.0; double minor_radius = 0.25; };
+/// The half-space dot(normal, p) + offset <= 0; normal is unit length after loading.
+struct Plane { glm::dvec3 normal{0.0, 1.0, 0.0}; double offset = 0.0; };
+/// A segment from a to b, thickened by radius.
+struct Capsule { glm::dvec3 a{0.0, -0.5, 0.0}; glm::dvec3 b{0.0, 0.5, 0.0}; double radius = 0.25; };
+/// A capped cylinder along y.
+struct Cylinder { glm::dvec3 center{0.0}; double radius = 0.5; double half_height = 0.5; };
+
+/// Parameters of a primitive; the alternative matches Node::kind.
+using Primitive = std::variant<Sphere, Box, RoundBox, BoxFrame, Torus, Plane, Capsule, Cylinder>;
+
+/// Placement of a node: p_world = translate + R(rotate) * (scale * p_local).
+struct Transform {
+  glm::dvec3 translate{0.0};
+  /// Euler angles in degrees, applied about x, then y, then z.
+  glm::dvec3 rotate_degrees{0.0};
+  /// Uniform scale; the distance is multiplied by it (distances stay exact).
+  double scale = 1.0;
+
+  bool is_identity() const;
+  /// worldFromLocal rotation matrix R.
+  glm::dmat3 world_from_local_rotation() const;
+};
+
+/// One node of the SDF tree.
+struct Node {
+  NodeKind kind = NodeKind::Sphere;
+  /// Parameters, for primitives only.
+  Primitive primitive;
+  /// Blend radius of the smooth operators.
+  double smooth_k = 0.0;
+  /// Operands of an operator, folded left: union(a, b, c) = union(union(a, b), c).
+  std::vector<Node> children;
+  Transform transform;
+  /// Albedo of this subtree, unless a descendant sets its own.
+  std::optional<glm::dvec3> color;
+};
+
+/// Camera of the contract in docs/scene-format.md (fov is vertical, in degrees).
+struct Camera {
+  glm::dvec3 position{-2.0, 4.0, 4.0};
+  glm::dvec3 look_at{0.0};
+  glm::dvec3 up{0.0, 1.0, 0.0};
+  double fov_degrees = 45.0;
+};
+
+/// How surface normals are estimated from the distance field.
+enum class NormalMethod { Central, Tetrahedral };
+inline constexpr const char* kNormalMethodNames[] = {"central", "tetrahedral"};
+
+/// Settings of the march itself.
+struct RenderSettings {
+  int width = 640;
+  int height = 360;
+  int max_steps = 255;
+  /// A ray hits when the distance falls below epsilon.
+  double epsilon = 1e-4;
+  double max_distance = 100.0;
+  NormalMethod normal_method = NormalMethod::Central;
+  /// Finite-difference step of the normal estimate.
+  double normal_epsilon = 1e-3;
+};
+
+enum class LightKind { Point, Directional };
+
+struct Light {
+  LightKind kind = LightKind::Point;
+  /// Point lights: where the light is.
+  glm::dvec3 position{0.0};
+  /// Directional lights: unit vector from the surface towards the light.
+  glm::dvec3 direction{0.0, 1.0, 0.0};
+  glm::dvec3 color{1.0};
+  double intensity = 1.0;
+};
+
+enum class ShadingModel { Lambert, Phong, BlinnPhong };
+inline constexpr const char* kShadingModelNames[] = {"lambert", "phong", "blinn_phong"};
+
+/// What the color image shows: the lit scene or one of the debug views.
+enum class View { Shaded, Normals, Depth, Steps };
+inline constexpr const char* kViewNames[] = {"shaded", "normals", "depth", "steps"};
+
+/// Lighting model and the look of misses.
+struct Shading {
+  ShadingModel model = ShadingModel::Lambert;
+  glm::dvec3 ambient{0.1};
+  double diffuse = 1.0;
+  double specular = 0.0;
+  double shininess = 32.0;
+  /// Step-count ambient occlusion (Crum): subtracts steps^2 / step_ao from each channel; 0 = off.
+  double step_ao = 0.0;
+  glm::dvec3 background{0.0};
+  View view = View::Shaded;
+};
+
+/// A whole scene file after loading and validation.
+struct Scene {
+  /// File name, for messages.
+  std::string source_name;
+  Camera camera;
+  RenderSettings render;
+  Node sdf;
+  std::vector<Light> lights;
+  Shading shading;
+};
+
+}  // namespace clmarch

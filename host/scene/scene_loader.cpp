@@ -1,0 +1,367 @@
+// Scene files: schema, defaults and ranges (documented key by key in docs/scene-format.md).
+#include "scene/scene_loader.hpp"
+
+#include "common/errors.hpp"
+#include "scene/yaml_reader.hpp"
+
+#include <fmt/format.h>
+
+#include <fstream>
+#include <sstream>
+
+namespace clmarch {
+namespace {
+
+constexpr int kMaxImageSide = 65536;
+constexpr int kMaxStepBudget = 1000000;
+
+// Keys every SDF node accepts besides its own parameters.
+#define CLMARCH_COMMON_NODE_KEYS "color", "translate", "rotate", "scale"
+
+class SceneReader {
+ public:
+  explicit SceneReader(const std::string& source_name) : yaml_(source_name) {}
+
+  Scene read(const YAML::Node& root, const std::string& source_name) {
+    Scene scene;
+    scene.source_name = source_name;
+    yaml_.expect_map(root, "the scene", {"description", "camera", "render", "sdf", "lights", "shading"});
+    if (const YAML::Node camera = root["camera"]) scene.camera = read_camera(camera);
+    if (const YAML::Node render = root["render"]) scene.render = read_render(render);
+    scene.sdf = read_node(yaml_.required(root, "sdf", "sdf (the distance field tree)"), "sdf", 1);
+    if (const YAML::Node lights = root["lights"]) scene.lights = read_lights(lights);
+    if (const YAML::Node shading = root["shading"]) scene.shading = read_shading(shading);
+    return scene;
+  }
+
+ private:
+  Camera read_camera(const YAML::Node& node) {
+    Camera camera;
+    yaml_.expect_map(node, "camera", {"position", "look_at", "up", "fov"});
+    yaml_.optional_vec3(node, "position", "camera.position", camera.position);
+    yaml_.optional_vec3(node, "look_at", "camera.look_at", camera.look_at);
+    yaml_.optional_vec3(node, "up", "camera.up", camera.up);
+    yaml_.optional_number(node, "fov", "camera.fov", camera.fov_degrees, Range::open(0.0, 180.0));
+    const glm::dvec3 view = camera.look_at - camera.position;
+    if (glm::length(view) == 0.0) yaml_.fail(node, "camera.look_at must differ from camera.position");
+    const double sine = glm::length(glm::cross(glm::normalize(view), camera.up)) / std::max(glm::length(camera.up), 1e-300);
+    if (glm::length(camera.up) == 0.0 || sine < 1e-9) {
+      yaml_.fail(node, "camera.up must not be zero or parallel to the view direction (look_at - position)");
+    }
+    return camera;
+  }
+
+  RenderSettings read_render(const YAML::Node& node) {
+    RenderSettings render;
+    yaml_.expect_map(node, "render", {"width", "height", "max_steps", "epsilon", "max_distance", "normal_method", "normal_epsilon"});
+    const Range side = Range::closed(1, kMaxImageSide);
+    if (node["width"]) render.width = yaml_.integer(node["width"], "render.width", side);
+    if (node["height"]) render.height = yaml_.integer(node["height"], "render.height", side);
+    if (node["max_steps"]) render.max_steps = yaml_.integer(node["max_steps"], "render.max_steps", Range::closed(1, kMaxStepBudget));
+    yaml_.optional_number(node, "epsilon", "render.epsilon", render.epsilon, Range::positive());
+    yaml_.optional_number(node, "max_distance", "render.max_distance", render.max_distance, Range::positive());
+    if (node["normal_method"]) {
+      render.normal_method = static_cast<NormalMethod>(yaml_.choice(node["normal_method"], "render.normal_method", kNormalMethodNames));
+    }
+    yaml_.optional_number(node, "normal_epsilon", "render.normal_epsilon", render.normal_epsilon, Range::positive());
+    return render;
+  }
+
+  std::vector<Light> read_lights(const YAML::Node& node) {
+    if (!node.IsSequence()) yaml_.fail(node, fmt::format("lights must be a list (got {})", describe_yaml(node)));
+    std::vector<Light> lights;
+    for (std::size_t i = 0; i < node.size(); ++i) {
+      const YAML::Node entry = node[i];
+      const std::string what = fmt::format("lights[{}]", i);
+      yaml_.expect_map(entry, what, {"point", "directional"});
+      if (entry.size() != 1) yaml_.fail(entry, what + " must have exactly one key: point or directional");
+      Light light;
+      const auto kind = entry.begin();
+      const std::string kind_name = kind->first.Scalar();
+      const YAML::Node params = kind->second;
+      const std::string path = what + "." + kind_name;
+      if (kind_name == "point") {
+        light.kind = LightKind::Point;
+        yaml_.expect_map(params, path, {"position", "color", "intensity"});
+        light.position = yaml_.vec3(yaml_.required(params, "position", path + ".position"), path + ".position");
+      } else {
+        light.kind = LightKind::Directional;
+        yaml_.expect_map(params, path, {"direction", "color", "intensity"});
+        const YAML::Node direction = yaml_.required(params, "direction", path + ".direction");
+        light.direction = yaml_.vec3(direction, path + ".direction");
+        if (glm::length(light.direction) == 0.0) yaml_.fail(direction, path + ".direction must not be zero");
+        light.direction = glm::normalize(light.direction);
+      }
+      if (params["color"]) light.color = yaml_.color(params["color"], path + ".color");
+      yaml_.optional_number(params, "intensity", path + ".intensity", light.intensity, Range::non_negative());
+      lights.push_back(light);
+    }
+    return lights;
+  }
+
+  Shading read_shading(const YAML::Node& node) {
+    Shading shading;
+    yaml_.expect_map(node, "shading", {"model", "ambient", "diffuse", "specular", "shininess", "step_ao", "background", "view"});
+    if (node["model"]) shading.model = static_cast<ShadingModel>(yaml_.choice(node["model"], "shading.model", kShadingModelNames));
+    if (node["ambient"]) shading.ambient = yaml_.color(node["ambient"], "shading.ambient");
+    yaml_.optional_number(node, "diffuse", "shading.diffuse", shading.diffuse, Range::non_negative());
+    yaml_.optional_number(node, "specular", "shading.specular", shading.specular, Range::non_negative());
+    yaml_.optional_number(node, "shininess", "shading.shininess", shading.shininess, Range::positive());
+    yaml_.optional_number(node, "step_ao", "shading.step_ao", shading.step_ao, Range::non_negative());
+    if (node["background"]) shading.background = yaml_.color(node["background"], "shading.background");
+    if (node["view"]) shading.view = static_cast<View>(yaml_.choice(node["view"], "shading.view", kViewNames));
+    return shading;
+  }
+
+  Node read_node(const YAML::Node& yaml, const std::string& path, int depth) {
+    if (depth > kMaxTreeDepth) yaml_.fail(yaml, fmt::format("{}: the tree is deeper than {} levels", path, kMaxTreeDepth));
+    if (!yaml.IsMap() || yaml.size() != 1) {
+      yaml_.fail(yaml, fmt::format("{} must be a map with one key naming the node kind, e.g. sphere: {{radius: 1}} (got {})",
+                                   path, yaml.IsMap() ? fmt::format("{} keys", yaml.size()) : describe_yaml(yaml)));
+    }
+    const auto entry = yaml.begin();
+    const std::string name = entry->first.Scalar();
+    const std::optional<NodeKind> kind = node_kind_from_name(name);
+    if (!kind) {
+      std::vector<std::string_view> names;
+      for (NodeKind k : kAllNodeKinds) names.push_back(node_kind_name(k));
+      yaml_.fail(entry->first, fmt::format("{}: unknown node kind '{}' (expected one of: {})", path, name, fmt::join(names, ", ")));
+    }
+    Node node;
+    node.kind = *kind;
+    const std::string node_path = path + "." + name;
+    if (is_primitive(*kind)) {
+      read_primitive(node, entry->second, node_path);
+    } else {
+      read_operator(node, entry->second, node_path, depth);
+    }
+    return node;
+  }
+
+  void read_common(Node& node, const YAML::Node& params, const std::string& path) {
+    if (params["color"]) node.color = yaml_.color(params["color"], path + ".color");
+    yaml_.optional_vec3(params, "translate", path + ".translate", node.transform.translate);
+    yaml_.optional_vec3(params, "rotate", path + ".rotate", node.transform.rotate_degrees);
+    yaml_.optional_number(params, "scale", path + ".scale", node.transform.scale, Range::positive());
+  }
+
+  void read_primitive(Node& node, const YAML::Node& params, const std::string& path) {
+    const Range positive = Range::positive();
+    const auto key = [&](const char* k) { return path + "." + k; };
+    switch (node.kind) {
+      case NodeKind::Sphere: {
+        yaml_.expect_map(params, path, {"center", "radius", CLMARCH_COMMON_NODE_KEYS});
+        Sphere s;
+        yaml_.optional_vec3(params, "center", key("center"), s.center);
+        yaml_.optional_number(params, "radius", key("radius"), s.radius, positive);
+        node.primitive = s;
+        break;
+      }
+      case NodeKind::Box: {
+        yaml_.expect_map(params, path, {"center", "half_size", CLMARCH_COMMON_NODE_KEYS});
+        Box b;
+        yaml_.optional_vec3(params, "center", key("center"), b.center);
+        yaml_.optional_vec3(params, "half_size", key("half_size"), b.half_size, positive);
+        node.primitive = b;
+        break;
+      }
+      case NodeKind::RoundBox: {
+        yaml_.expect_map(params, path, {"center", "half_size", "radius", CLMARCH_COMMON_NODE_KEYS});
+        RoundBox b;
+        yaml_.optional_vec3(params, "center", key("center"), b.center);
+        yaml_.optional_vec3(params, "half_size", key("half_size"), b.half_size, positive);
+        const double smallest = std::min({b.half_size.x, b.half_size.y, b.half_size.z});
+        yaml_.optional_number(params, "radius", key("radius"), b.radius, Range::closed(0.0, smallest));
+        if (!params["radius"] && b.radius > smallest) b.radius = smallest;
+        node.primitive = b;
+        break;
+      }
+      case NodeKind::BoxFrame: {
+        yaml_.expect_map(params, path, {"center", "half_size", "thickness", CLMARCH_COMMON_NODE_KEYS});
+        BoxFrame b;
+        yaml_.optional_vec3(params, "center", key("center"), b.center);
+        yaml_.optional_vec3(params, "half_size", key("half_size"), b.half_size, positive);
+        const double smallest = std::min({b.half_size.x, b.half_size.y, b.half_size.z});
+        yaml_.optional_number(params, "thickness", key("thickness"), b.thickness, {0.0, smallest, true, false});
+        if (!params["thickness"] && b.thickness > smallest) b.thickness = smallest;
+        node.primitive = b;
+        break;
+      }
+      case NodeKind::Torus: {
+        yaml_.expect_map(params, path, {"center", "major_radius", "minor_radius", CLMARCH_COMMON_NODE_KEYS});
+        Torus t;
+        yaml_.optional_vec3(params, "center", key("center"), t.center);
+        yaml_.optional_number(params, "major_radius", key("major_radius"), t.major_radius, positive);
+        yaml_.optional_number(params, "minor_radius", key("minor_radius"), t.minor_radius, positive);
+        node.primitive = t;
+        break;
+      }
+      case NodeKind::Plane: {
+        yaml_.expect_map(params, path, {"normal", "offset", CLMARCH_COMMON_NODE_KEYS});
+        Plane p;
+        yaml_.optional_vec3(params, "normal", key("normal"), p.normal);
+        if (glm::length(p.normal) == 0.0) yaml_.fail(params["normal"], key("normal") + " must not be zero");
+        p.normal = glm::normalize(p.normal);
+        yaml_.optional_number(params, "offset", key("offset"), p.offset);
+        node.primitive = p;
+        break;
+      }
+      case NodeKind::Capsule: {
+        yaml_.expect_map(params, path, {"a", "b", "radius", CLMARCH_COMMON_NODE_KEYS});
+        Capsule c;
+        yaml_.optional_vec3(params, "a", key("a"), c.a);
+        yaml_.optional_vec3(params, "b", key("b"), c.b);
+        if (c.a == c.b) yaml_.fail(params, key("a") + " and " + key("b") + " must differ (use a sphere for a point)");
+        yaml_.optional_number(params, "radius", key("radius"), c.radius, positive);
+        node.primitive = c;
+        break;
+      }
+      case NodeKind::Cylinder: {
+        yaml_.expect_map(params, path, {"center", "radius", "half_height", CLMARCH_COMMON_NODE_KEYS});
+        Cylinder c;
+        yaml_.optional_vec3(params, "center", key("center"), c.center);
+        yaml_.optional_number(params, "radius", key("radius"), c.radius, positive);
+        yaml_.optional_number(params, "half_height", key("half_height"), c.half_height, positive);
+        node.primitive = c;
+        break;
+      }
+      default:
+        throw std::logic_error("read_primitive() called on an operator");
+    }
+    read_common(node, params, path);
+  }
+
+  void read_operator(Node& node, const YAML::Node& value, const std::string& path, int depth) {
+    const bool smooth = is_smooth_operator(node.kind);
+    YAML::Node children;
+    if (value.IsSequence()) {
+      if (smooth) yaml_.fail(value, fmt::format("{} needs a blend radius: write {{k: 0.5, children: [...]}}", path));
+      children = value;
+    } else if (value.IsMap()) {
+      if (smooth) {
+        yaml_.expect_map(value, path, {"children", "k", CLMARCH_COMMON_NODE_KEYS});
+        node.smooth_k = yaml_.number(yaml_.required(value, "k", path + ".k"), path + ".k", Range::positive());
+      } else {
+        yaml_.expect_map(value, path, {"children", CLMARCH_COMMON_NODE_KEYS});
+      }
+      children = yaml_.required(value, "children", path + ".children");
+      read_common(node, value, path);
+    } else {
+      yaml_.fail(value, fmt::format("{} must be a list of nodes or a map with children (got {})", path, describe_yaml(value)));
+    }
+    if (!children.IsSequence()) yaml_.fail(children, fmt::format("{} children must be a list of nodes (got {})", path, describe_yaml(children)));
+    const bool subtracts = node.kind == NodeKind::Subtraction || node.kind == NodeKind::SmoothSubtraction;
+    const std::size_t minimum = subtracts ? 2 : 1;
+    if (children.size() < minimum) {
+      yaml_.fail(children, fmt::format("{} needs at least {} child node{} (got {})", path, minimum, minimum > 1 ? "s" : "", children.size()));
+    }
+    for (std::size_t i = 0; i < children.size(); ++i) {
+      node.children.push_back(read_node(children[i], fmt::format("{}[{}]", path, i), depth + 1));
+    }
+  }
+
+  YamlReader yaml_;
+};
+
+/// A copy of a parsed value built from fresh nodes, which carry no position: messages about it
+/// then say it came from --set rather than pointing at a line of the file.
+YAML::Node positionless_copy(const YAML::Node& node) {
+  switch (node.Type()) {
+    case YAML::NodeType::Scalar: return YAML::Node(node.Scalar());
+    case YAML::NodeType::Sequence: {
+      YAML::Node out(YAML::NodeType::Sequence);
+      for (const auto& item : node) out.push_back(positionless_copy(item));
+      return out;
+    }
+    case YAML::NodeType::Map: {
+      YAML::Node out(YAML::NodeType::Map);
+      for (const auto& entry : node) out.force_insert(positionless_copy(entry.first), positionless_copy(entry.second));
+      return out;
+    }
+    default: return YAML::Node(YAML::NodeType::Null);
+  }
+}
+
+void apply_override(YAML::Node& root, const SceneOverride& override_) {
+  const std::string option = fmt::format("--set {}={}", override_.path, override_.value);
+  YAML::Node value;
+  try {
+    value = positionless_copy(YAML::Load(override_.value));
+  } catch (const YAML::Exception& e) {
+    throw InputError(fmt::format("{}: the value is not valid YAML: {}", option, e.msg));
+  }
+  std::vector<std::string> segments;
+  std::stringstream parts(override_.path);
+  for (std::string segment; std::getline(parts, segment, '.');) {
+    if (segment.empty()) throw InputError(fmt::format("{}: empty component in the key path", option));
+    segments.push_back(segment);
+  }
+  if (segments.empty()) throw InputError(fmt::format("{}: empty key path", option));
+  // yaml-cpp's operator= on a Node writes through to the node it refers to; reset() rebinds.
+  YAML::Node current;
+  current.reset(root);
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    const std::string& segment = segments[i];
+    const bool last = i + 1 == segments.size();
+    YAML::Node next;
+    if (current.IsSequence()) {
+      std::size_t index = 0;
+      try {
+        std::size_t used = 0;
+        index = std::stoul(segment, &used);
+        if (used != segment.size()) throw std::invalid_argument(segment);
+      } catch (const std::exception&) {
+        throw InputError(fmt::format("{}: '{}' must be a list index (a number)", option, segment));
+      }
+      if (index >= current.size()) {
+        throw InputError(fmt::format("{}: index {} is past the end of a list of {}", option, index, current.size()));
+      }
+      if (last) {
+        current[index] = value;
+        return;
+      }
+      next.reset(current[index]);
+    } else if (current.IsMap() || current.IsNull()) {
+      if (last) {
+        current[segment] = value;
+        return;
+      }
+      next.reset(current[segment]);
+    } else {
+      throw InputError(fmt::format("{}: '{}' is a value, not a map or list", option, segments[i - 1]));
+    }
+    current.reset(next);
+  }
+}
+
+}  // namespace
+
+SceneOverride parse_override(const std::string& option_text) {
+  const std::size_t equals = option_text.find('=');
+  if (equals == std::string::npos || equals == 0) {
+    throw InputError(fmt::format("--set {}: expected key.path=value, e.g. --set render.epsilon=1e-5", option_text));
+  }
+  return {option_text.substr(0, equals), option_text.substr(equals + 1)};
+}
+
+Scene load_scene_text(const std::string& text, const std::string& source_name, const std::vector<SceneOverride>& overrides) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    throw InputError(fmt::format("{}:{}:{}: malformed YAML: {}", source_name, e.mark.line + 1, e.mark.column + 1, e.msg));
+  }
+  if (root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
+  for (const SceneOverride& o : overrides) apply_override(root, o);
+  return SceneReader(source_name).read(root, source_name);
+}
+
+Scene load_scene_file(const std::string& path, const std::vector<SceneOverride>& overrides) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(fmt::format("{}: cannot read the scene file: {}", path, std::strerror(errno)));
+  std::stringstream text;
+  text << in.rdbuf();
+  return load_scene_text(text.str(), path, overrides);
+}
+
+}  // namespace clmarch

@@ -1,0 +1,131 @@
+// Typed reads with line/column errors.
+#include "scene/yaml_reader.hpp"
+
+#include "common/errors.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <set>
+
+namespace clmarch {
+
+bool Range::contains(double v) const {
+  const bool above = low_open ? v > low : v >= low;
+  const bool below = high_open ? v < high : v <= high;
+  return above && below;
+}
+
+std::string Range::describe() const {
+  const bool bounded_low = std::isfinite(low);
+  const bool bounded_high = std::isfinite(high);
+  if (bounded_low && bounded_high) {
+    return fmt::format("in {}{}, {}{}", low_open ? "(" : "[", low, high, high_open ? ")" : "]");
+  }
+  if (bounded_low) return fmt::format("{} {}", low_open ? ">" : ">=", low);
+  if (bounded_high) return fmt::format("{} {}", high_open ? "<" : "<=", high);
+  return "a finite number";
+}
+
+std::string describe_yaml(const YAML::Node& node) {
+  switch (node.Type()) {
+    case YAML::NodeType::Scalar: return "'" + node.Scalar() + "'";
+    case YAML::NodeType::Sequence: return "a list";
+    case YAML::NodeType::Map: return "a map";
+    default: return "nothing";
+  }
+}
+
+std::string YamlReader::where(const YAML::Node& node) const {
+  const YAML::Mark mark = node.Mark();
+  if (mark.is_null()) return source_ + " (--set)";
+  return fmt::format("{}:{}:{}", source_, mark.line + 1, mark.column + 1);
+}
+
+void YamlReader::fail(const YAML::Node& at, const std::string& message) const {
+  throw InputError(fmt::format("{}: {}", where(at), message));
+}
+
+void YamlReader::expect_map(const YAML::Node& node, const std::string& what,
+                            std::initializer_list<std::string_view> allowed) const {
+  if (!node.IsMap()) fail(node, fmt::format("{} must be a map (got {})", what, describe_yaml(node)));
+  std::set<std::string> seen;
+  for (const auto& entry : node) {
+    const std::string key = entry.first.Scalar();
+    bool known = false;
+    for (std::string_view a : allowed) known = known || a == key;
+    if (!known) {
+      fail(entry.first, fmt::format("unknown key '{}' in {} (expected one of: {})", key, what, fmt::join(allowed, ", ")));
+    }
+    if (!seen.insert(key).second) fail(entry.first, fmt::format("duplicate key '{}' in {}", key, what));
+  }
+}
+
+double YamlReader::number(const YAML::Node& node, const std::string& what, Range range) const {
+  double value = 0.0;
+  if (!node.IsScalar() || !YAML::convert<double>::decode(node, value)) {
+    fail(node, fmt::format("{} must be a number (got {})", what, describe_yaml(node)));
+  }
+  if (!std::isfinite(value)) fail(node, fmt::format("{} must be finite (got {})", what, node.Scalar()));
+  if (!range.contains(value)) fail(node, fmt::format("{} must be {} (got {})", what, range.describe(), node.Scalar()));
+  return value;
+}
+
+int YamlReader::integer(const YAML::Node& node, const std::string& what, Range range) const {
+  long long value = 0;
+  if (!node.IsScalar() || !YAML::convert<long long>::decode(node, value)) {
+    fail(node, fmt::format("{} must be an integer (got {})", what, describe_yaml(node)));
+  }
+  if (!range.contains(static_cast<double>(value))) {
+    fail(node, fmt::format("{} must be {} (got {})", what, range.describe(), node.Scalar()));
+  }
+  return static_cast<int>(value);
+}
+
+std::string YamlReader::text(const YAML::Node& node, const std::string& what) const {
+  if (!node.IsScalar()) fail(node, fmt::format("{} must be a name (got {})", what, describe_yaml(node)));
+  return node.Scalar();
+}
+
+glm::dvec3 YamlReader::vec3(const YAML::Node& node, const std::string& what, Range range) const {
+  if (!node.IsSequence() || node.size() != 3) {
+    fail(node, fmt::format("{} must be a list of 3 numbers [x, y, z] (got {})", what,
+                           node.IsSequence() ? fmt::format("{} items", node.size()) : describe_yaml(node)));
+  }
+  return {number(node[0], what + "[0]", range), number(node[1], what + "[1]", range),
+          number(node[2], what + "[2]", range)};
+}
+
+glm::dvec3 YamlReader::color(const YAML::Node& node, const std::string& what) const {
+  if (node.IsScalar()) return glm::dvec3(number(node, what, Range::non_negative()));
+  return vec3(node, what, Range::non_negative());
+}
+
+int YamlReader::choice_of(const YAML::Node& node, const std::string& what, const char* const* names,
+                          std::size_t count) const {
+  const std::string value = text(node, what);
+  std::vector<std::string_view> options;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (value == names[i]) return static_cast<int>(i);
+    options.emplace_back(names[i]);
+  }
+  fail(node, fmt::format("{} must be one of {} (got '{}')", what, fmt::join(options, ", "), value));
+}
+
+void YamlReader::optional_number(const YAML::Node& map, const char* key, const std::string& what, double& out,
+                                 Range range) const {
+  if (const YAML::Node value = map[key]) out = number(value, what, range);
+}
+
+void YamlReader::optional_vec3(const YAML::Node& map, const char* key, const std::string& what, glm::dvec3& out,
+                               Range range) const {
+  if (const YAML::Node value = map[key]) out = vec3(value, what, range);
+}
+
+YAML::Node YamlReader::required(const YAML::Node& map, const char* key, const std::string& what) const {
+  const YAML::Node value = map[key];
+  if (!value) fail(map, fmt::format("{} is required", what));
+  return value;
+}
+
+}  // namespace clmarch

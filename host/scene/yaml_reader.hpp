@@ -1,0 +1,73 @@
+// Typed, validated reads from a YAML document, each failure an InputError that names the file,
+// line and column of the offending value.
+#pragma once
+
+#include <yaml-cpp/yaml.h>
+
+#include <glm/glm.hpp>
+
+#include <initializer_list>
+#include <limits>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace clmarch {
+
+/// An allowed interval for a number; open or closed at each end.
+struct Range {
+  double low = -std::numeric_limits<double>::infinity();
+  double high = std::numeric_limits<double>::infinity();
+  bool low_open = false;
+  bool high_open = false;
+
+  static Range any() { return {}; }
+  static Range positive() { return {0.0, std::numeric_limits<double>::infinity(), true, false}; }
+  static Range non_negative() { return {0.0, std::numeric_limits<double>::infinity(), false, false}; }
+  static Range closed(double lo, double hi) { return {lo, hi, false, false}; }
+  static Range open(double lo, double hi) { return {lo, hi, true, true}; }
+  bool contains(double v) const;
+  /// "> 0", "in [1, 65536]"
+  std::string describe() const;
+};
+
+class YamlReader {
+ public:
+  explicit YamlReader(std::string source_name) : source_(std::move(source_name)) {}
+
+  /// "file:line:col" of a node, or "file (--set)" for values that came from an override.
+  std::string where(const YAML::Node& node) const;
+  [[noreturn]] void fail(const YAML::Node& at, const std::string& message) const;
+
+  /// Fails unless node is a map whose keys are all in allowed and none repeats.
+  void expect_map(const YAML::Node& node, const std::string& what, std::initializer_list<std::string_view> allowed) const;
+
+  double number(const YAML::Node& node, const std::string& what, Range range = Range::any()) const;
+  int integer(const YAML::Node& node, const std::string& what, Range range) const;
+  std::string text(const YAML::Node& node, const std::string& what) const;
+  glm::dvec3 vec3(const YAML::Node& node, const std::string& what, Range range = Range::any()) const;
+  /// A color: [r, g, b] or one number for gray; components >= 0.
+  glm::dvec3 color(const YAML::Node& node, const std::string& what) const;
+  /// Index of node's text in names, else fails listing them.
+  template <std::size_t N>
+  int choice(const YAML::Node& node, const std::string& what, const char* const (&names)[N]) const {
+    return choice_of(node, what, names, N);
+  }
+
+  /// Reads map[key] into out if present (the default stays otherwise).
+  void optional_number(const YAML::Node& map, const char* key, const std::string& what, double& out,
+                       Range range = Range::any()) const;
+  void optional_vec3(const YAML::Node& map, const char* key, const std::string& what, glm::dvec3& out,
+                     Range range = Range::any()) const;
+  /// map[key], failing if it is absent.
+  YAML::Node required(const YAML::Node& map, const char* key, const std::string& what) const;
+
+ private:
+  int choice_of(const YAML::Node& node, const std::string& what, const char* const* names, std::size_t count) const;
+  std::string source_;
+};
+
+/// How a YAML value looks in a message: its text for scalars, else "a list" or "a map".
+std::string describe_yaml(const YAML::Node& node);
+
+}  // namespace clmarch

@@ -1,0 +1,49 @@
+/* Everything that crosses from the host to the device: one definition, included by the C++ host
+ * and by the OpenCL C kernels. Fields are 4-byte scalars and float4s with explicit padding, so the
+ * layout is the same on both sides (never glm::vec3 against OpenCL float3). */
+#ifndef CLMARCH_DEVICE_TYPES_H
+#define CLMARCH_DEVICE_TYPES_H
+
+#ifndef __OPENCL_VERSION__
+#include <CL/cl_platform.h>
+typedef cl_float4 float4;
+#define CLMARCH_INT cl_int
+#define CLMARCH_FLOAT cl_float
+#else
+#define CLMARCH_INT int
+#define CLMARCH_FLOAT float
+#endif
+
+/* Planes of the output buffer, in the order of the --buffers EXR channels. */
+#define CLMARCH_CHANNEL_R 0
+#define CLMARCH_CHANNEL_G 1
+#define CLMARCH_CHANNEL_B 2
+#define CLMARCH_CHANNEL_DEPTH 3
+#define CLMARCH_CHANNEL_STEPS 4
+#define CLMARCH_CHANNEL_NX 5
+#define CLMARCH_CHANNEL_NY 6
+#define CLMARCH_CHANNEL_NZ 7
+#define CLMARCH_CHANNEL_COUNT 8
+
+/* Per-frame march parameters: the camera contract's basis and the march limits. Changing any of
+ * these does not rebuild the program. */
+typedef struct MarchParams {
+  float4 origin;       /* xyz = camera position */
+  float4 forward;      /* xyz = f, unit */
+  float4 right_extent; /* xyz = r * aspect * tan(fov / 2) */
+  float4 up_extent;    /* xyz = u * tan(fov / 2) */
+  CLMARCH_INT width;
+  CLMARCH_INT height;
+  CLMARCH_INT pixel_count;  /* width * height */
+  CLMARCH_INT plane_stride; /* floats per output plane (pixel_count rounded up to whole packets) */
+  CLMARCH_INT max_steps;
+  CLMARCH_FLOAT epsilon;
+  CLMARCH_FLOAT max_distance;
+  CLMARCH_FLOAT normal_epsilon;
+} MarchParams;
+
+#ifndef __OPENCL_VERSION__
+static_assert(sizeof(MarchParams) == 4 * 16 + 8 * 4, "MarchParams layout must match OpenCL C");
+#endif
+
+#endif

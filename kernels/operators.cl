@@ -1,0 +1,26 @@
+/* Combinators of distances (Inigo Quilez's polynomial smooth minimum). The hard ones are exact
+ * outside for union and bounds otherwise; the smooth ones are bounds. The *_blend functions give
+ * the weight h that the color blending of smooth operators shares with the distance. */
+
+SDF_INLINE vfloat op_union(vfloat a, vfloat b) { return fmin(a, b); }
+SDF_INLINE vfloat op_intersection(vfloat a, vfloat b) { return fmax(a, b); }
+/* a minus b. */
+SDF_INLINE vfloat op_subtraction(vfloat a, vfloat b) { return fmax(a, -b); }
+
+SDF_INLINE vfloat smooth_union_blend(vfloat a, vfloat b, float k) { return clamp(0.5f + 0.5f * (b - a) / k, 0.0f, 1.0f); }
+SDF_INLINE vfloat smooth_intersection_blend(vfloat a, vfloat b, float k) { return clamp(0.5f - 0.5f * (b - a) / k, 0.0f, 1.0f); }
+SDF_INLINE vfloat smooth_subtraction_blend(vfloat a, vfloat b, float k) { return clamp(0.5f - 0.5f * (a + b) / k, 0.0f, 1.0f); }
+
+SDF_INLINE vfloat op_smooth_union(vfloat a, vfloat b, float k) {
+  vfloat h = smooth_union_blend(a, b, k);
+  return mix(b, a, h) - k * h * (1.0f - h);
+}
+SDF_INLINE vfloat op_smooth_intersection(vfloat a, vfloat b, float k) {
+  vfloat h = smooth_intersection_blend(a, b, k);
+  return mix(b, a, h) + k * h * (1.0f - h);
+}
+/* a minus b. */
+SDF_INLINE vfloat op_smooth_subtraction(vfloat a, vfloat b, float k) {
+  vfloat h = smooth_subtraction_blend(a, b, k);
+  return mix(a, -b, h) + k * h * (1.0f - h);
+}
