@@ -291,9 +291,8 @@ TEST(AnalyticIntersections, TorusHitsLieOnTheSurface) {
   EXPECT_GT(hits, 100);
 }
 
-// The floor y = 0, seen from (0, height, 0); the distance along any ray is exact in binary.
-Scene floor_scene(double height_unused = 0.0) {
-  (void)height_unused;
+// The floor y = 0 under default settings; along the rays used here every distance is exact in binary.
+Scene floor_scene() {
   Scene s;
   s.sdf = leaf(Plane{{0.0, 1.0, 0.0}, 0.0}, NodeKind::Plane);
   return s;
@@ -395,8 +394,9 @@ TEST_F(ReferenceShading, BlinnPhongHighlightIsCosineOfTheHalfAngle) {
 }
 
 TEST_F(ReferenceShading, LightsBelowTheSurfaceAddNothing) {
-  scene.shading.model = ShadingModel::Phong;
-  scene.lights[0].direction = {0.0, -1.0, 0.0};
+  // Blinn-Phong's half vector would still face the normal: only the n.l > 0 rule removes it.
+  scene.shading.model = ShadingModel::BlinnPhong;
+  scene.lights[0].direction = {0.8, -0.6, 0.0};
   expect_color(shade(), albedo * scene.shading.ambient);
 }
 
@@ -478,6 +478,38 @@ TEST(RenderReference, EveryPixelIsItsRay) {
   EXPECT_LT(hits, 13 * 7);
 }
 
+
+// A ball up-left and a box down-right of the view centre: catches flipped or transposed images.
+// Every pixel centre is at least 0.02 from a silhouette (checked against the closed forms).
+TEST(RenderReference, GoldenHitMask) {
+  const char* const kGolden[] = {
+      "................",
+      "................",
+      "....###.........",
+      "...#####........",
+      "...#####........",
+      "...#####........",
+      "....###...###...",
+      "..........###...",
+      "..........###...",
+      "................",
+      "................",
+      "................",
+  };
+  Scene s;
+  s.sdf.kind = NodeKind::Union;
+  s.sdf.children = {leaf(Sphere{{-0.7, 0.4, 0.0}, 0.7}, NodeKind::Sphere),
+                    leaf(Box{{0.9, -0.4, 0.0}, {0.4, 0.3, 0.3}}, NodeKind::Box)};
+  s.camera = camera_at({0.0, 0.0, 4.0}, {0.0, 0.0, 0.0});
+  s.render.width = 16;
+  s.render.height = 12;
+  const FrameBuffers fb = render_reference(s);
+  for (int j = 0; j < fb.height; ++j) {
+    std::string row;
+    for (int i = 0; i < fb.width; ++i) row += std::isfinite(fb.at(Channel::Depth, i, j)) ? '#' : '.';
+    EXPECT_EQ(row, kGolden[j]) << "row " << j;
+  }
+}
 
 }  // namespace
 }  // namespace clmarch

@@ -1,0 +1,131 @@
+// Bad input through the real executable: each case must give one line naming the file, position
+// or option, a non-zero exit, no crash and no output file.
+#include "common/errors.hpp"
+#include "support/test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+
+namespace clmarch {
+namespace {
+
+using testing::run_clmarch;
+using testing::TempDir;
+
+struct BadInputCase {
+  std::string name;
+  /// Scene file text written to DIR/scene.yaml; empty: no file is written.
+  std::string scene;
+  /// Arguments; "DIR" is replaced by the temp folder.
+  std::vector<std::string> args;
+  /// Text the one-line message must contain ("DIR" replaced too).
+  std::vector<std::string> message_parts;
+  int exit_code = kExitBadInput;
+};
+
+const std::string kValidScene = "sdf: {sphere: {radius: 1}}\nrender: {width: 16, height: 8}\n";
+
+std::string expand(std::string s, const std::string& dir) {
+  for (std::size_t at; (at = s.find("DIR")) != std::string::npos;) s.replace(at, 3, dir);
+  return s;
+}
+
+const std::vector<BadInputCase>& bad_input_cases() {
+  static const std::vector<BadInputCase> cases = {
+      {"missing_file", "", {"render", "DIR/none.yaml", "-o", "DIR/out.png"}, {"DIR/none.yaml", "cannot read"}},
+      {"malformed_yaml", "camera: {position: [1, 2\nsdf: {sphere: {}}\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
+       {"DIR/scene.yaml:", "malformed YAML"}},
+      {"unknown_node_kind", "sdf:\n  spher: {radius: 1}\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
+       {"DIR/scene.yaml:2:3:", "unknown node kind 'spher'", "sphere"}},
+      {"unknown_key", "sdf:\n  sphere: {radius: 1, radus: 2}\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
+       {"DIR/scene.yaml:2:23:", "unknown key 'radus'"}},
+      {"negative_radius", "sdf:\n  sphere: {radius: -1}\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
+       {"DIR/scene.yaml:2:20:", "sdf.sphere.radius must be > 0 (got -1)"}},
+      {"wrong_value_type", kValidScene + "camera: {fov: wide}\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
+       {"DIR/scene.yaml:3:15:", "camera.fov must be a number (got 'wide')"}},
+      {"zero_size_in_file", "sdf: {sphere: {radius: 1}}\nrender: {width: 0}\n",
+       {"render", "DIR/scene.yaml", "-o", "DIR/out.png"}, {"DIR/scene.yaml:2:17:", "render.width must be in [1, 65536] (got 0)"}},
+      {"zero_size_option", kValidScene, {"render", "DIR/scene.yaml", "--size", "0x10", "-o", "DIR/out.png"}, {"--size 0x10"}},
+      {"negative_size_option", kValidScene, {"render", "DIR/scene.yaml", "--size", "-5x10", "-o", "DIR/out.png"}, {"--size"}},
+      {"missing_output_folder", kValidScene, {"render", "DIR/scene.yaml", "-o", "DIR/no/such/out.png"},
+       {"--output DIR/no/such/out.png", "does not exist"}},
+      {"unknown_image_extension", kValidScene, {"render", "DIR/scene.yaml", "-o", "DIR/out.xyz"}, {"--output", "'.xyz'"}},
+      {"buffers_not_exr", kValidScene, {"render", "DIR/scene.yaml", "--buffers", "DIR/b.png", "-o", "DIR/out.png"},
+       {"--buffers", ".exr"}},
+      {"unknown_device", kValidScene, {"render", "DIR/scene.yaml", "--device", "99", "-o", "DIR/out.png"},
+       {"--device 99", "no such device"}},
+      {"unknown_option", kValidScene, {"render", "DIR/scene.yaml", "--bogus", "-o", "DIR/out.png"}, {"--bogus"}},
+      {"bad_set_path", kValidScene, {"render", "DIR/scene.yaml", "--set", "render.epsilonn=1", "-o", "DIR/out.png"},
+       {"unknown key 'epsilonn'"}},
+      {"bad_set_value", kValidScene, {"render", "DIR/scene.yaml", "--set", "render.epsilon=-1", "-o", "DIR/out.png"},
+       {"(--set)", "render.epsilon must be > 0 (got -1)"}},
+      {"set_without_equals", kValidScene, {"render", "DIR/scene.yaml", "--set", "render.epsilon", "-o", "DIR/out.png"},
+       {"--set render.epsilon", "key.path=value"}},
+      {"duplicate_key", "sdf: {sphere: {radius: 1, radius: 2}}\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
+       {"duplicate key 'radius'"}},
+      {"nan_value", "sdf: {sphere: {radius: .nan}}\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"}, {"must be finite"}},
+      {"missing_sdf", "camera: {fov: 45}\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"}, {"sdf", "required"}},
+      {"empty_union", "sdf: {union: []}\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"}, {"at least 1 child"}},
+      {"smooth_without_k", "sdf: {smooth_union: [{sphere: {}}, {box: {}}]}\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
+       {"blend radius"}},
+      {"camera_up_parallel", "sdf: {sphere: {}}\ncamera: {position: [0, 5, 0], look_at: [0, 0, 0], up: [0, 1, 0]}\n",
+       {"render", "DIR/scene.yaml", "-o", "DIR/out.png"}, {"camera.up"}},
+  };
+  return cases;
+}
+
+void PrintTo(const BadInputCase& c, std::ostream* os) { *os << c.name; }
+
+class BadInput : public ::testing::TestWithParam<BadInputCase> {};
+
+TEST_P(BadInput, OneLineErrorNoOutput) {
+  const BadInputCase& c = GetParam();
+  TempDir dir;
+  if (!c.scene.empty()) std::ofstream(dir / "scene.yaml") << c.scene;
+  const std::vector<std::string> before = dir.files();
+  std::vector<std::string> args;
+  for (const std::string& a : c.args) args.push_back(expand(a, dir.path().string()));
+  const testing::CommandResult result = run_clmarch(args);
+  EXPECT_EQ(result.exit_code, c.exit_code) << result.err;
+  EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << "expected one line, got:\n" << result.err;
+  for (const std::string& part : c.message_parts) {
+    EXPECT_NE(result.err.find(expand(part, dir.path().string())), std::string::npos)
+        << "message lacks '" << part << "':\n" << result.err;
+  }
+  EXPECT_EQ(dir.files(), before) << "a failed run must leave no file behind";
+}
+
+INSTANTIATE_TEST_SUITE_P(Cli, BadInput, ::testing::ValuesIn(bad_input_cases()),
+                         [](const auto& info) { return info.param.name; });
+
+TEST(Cli, RenderWritesImageBuffersAndStats) {
+  TempDir dir;
+  std::ofstream(dir / "scene.yaml") << kValidScene;
+  const auto result = run_clmarch({"render", (dir / "scene.yaml").string(), "-o", (dir / "out.png").string(), "--buffers",
+                                   (dir / "b.exr").string(), "--dump-kernel", (dir / "k.cl").string(), "--stats"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(dir.files(), (std::vector<std::string>{"b.exr", "k.cl", "out.png", "scene.yaml"}));
+  for (const char* key : {"\"device\"", "\"build_ms\"", "\"kernel_ms\"", "\"steps\"", "\"rays_per_s\""}) {
+    EXPECT_NE(result.out.find(key), std::string::npos) << key << " missing from --stats: " << result.out;
+  }
+}
+
+TEST(Cli, DefaultOutputIsSceneNamePng) {
+  TempDir dir;
+  std::ofstream(dir / "ball.yaml") << kValidScene;
+  const std::string command = "cd '" + dir.path().string() + "' && '" + CLMARCH_BINARY + "' render ball.yaml 2>/dev/null";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  EXPECT_EQ(dir.files(), (std::vector<std::string>{"ball.png", "ball.yaml"}));
+}
+
+TEST(Cli, DevicesListsPocl) {
+  const auto result = run_clmarch({"devices"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_NE(result.out.find("0: "), std::string::npos);
+  EXPECT_NE(result.out.find("(default)"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace clmarch

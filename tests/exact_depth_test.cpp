@@ -1,0 +1,137 @@
+// Exact-depth renders on the OpenCL device: scenes of one sphere, box or plane compared pixel by
+// pixel with closed-form ray intersections in double precision.
+#include "analytic_intersections.hpp"
+#include "render/opencl_renderer.hpp"
+#include "scene/camera_model.hpp"
+#include "support/test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+
+namespace clmarch {
+namespace {
+
+using testing::scene_from_yaml;
+
+// Rays closer than this to tangent (|cos| between ray and surface normal) are grazing: the march
+// may legitimately run out of steps there, so they count with the silhouette.
+constexpr double kGrazingCosine = 0.1;
+// Float rounding of o + t*d, of the direction and of the distance evaluation: ~16 ulps of the
+// coordinates' magnitude.
+constexpr double kFloatRelative = 16.0 * 0x1p-24;
+
+using Intersect = std::function<std::optional<double>(const glm::dvec3&, const glm::dvec3&)>;
+using NormalAt = std::function<glm::dvec3(const glm::dvec3&)>;
+
+struct DepthCase {
+  std::string name;
+  std::string scene_yaml;
+  Intersect intersect;
+  NormalAt normal_at;
+};
+
+struct PixelTruth {
+  bool hit = false;
+  double depth = 0.0;
+  double cosine = 0.0;
+};
+
+void check_exact_depth(const DepthCase& c, int lanes) {
+  Scene scene = scene_from_yaml(c.scene_yaml);
+  scene.render.width = 96;
+  scene.render.height = 64;
+  OpenClOptions options;
+  options.lanes = lanes;
+  options.purpose = KernelPurpose::DepthSteps;
+  const FrameBuffers buffers = render_opencl(scene, options).buffers;
+  const CameraBasis basis = camera_basis(scene.camera, scene.render.width, scene.render.height);
+  const int w = scene.render.width, h = scene.render.height;
+
+  std::vector<PixelTruth> truth(static_cast<std::size_t>(w) * h);
+  for (int j = 0; j < h; ++j) {
+    for (int i = 0; i < w; ++i) {
+      const glm::dvec3 dir = pixel_ray_direction(basis, i, j);
+      PixelTruth& t = truth[static_cast<std::size_t>(j) * w + i];
+      const std::optional<double> hit = c.intersect(basis.origin, dir);
+      t.hit = hit && *hit < scene.render.max_distance;
+      if (t.hit) {
+        t.depth = *hit;
+        t.cosine = std::abs(glm::dot(dir, c.normal_at(basis.origin + *hit * dir)));
+      }
+    }
+  }
+  const auto at = [&](int i, int j) -> const PixelTruth& { return truth[static_cast<std::size_t>(j) * w + i]; };
+  int compared = 0, hits = 0;
+  for (int j = 0; j < h; ++j) {
+    for (int i = 0; i < w; ++i) {
+      const PixelTruth& t = at(i, j);
+      bool silhouette = t.hit && t.cosine < kGrazingCosine;
+      for (int dj = -1; dj <= 1; ++dj) {
+        for (int di = -1; di <= 1; ++di) {
+          const int ni = i + di, nj = j + dj;
+          if (ni >= 0 && nj >= 0 && ni < w && nj < h && at(ni, nj).hit != t.hit) silhouette = true;
+        }
+      }
+      if (silhouette) continue;
+      ++compared;
+      const float depth = buffers.at(Channel::Depth, i, j);
+      ASSERT_EQ(std::isfinite(depth), t.hit) << c.name << " lanes " << lanes << " pixel " << i << "," << j;
+      if (!t.hit) continue;
+      ++hits;
+      // The march stops once the distance is below epsilon, so it ends at most epsilon/cos short
+      // of the surface along the ray, and never beyond it (the fields are exact).
+      const double rounding = kFloatRelative * (glm::length(basis.origin) + t.depth);
+      const double short_by = t.depth - depth;
+      EXPECT_LE(short_by, scene.render.epsilon / t.cosine + rounding) << c.name << " pixel " << i << "," << j;
+      EXPECT_GE(short_by, -rounding) << c.name << " pixel " << i << "," << j;
+    }
+  }
+  EXPECT_GT(compared, w * h / 2) << "too few pixels away from silhouettes to mean anything";
+  EXPECT_GT(hits, w * h / 10) << "the object should cover part of the image";
+}
+
+const std::vector<DepthCase>& depth_cases() {
+  static const std::vector<DepthCase> cases = {
+      {"sphere",
+       "camera: {position: [0.3, 0.5, 4], look_at: [0, 0, 0]}\nsdf: {sphere: {center: [0, 0, 0], radius: 1}}\n",
+       [](const glm::dvec3& o, const glm::dvec3& d) { return intersect_sphere(o, d, Sphere{{0, 0, 0}, 1.0}); },
+       [](const glm::dvec3& p) { return glm::normalize(p); }},
+      {"box",
+       "camera: {position: [-2, 3, 4], look_at: [0, 0, 0]}\nsdf: {box: {center: [0.2, 0, 0], half_size: [1, 0.5, 0.75]}}\n",
+       [](const glm::dvec3& o, const glm::dvec3& d) { return intersect_box(o, d, Box{{0.2, 0, 0}, {1, 0.5, 0.75}}); },
+       [](const glm::dvec3& p) {
+         const glm::dvec3 q = (p - glm::dvec3(0.2, 0, 0)) / glm::dvec3(1, 0.5, 0.75);
+         const glm::dvec3 a = glm::abs(q);
+         if (a.x >= a.y && a.x >= a.z) return glm::dvec3(q.x > 0 ? 1 : -1, 0, 0);
+         if (a.y >= a.z) return glm::dvec3(0, q.y > 0 ? 1 : -1, 0);
+         return glm::dvec3(0, 0, q.z > 0 ? 1 : -1);
+       }},
+      {"plane",
+       "camera: {position: [-2, 4, 4], look_at: [0, 0, 0]}\nsdf: {plane: {normal: [0, 1, 0], offset: 1}}\n",
+       [](const glm::dvec3& o, const glm::dvec3& d) { return intersect_plane(o, d, Plane{{0, 1, 0}, 1.0}); },
+       [](const glm::dvec3&) { return glm::dvec3(0, 1, 0); }},
+  };
+  return cases;
+}
+
+void PrintTo(const DepthCase& c, std::ostream* os) { *os << c.name; }
+
+class ExactDepth : public ::testing::TestWithParam<DepthCase> {};
+
+TEST_P(ExactDepth, MatchesClosedFormAtEveryPacketWidth) {
+  for (int lanes : {1, 4, 8, 16}) check_exact_depth(GetParam(), lanes);
+}
+
+TEST_P(ExactDepth, HoldsWithATighterEpsilon) {
+  DepthCase c = GetParam();
+  c.scene_yaml += "render: {epsilon: 1.0e-5, max_steps: 1000}\n";
+  check_exact_depth(c, 16);
+}
+
+INSTANTIATE_TEST_SUITE_P(Primitives, ExactDepth, ::testing::ValuesIn(depth_cases()),
+                         [](const auto& info) { return info.param.name; });
+
+}  // namespace
+}  // namespace clmarch

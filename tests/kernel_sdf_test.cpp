@@ -1,0 +1,162 @@
+// Every primitive, operator and transform against closed-form distances, evaluated both by the
+// generated OpenCL map() on the device (at every packet width) and by the CPU reference.
+#include "reference/reference_sdf.hpp"
+#include "render/opencl_renderer.hpp"
+#include "support/test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+namespace clmarch {
+namespace {
+
+using testing::scene_from_yaml;
+
+// The points have |p| <= 20 and the formulas a handful of float operations: a few float ulps there.
+constexpr double kKernelTolerance = 2e-5;
+// The reference is double precision: rounding only.
+constexpr double kReferenceTolerance = 1e-12;
+
+struct PointCase {
+  glm::dvec3 point;
+  double expected;
+};
+
+struct SdfCase {
+  std::string name;
+  std::string sdf_yaml;
+  std::vector<PointCase> points;
+};
+
+const double kSqrt2 = std::sqrt(2.0);
+const double kSqrt3 = std::sqrt(3.0);
+
+const std::vector<SdfCase>& sdf_cases() {
+  static const std::vector<SdfCase> cases = {
+      {"sphere", "sphere: {center: [1, 2, 3], radius: 0.5}",
+       {{{1, 2, 5}, 1.5}, {{1, 2, 3}, -0.5}, {{4, 6, 3}, 4.5}}},
+      {"box", "box: {center: [0, 0, 0], half_size: [1, 2, 3]}",
+       {{{3, 0, 0}, 2.0}, {{2, 3, 4}, kSqrt3}, {{0.5, 0, 0}, -0.5}, {{0, 0, 0}, -1.0}}},
+      {"round_box", "round_box: {half_size: [1, 1, 1], radius: 0.25}",
+       {{{2, 0, 0}, 1.0}, {{2, 2, 2}, kSqrt3 * 1.25 - 0.25}, {{0, 0, 0}, -1.0}}},
+      // Bars are 2 * thickness wide, flush with the faces: x, y in [0.8, 1] for the bar along z.
+      {"box_frame", "box_frame: {half_size: [1, 1, 1], thickness: 0.1}",
+       {{{0.9, 0.9, 0}, -0.1}, {{0, 0, 0}, 0.8 * kSqrt2}, {{2, 1, 0}, 1.0}}},
+      {"torus", "torus: {major_radius: 1, minor_radius: 0.25}",
+       {{{0, 0, 0}, 0.75}, {{1, 0, 0}, -0.25}, {{0, 2, 0}, std::sqrt(5.0) - 0.25}, {{0, 0, 3}, 1.75}}},
+      {"plane", "plane: {normal: [0, 2, 0], offset: 1}", {{{5, 3, -2}, 4.0}, {{0, -3, 0}, -2.0}}},
+      {"capsule", "capsule: {a: [0, 0, 0], b: [0, 2, 0], radius: 0.5}",
+       {{{1, 1, 0}, 0.5}, {{0, -1, 0}, 0.5}, {{0, 4, 0}, 1.5}, {{0, 1, 0}, -0.5}}},
+      {"cylinder", "cylinder: {radius: 1, half_height: 2}",
+       {{{3, 0, 0}, 2.0}, {{0, 5, 0}, 3.0}, {{2, 3, 0}, kSqrt2}, {{0, 0, 0}, -1.0}}},
+      {"union", "union: [{sphere: {radius: 1}}, {sphere: {center: [1.5, 0, 0], radius: 1}}]",
+       {{{0, 0, 0}, -1.0}, {{3, 0, 0}, 0.5}}},
+      {"intersection", "intersection: [{sphere: {radius: 1}}, {sphere: {center: [1.5, 0, 0], radius: 1}}]",
+       {{{0.75, 0, 0}, -0.25}, {{0, 0, 0}, 0.5}}},
+      {"subtraction", "subtraction: [{sphere: {radius: 1}}, {sphere: {center: [1.5, 0, 0], radius: 1}}]",
+       {{{0, 0, 0}, -0.5}, {{1, 0, 0}, 0.5}}},
+      // At a == b the polynomial smooth minimum is a - k/4; beyond |a - b| >= k it is the hard min.
+      {"smooth_union", "smooth_union: {k: 0.5, children: [{sphere: {radius: 1}}, {sphere: {center: [1.5, 0, 0], radius: 1}}]}",
+       {{{0.75, 0, 0}, -0.375}, {{-3, 0, 0}, 2.0}}},
+      {"smooth_intersection",
+       "smooth_intersection: {k: 0.5, children: [{sphere: {radius: 1}}, {sphere: {center: [1.5, 0, 0], radius: 1}}]}",
+       {{{0.75, 0, 0}, -0.125}, {{-0.5, 0, 0}, 1.0}}},
+      // Subtracting a sphere from itself: at the surface a = -b = 0 and the blend adds k/4.
+      {"smooth_subtraction", "smooth_subtraction: {k: 0.5, children: [{sphere: {radius: 1}}, {sphere: {radius: 1}}]}",
+       {{{1, 0, 0}, 0.125}, {{0, 3, 0}, 2.0}}},
+      {"three_way_union", "union: [{sphere: {radius: 1}}, {sphere: {center: [4, 0, 0], radius: 1}}, {sphere: {center: [8, 0, 0], radius: 1}}]",
+       {{{8, 0, 0}, -1.0}, {{6, 0, 0}, 1.0}}},
+      // Box half [1, 2, 3] turned about z by 90 degrees becomes half (2, 1, 3) in the world.
+      {"rotate_z", "box: {half_size: [1, 2, 3], rotate: [0, 0, 90]}", {{{3, 0, 0}, 1.0}, {{0, 2, 0}, 1.0}}},
+      {"rotate_x", "box: {half_size: [1, 2, 3], rotate: [90, 0, 0]}", {{{0, 4, 0}, 1.0}, {{0, 0, 3}, 1.0}}},
+      {"rotate_y", "box: {half_size: [1, 2, 3], rotate: [0, 90, 0]}", {{{4, 0, 0}, 1.0}, {{0, 0, 2}, 1.0}}},
+      // Scale 2 about the origin, then the shift: half (4, 2, 6) centred at (0, 0, 10).
+      {"scale_translate", "box: {half_size: [1, 2, 3], rotate: [0, 0, 90], scale: 2, translate: [0, 0, 10]}",
+       {{{5, 0, 10}, 1.0}, {{0, 3, 10}, 1.0}, {{0, 0, 17}, 1.0}}},
+      {"transformed_operator", "union: {translate: [0, 5, 0], scale: 3, children: [{sphere: {radius: 1}}]}",
+       {{{0, 5, 0}, -3.0}, {{0, 10, 0}, 2.0}}},
+  };
+  return cases;
+}
+
+Scene scene_for(const SdfCase& c) { return scene_from_yaml("sdf:\n  " + c.sdf_yaml + "\n"); }
+
+std::vector<glm::dvec3> points_of(const SdfCase& c) {
+  std::vector<glm::dvec3> points;
+  for (const PointCase& p : c.points) points.push_back(p.point);
+  return points;
+}
+
+void PrintTo(const SdfCase& c, std::ostream* os) { *os << c.name; }
+
+class SdfClosedForm : public ::testing::TestWithParam<SdfCase> {};
+
+TEST_P(SdfClosedForm, ReferenceMatches) {
+  const SdfCase& c = GetParam();
+  const Scene scene = scene_for(c);
+  for (const PointCase& p : c.points) {
+    EXPECT_NEAR(reference_distance(scene.sdf, p.point), p.expected, kReferenceTolerance)
+        << c.name << " at (" << p.point.x << ", " << p.point.y << ", " << p.point.z << ")";
+  }
+}
+
+TEST_P(SdfClosedForm, KernelMatchesAtEveryPacketWidth) {
+  const SdfCase& c = GetParam();
+  const Scene scene = scene_for(c);
+  for (int lanes : {1, 16}) {
+    OpenClOptions options;
+    options.lanes = lanes;
+    const PointSamples samples = eval_points_opencl(scene, points_of(c), options);
+    for (std::size_t i = 0; i < c.points.size(); ++i) {
+      const PointCase& p = c.points[i];
+      EXPECT_NEAR(samples.distance[i], p.expected, kKernelTolerance)
+          << c.name << " lanes " << lanes << " at (" << p.point.x << ", " << p.point.y << ", " << p.point.z << ")";
+      EXPECT_EQ(samples.distance[i], samples.color_distance[i]) << "map and map_color disagree";
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(AllKinds, SdfClosedForm, ::testing::ValuesIn(sdf_cases()),
+                         [](const auto& info) { return info.param.name; });
+
+TEST(SdfClosedForm, CoversEveryNodeKind) {
+  std::set<NodeKind> covered;
+  for (const SdfCase& c : sdf_cases()) {
+    const Scene scene = scene_for(c);
+    covered.insert(scene.sdf.kind);
+  }
+  for (NodeKind kind : kAllNodeKinds) {
+    EXPECT_TRUE(covered.count(kind)) << "no closed-form case for " << node_kind_name(kind);
+  }
+}
+
+TEST(KernelColor, BlendsLikeTheReference) {
+  // Red and blue spheres: the union takes the nearer child's color, the smooth union mixes them
+  // with the blend weight (the three.js article's sceneCol): half and half where both are equal.
+  const Scene hard = scene_from_yaml(
+      "sdf:\n  union: [{sphere: {radius: 1, color: [1, 0, 0]}}, {sphere: {center: [3, 0, 0], radius: 1, color: [0, 0, 1]}}]\n");
+  const Scene smooth = scene_from_yaml(
+      "sdf:\n  smooth_union: {k: 1, children: [{sphere: {radius: 1, color: [1, 0, 0]}}, "
+      "{sphere: {center: [3, 0, 0], radius: 1, color: [0, 0, 1]}}]}\n");
+  const std::vector<glm::dvec3> points = {{-1, 0, 0}, {1.5, 0, 0}, {1.4, 0.3, 0}, {4, 0, 0}};
+  for (const Scene* scene : {&hard, &smooth}) {
+    for (int lanes : {1, 16}) {
+      OpenClOptions options;
+      options.lanes = lanes;
+      const PointSamples samples = eval_points_opencl(*scene, points, options);
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        const glm::dvec3 expected = reference_sample(scene->sdf, points[i]).color;
+        EXPECT_NEAR(samples.albedo[i].x, expected.x, 1e-5);
+        EXPECT_NEAR(samples.albedo[i].y, expected.y, 1e-5);
+        EXPECT_NEAR(samples.albedo[i].z, expected.z, 1e-5);
+      }
+    }
+  }
+  EXPECT_NEAR(reference_sample(smooth.sdf, {1.5, 0, 0}).color.x, 0.5, 1e-12);
+  EXPECT_NEAR(reference_sample(smooth.sdf, {1.5, 0, 0}).color.z, 0.5, 1e-12);
+}
+
+}  // namespace
+}  // namespace clmarch

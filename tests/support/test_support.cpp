@@ -1,0 +1,76 @@
+// Test helpers.
+#include "support/test_support.hpp"
+
+#include "scene/scene_loader.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include <sys/wait.h>
+
+namespace clmarch::testing {
+namespace {
+
+std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::string shell_quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) {
+    if (c == '\'') {
+      out.append("'\\''");
+    } else {
+      out.push_back(c);
+    }
+  }
+  out.push_back('\'');
+  return out;
+}
+
+}  // namespace
+
+Scene scene_from_yaml(const std::string& yaml) { return load_scene_text(yaml, "test.yaml"); }
+
+std::filesystem::path source_path(const std::string& relative) { return std::filesystem::path(CLMARCH_SOURCE_DIR) / relative; }
+
+CommandResult run_clmarch(const std::vector<std::string>& args) {
+  TempDir capture;
+  std::string command = shell_quote(CLMARCH_BINARY);
+  for (const std::string& a : args) command.append(" ").append(shell_quote(a));
+  command.append(" >").append(shell_quote((capture / "out").string()));
+  command.append(" 2>").append(shell_quote((capture / "err").string())).append(" </dev/null");
+  CommandResult result;
+  const int status = std::system(command.c_str());
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  result.out = read_text(capture / "out");
+  result.err = read_text(capture / "err");
+  return result;
+}
+
+TempDir::TempDir() {
+  std::random_device seed;
+  path_ = std::filesystem::temp_directory_path() / ("clmarch-test-" + std::to_string(seed()));
+  std::filesystem::create_directories(path_);
+}
+
+TempDir::~TempDir() {
+  std::error_code ignored;
+  std::filesystem::remove_all(path_, ignored);
+}
+
+std::vector<std::string> TempDir::files() const {
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(path_)) names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+}  // namespace clmarch::testing

@@ -1,0 +1,43 @@
+// Helpers shared by the tests: scenes from inline YAML, running the clmarch executable, temp folders.
+#pragma once
+
+#include "scene/scene.hpp"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace clmarch::testing {
+
+/// A scene from YAML text (messages name it "test.yaml").
+Scene scene_from_yaml(const std::string& yaml);
+
+/// A path inside the source tree (scenes/torus.yaml).
+std::filesystem::path source_path(const std::string& relative);
+
+struct CommandResult {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+/// Runs the built clmarch executable with args (no shell quoting needed for plain arguments).
+CommandResult run_clmarch(const std::vector<std::string>& args);
+
+/// A fresh empty folder under the system temp folder, removed when the object dies.
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+  /// Names of the files in the folder, sorted.
+  std::vector<std::string> files() const;
+
+ private:
+  std::filesystem::path path_;
+};
+
+}  // namespace clmarch::testing
