@@ -80,11 +80,16 @@ TEST(ReferenceSdf, BoxFrame) {
   // Bars 2e = 0.2 wide, flush with the faces of the unit box: they span |x| in [0.8, 1].
   const BoxFrame f{{0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}, 0.1};
   EXPECT_NEAR(sd_box_frame({2.0, 2.0, 2.0}, f), std::sqrt(3.0), kExact);     // off the corner
-  EXPECT_NEAR(sd_box_frame({0.0, 2.0, 2.0}, f), std::sqrt(2.0), kExact);     // off an edge
+  EXPECT_NEAR(sd_box_frame({0.0, 2.0, 2.0}, f), std::sqrt(2.0), kExact);
   EXPECT_NEAR(sd_box_frame({0.0, 0.0, 1.0}, f), 0.8, kExact);                // centre of a face: hollow
   EXPECT_NEAR(sd_box_frame({0.0, 0.0, 0.0}, f), 0.8 * std::sqrt(2.0), kExact);  // centre of the box
-  EXPECT_NEAR(sd_box_frame({0.0, 0.9, 0.9}, f), -0.1, kExact);               // middle of a bar
+  // Inside one bar of each family (along x, y, z), and off an edge of each family.
+  EXPECT_NEAR(sd_box_frame({0.0, 0.9, 0.9}, f), -0.1, kExact);
+  EXPECT_NEAR(sd_box_frame({-0.9, 0.3, 0.9}, f), -0.1, kExact);
+  EXPECT_NEAR(sd_box_frame({0.9, -0.9, -0.5}, f), -0.1, kExact);
   EXPECT_NEAR(sd_box_frame({0.0, 0.95, 0.9}, f), -0.05, kExact);
+  EXPECT_NEAR(sd_box_frame({-2.0, 0.5, 2.0}, f), std::sqrt(2.0), kExact);
+  EXPECT_NEAR(sd_box_frame({2.0, -2.0, 0.1}, f), std::sqrt(2.0), kExact);
 }
 
 TEST(ReferenceSdf, Torus) {

@@ -83,7 +83,7 @@ RayResult reference_trace(const Scene& scene, const glm::dvec3& origin, const gl
       return r;
     }
     t += d;
-    if (t > rs.max_distance) break;
+    if (t >= rs.max_distance) break;
   }
   // Running out of steps is a miss too, like leaving through max_distance.
   r.depth = std::numeric_limits<double>::infinity();

@@ -3,6 +3,9 @@
 
 #include "scene/scene_loader.hpp"
 
+#include <OpenImageIO/imageio.h>
+#include <stdexcept>
+
 #include <algorithm>
 #include <array>
 #include <cstdio>
@@ -53,6 +56,21 @@ CommandResult run_clmarch(const std::vector<std::string>& args) {
   result.out = read_text(capture / "out");
   result.err = read_text(capture / "err");
   return result;
+}
+
+Image read_image(const std::filesystem::path& path) {
+  auto in = OIIO::ImageInput::open(path.string());
+  if (!in) throw std::runtime_error("cannot read " + path.string() + ": " + OIIO::geterror());
+  const OIIO::ImageSpec& spec = in->spec();
+  Image image;
+  image.width = spec.width;
+  image.height = spec.height;
+  image.channels = spec.nchannels;
+  image.pixels.resize(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data())) {
+    throw std::runtime_error("cannot read " + path.string() + ": " + in->geterror());
+  }
+  return image;
 }
 
 TempDir::TempDir() {

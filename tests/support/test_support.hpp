@@ -24,6 +24,16 @@ struct CommandResult {
 /// Runs the built clmarch executable with args (no shell quoting needed for plain arguments).
 CommandResult run_clmarch(const std::vector<std::string>& args);
 
+/// An image read with OpenImageIO: interleaved channels as float in [0, 1] for 8-bit files.
+struct Image {
+  int width = 0;
+  int height = 0;
+  int channels = 0;
+  std::vector<float> pixels;
+  float at(int i, int j, int c) const { return pixels[(static_cast<std::size_t>(j) * width + i) * channels + c]; }
+};
+Image read_image(const std::filesystem::path& path);
+
 /// A fresh empty folder under the system temp folder, removed when the object dies.
 class TempDir {
  public:
