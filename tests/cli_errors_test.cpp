@@ -70,6 +70,10 @@ const std::vector<BadInputCase>& bad_input_cases() {
       {"empty_union", "sdf: {union: []}\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"}, {"at least 1 child"}},
       {"smooth_without_k", "sdf: {smooth_union: [{sphere: {}}, {box: {}}]}\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
        {"blend radius"}},
+      {"reference_with_lanes", kValidScene, {"render", "DIR/scene.yaml", "--backend", "reference", "--lanes", "16", "-o", "DIR/out.png"},
+       {"--lanes", "--backend reference"}},
+      {"unknown_backend", kValidScene, {"render", "DIR/scene.yaml", "--backend", "vulkan", "-o", "DIR/out.png"}, {"--backend"}},
+      {"empty_scene_file", "# nothing\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"}, {"DIR/scene.yaml", "empty"}},
       {"camera_up_parallel", "sdf: {sphere: {}}\ncamera: {position: [0, 5, 0], look_at: [0, 0, 0], up: [0, 1, 0]}\n",
        {"render", "DIR/scene.yaml", "-o", "DIR/out.png"}, {"camera.up"}},
   };

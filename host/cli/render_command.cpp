@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <iostream>
@@ -37,7 +38,8 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& options) {
       "  clmarch render scenes/torus.yaml --set render.epsilon=1e-5 --set shading.view=normals -o n.png");
   add_scene_options(*render, options.scene);
   render->add_option("-o,--output", options.output,
-                     "Color image; the format follows the extension (png, jpg, tif: 8-bit sRGB; exr: linear float). "
+                     "Color image; the format follows the extension (exr, hdr: linear float; png, jpg, tif and the "
+                     "other formats OpenImageIO writes: 8-bit sRGB). "
                      "Default: SCENE_NAME.png in the current folder");
   render->add_option("--buffers", options.buffers, "Write all buffers to one float EXR: R, G, B, depth, steps, N.x, N.y, N.z");
   render->add_option("--backend", options.backend, "opencl, or reference (the double-precision CPU renderer)")
@@ -51,8 +53,17 @@ int run_render_command(const RenderCommandOptions& options) {
   std::string output = options.output;
   if (output.empty()) output = std::filesystem::path(options.scene.scene_path).stem().string() + ".png";
   check_image_path(output, "--output");
+  if (options.backend == "reference") {
+    for (const auto& [given, name] : {std::pair{options.scene.device.has_value(), "--device"},
+                                      std::pair{options.scene.lanes.has_value(), "--lanes"},
+                                      std::pair{!options.dump_kernel.empty(), "--dump-kernel"}}) {
+      if (given) throw InputError(fmt::format("{} applies to the OpenCL backend, not to --backend reference", name));
+    }
+  }
   if (!options.buffers.empty()) {
-    if (std::filesystem::path(options.buffers).extension() != ".exr") {
+    std::string extension = std::filesystem::path(options.buffers).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+    if (extension != ".exr") {
       throw InputError(fmt::format("--buffers {}: the buffers file must be an .exr", options.buffers));
     }
     check_output_folder(options.buffers, "--buffers");

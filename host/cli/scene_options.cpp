@@ -33,6 +33,7 @@ std::pair<int, int> parse_size(const std::string& text) {
   if (width < 1 || height < 1 || width > 65536 || height > 65536) {
     throw InputError(fmt::format("--size {}: width and height must be in [1, 65536]", text));
   }
+  if (!image_size_fits(width, height)) throw InputError(fmt::format("--size {}: more than {} pixels", text, kMaxPixels));
   return {width, height};
 }
 

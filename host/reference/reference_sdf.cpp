@@ -124,7 +124,7 @@ double sd_box_frame(const glm::dvec3& p, const BoxFrame& frame) {
     const glm::dvec3 v(along, across1, across2);
     return glm::length(glm::max(v, 0.0)) + std::min(max_component(v), 0.0);
   };
-  return std::min(bar(q.x, a.y, q.z), bar(q.x, q.y, a.z));
+  return std::min(bar(a.x, q.y, q.z), std::min(bar(q.x, a.y, q.z), bar(q.x, q.y, a.z)));
 }
 
 double sd_torus(const glm::dvec3& p, const Torus& torus) {

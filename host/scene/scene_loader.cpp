@@ -26,6 +26,7 @@ class SceneReader {
     Scene scene;
     scene.source_name = source_name;
     yaml_.expect_map(root, "the scene", {"description", "camera", "render", "sdf", "lights", "shading"});
+    if (const YAML::Node description = root["description"]) yaml_.text(description, "description");
     if (const YAML::Node camera = root["camera"]) scene.camera = read_camera(camera);
     if (const YAML::Node render = root["render"]) scene.render = read_render(render);
     scene.sdf = read_node(yaml_.required(root, "sdf", "sdf (the distance field tree)"), "sdf", 1);
@@ -64,6 +65,9 @@ class SceneReader {
       render.normal_method = static_cast<NormalMethod>(yaml_.choice(node["normal_method"], "render.normal_method", kNormalMethodNames));
     }
     yaml_.optional_number(node, "normal_epsilon", "render.normal_epsilon", render.normal_epsilon, Range::positive());
+    if (!image_size_fits(render.width, render.height)) {
+      yaml_.fail(node, fmt::format("render.width x render.height = {} x {} exceeds {} pixels", render.width, render.height, kMaxPixels));
+    }
     return render;
   }
 
@@ -304,6 +308,8 @@ void apply_override(YAML::Node& root, const SceneOverride& override_) {
     const std::string& segment = segments[i];
     const bool last = i + 1 == segments.size();
     YAML::Node next;
+    // A key the file does not have yet becomes a map; assigning through current fills the parent.
+    if (!current.IsDefined() || current.IsNull()) current = YAML::Node(YAML::NodeType::Map);
     if (current.IsSequence()) {
       std::size_t index = 0;
       try {
@@ -321,7 +327,7 @@ void apply_override(YAML::Node& root, const SceneOverride& override_) {
         return;
       }
       next.reset(current[index]);
-    } else if (current.IsMap() || current.IsNull()) {
+    } else if (current.IsMap()) {
       if (last) {
         current[segment] = value;
         return;
@@ -335,6 +341,10 @@ void apply_override(YAML::Node& root, const SceneOverride& override_) {
 }
 
 }  // namespace
+
+bool image_size_fits(int width, int height) {
+  return static_cast<long long>(width) * height <= kMaxPixels;
+}
 
 SceneOverride parse_override(const std::string& option_text) {
   const std::size_t equals = option_text.find('=');
@@ -351,7 +361,10 @@ Scene load_scene_text(const std::string& text, const std::string& source_name, c
   } catch (const YAML::ParserException& e) {
     throw InputError(fmt::format("{}:{}:{}: malformed YAML: {}", source_name, e.mark.line + 1, e.mark.column + 1, e.msg));
   }
-  if (root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
+  if (root.IsNull()) {
+    if (overrides.empty()) throw InputError(fmt::format("{}: the scene is empty (it needs at least an sdf tree)", source_name));
+    root = YAML::Node(YAML::NodeType::Map);
+  }
   for (const SceneOverride& o : overrides) apply_override(root, o);
   return SceneReader(source_name).read(root, source_name);
 }

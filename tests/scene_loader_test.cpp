@@ -1,0 +1,110 @@
+// The scene loader: defaults, JSON, --set overrides and the errors of each rule.
+#include "common/errors.hpp"
+#include "scene/scene_loader.hpp"
+#include "support/test_support.hpp"
+
+#include <gtest/gtest.h>
+
+namespace clmarch {
+namespace {
+
+using testing::scene_from_yaml;
+
+std::string error_of(const std::string& yaml, const std::vector<SceneOverride>& overrides = {}) {
+  try {
+    load_scene_text(yaml, "s.yaml", overrides);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(SceneLoader, DefaultsOfTheContract) {
+  const Scene scene = scene_from_yaml("sdf: {sphere: {}}\n");
+  EXPECT_EQ(scene.camera.position, glm::dvec3(-2, 4, 4));
+  EXPECT_EQ(scene.camera.fov_degrees, 45.0);
+  EXPECT_EQ(scene.render.width, 640);
+  EXPECT_EQ(scene.render.height, 360);
+  EXPECT_EQ(scene.render.max_steps, 255);
+  EXPECT_EQ(scene.render.epsilon, 1e-4);
+  EXPECT_EQ(scene.render.max_distance, 100.0);
+  EXPECT_EQ(std::get<Sphere>(scene.sdf.primitive).radius, 1.0);
+}
+
+TEST(SceneLoader, ContractExampleOfTheIssue) {
+  const Scene scene = scene_from_yaml(R"(
+camera:   {position: [-2, 4, 4], look_at: [0, 0, 0], up: [0, 1, 0], fov: 45}
+render:   {width: 640, height: 360, max_steps: 255, epsilon: 1.0e-4, max_distance: 100}
+sdf:
+  union:
+    - sphere: {center: [0, 0, 0], radius: 1}
+    - box:    {center: [2, 0, 0], half_size: [0.5, 0.5, 0.5]}
+    - torus:  {center: [-2, 0, 0], major_radius: 1, minor_radius: 0.3}
+    - plane:  {normal: [0, 1, 0], offset: 1}
+)");
+  ASSERT_EQ(scene.sdf.kind, NodeKind::Union);
+  ASSERT_EQ(scene.sdf.children.size(), 4u);
+  EXPECT_EQ(std::get<Torus>(scene.sdf.children[2].primitive).minor_radius, 0.3);
+  EXPECT_EQ(std::get<Plane>(scene.sdf.children[3].primitive).offset, 1.0);
+}
+
+TEST(SceneLoader, AcceptsJson) {
+  const Scene scene = scene_from_yaml(R"({"render": {"width": 32, "height": 16}, "sdf": {"box": {"half_size": [1, 2, 3]}}})");
+  EXPECT_EQ(scene.render.width, 32);
+  EXPECT_EQ(std::get<Box>(scene.sdf.primitive).half_size, glm::dvec3(1, 2, 3));
+}
+
+TEST(SceneLoader, NormalisesPlaneNormalsAndLightDirections) {
+  const Scene scene = scene_from_yaml("sdf: {plane: {normal: [0, 3, 4]}}\nlights: [{directional: {direction: [2, 0, 0]}}]\n");
+  EXPECT_NEAR(glm::length(std::get<Plane>(scene.sdf.primitive).normal), 1.0, 1e-15);
+  EXPECT_EQ(scene.lights[0].direction, glm::dvec3(1, 0, 0));
+}
+
+TEST(SceneLoader, OverridesReachAnyKey) {
+  const std::string yaml = "sdf: {union: [{sphere: {radius: 1}}, {box: {}}]}\n";
+  const Scene scene = load_scene_text(yaml, "s.yaml",
+                                      {{"render.epsilon", "1e-5"},
+                                       {"camera.position", "[0, 0, 1e6]"},
+                                       {"sdf.union.0.sphere.radius", "2.5"},
+                                       {"shading.view", "normals"}});
+  EXPECT_EQ(scene.render.epsilon, 1e-5);
+  EXPECT_EQ(scene.camera.position, glm::dvec3(0, 0, 1e6));
+  EXPECT_EQ(std::get<Sphere>(scene.sdf.children[0].primitive).radius, 2.5);
+  EXPECT_EQ(scene.shading.view, View::Normals);
+}
+
+TEST(SceneLoader, OverrideErrorsNameTheOption) {
+  const std::string yaml = "sdf: {union: [{sphere: {}}]}\n";
+  EXPECT_NE(error_of(yaml, {{"sdf.union.5.sphere.radius", "1"}}).find("past the end"), std::string::npos);
+  EXPECT_NE(error_of(yaml, {{"sdf.union.x", "1"}}).find("list index"), std::string::npos);
+  EXPECT_NE(error_of(yaml, {{"render..width", "1"}}).find("empty component"), std::string::npos);
+  EXPECT_NE(error_of(yaml, {{"render.width", "[1"}}).find("not valid YAML"), std::string::npos);
+  EXPECT_NE(error_of(yaml, {{"render.width", "0"}}).find("s.yaml (--set): render.width"), std::string::npos);
+}
+
+TEST(SceneLoader, RejectsBadScenes) {
+  EXPECT_NE(error_of("").find("the scene is empty"), std::string::npos);
+  EXPECT_NE(error_of("[1, 2]").find("the scene must be a map"), std::string::npos);
+  EXPECT_NE(error_of("description: [1]\nsdf: {sphere: {}}\n").find("description must be a name"), std::string::npos);
+  EXPECT_NE(error_of("sdf: {sphere: {}, box: {}}\n").find("one key naming the node kind"), std::string::npos);
+  EXPECT_NE(error_of("sdf: {subtraction: [{sphere: {}}]}\n").find("at least 2 child nodes"), std::string::npos);
+  EXPECT_NE(error_of("sdf: {capsule: {a: [0, 0, 0], b: [0, 0, 0]}}\n").find("must differ"), std::string::npos);
+  EXPECT_NE(error_of("sdf: {sphere: {}}\nrender: {width: 65536, height: 65536}\n").find("exceeds"), std::string::npos);
+  EXPECT_NE(error_of("sdf: {sphere: {}}\ncamera: {position: [1, 1, 1], look_at: [1, 1, 1]}\n").find("must differ"),
+            std::string::npos);
+  EXPECT_NE(error_of("sdf: {sphere: {}}\ncamera: {fov: 180}\n").find("camera.fov must be in (0, 180)"), std::string::npos);
+  EXPECT_NE(error_of("sdf: {sphere: {}}\nshading: {model: toon}\n").find("lambert, phong, blinn_phong"), std::string::npos);
+  EXPECT_NE(error_of("sdf: {sphere: {}}\nlights: [{spot: {}}]\n").find("unknown key 'spot'"), std::string::npos);
+  EXPECT_NE(error_of("sdf: {sphere: {color: [1, -1, 0]}}\n").find("must be >= 0"), std::string::npos);
+}
+
+TEST(SceneLoader, LimitsTreeDepth) {
+  std::string deep = "sdf: ";
+  for (int i = 0; i < kMaxTreeDepth; ++i) deep += "{union: [";
+  deep += "{sphere: {}}";
+  for (int i = 0; i < kMaxTreeDepth; ++i) deep += "]}";
+  EXPECT_NE(error_of(deep + "\n").find("deeper than 64 levels"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace clmarch
