@@ -12,6 +12,7 @@
 #include <limits>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace clmarch {
@@ -37,7 +38,7 @@ struct AnalyticShape {
   std::function<std::optional<double>(const glm::dvec3&, const glm::dvec3&, double)> intersect;
   /// Outward unit normal at a surface point.
   std::function<glm::dvec3(const glm::dvec3&)> normal;
-  /// Largest principal curvature.
+  /// Largest |principal curvature| of the surface.
   double curvature = 0.0;
   /// Whether the field is smooth within `width` of the surface point (finite differences valid).
   std::function<bool(const glm::dvec3&, double)> smooth_near = [](const glm::dvec3&, double) { return true; };
@@ -194,7 +195,8 @@ void check_ray(const AnalyticShape& shape, const Scene& scene, const glm::dvec3&
   }
 }
 
-// Hand-picked rays: along axes, through the torus hole, from inside the box's slabs.
+// Hand-picked rays: along the axes, down the torus tube and out of its hole, diagonals. Rays that
+// start inside a shape are skipped by check_ray (cos < 0 at the exit).
 std::vector<std::pair<glm::dvec3, glm::dvec3>> hand_picked_rays() {
   return {
       {{0.0, 0.0, 5.0}, {0.0, 0.0, -1.0}},  {{-4.0, 0.0, 0.0}, {1.0, 0.0, 0.0}},

@@ -1,4 +1,5 @@
 // clmarch: the command-line entry point. Parses the command and maps errors to exit codes.
+#include "cli/check_command.hpp"
 #include "cli/devices_command.hpp"
 #include "cli/render_command.hpp"
 #include "common/errors.hpp"
@@ -13,6 +14,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   RenderCommandOptions render_options;
   CLI::App* render = add_render_command(app, render_options);
+  CheckCommandOptions check_options;
+  CLI::App* check = add_check_command(app, check_options);
   CLI::App* devices = add_devices_command(app);
   try {
     app.parse(argc, argv);
@@ -26,6 +29,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (render->parsed()) return run_render_command(render_options);
+    if (check->parsed()) return run_check_command(check_options);
     if (devices->parsed()) return run_devices_command();
   } catch (const InputError& e) {
     std::cerr << e.what() << "\n";

@@ -72,7 +72,7 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
   if (shading) src += kernel_file("shading.cl");
   src += "#line 1 \"generated scene\"\n";
   src += generate_sdf_functions(scene.sdf);
-  if (shading) src += "\n" + generate_shade_function(scene);
+  if (shading) src.append("\n").append(generate_shade_function(scene));
   if (options.purpose == KernelPurpose::EvalPoints) {
     src += kernel_file("eval_points.cl");
     return src;

@@ -14,17 +14,24 @@
 namespace clmarch {
 namespace {
 
+/// Unit vector along v; a zero vector (a flat spot of the field, opposite light and view) stays
+/// zero, as in the kernels, instead of becoming NaN.
+glm::dvec3 normalize_or_zero(const glm::dvec3& v) {
+  const double length = glm::length(v);
+  return length > 0.0 ? v / length : glm::dvec3(0.0);
+}
+
 glm::dvec3 central_normal(const Node& root, const glm::dvec3& p, double h) {
   const auto f = [&](const glm::dvec3& q) { return reference_distance(root, q); };
   const glm::dvec3 x(h, 0.0, 0.0), y(0.0, h, 0.0), z(0.0, 0.0, h);
-  return glm::normalize(glm::dvec3(f(p + x) - f(p - x), f(p + y) - f(p - y), f(p + z) - f(p - z)));
+  return normalize_or_zero(glm::dvec3(f(p + x) - f(p - x), f(p + y) - f(p - y), f(p + z) - f(p - z)));
 }
 
 // Inigo Quilez's four-sample tetrahedron; cheaper than central differences but only first order.
 glm::dvec3 tetrahedral_normal(const Node& root, const glm::dvec3& p, double h) {
   const auto f = [&](const glm::dvec3& q) { return reference_distance(root, q); };
   const glm::dvec3 xyy(1.0, -1.0, -1.0), yyx(-1.0, -1.0, 1.0), yxy(-1.0, 1.0, -1.0), xxx(1.0, 1.0, 1.0);
-  return glm::normalize(xyy * f(p + xyy * h) + yyx * f(p + yyx * h) + yxy * f(p + yxy * h) +
+  return normalize_or_zero(xyy * f(p + xyy * h) + yyx * f(p + yyx * h) + yxy * f(p + yxy * h) +
                         xxx * f(p + xxx * h));
 }
 
@@ -34,7 +41,7 @@ double specular_term(ShadingModel model, const glm::dvec3& n, const glm::dvec3& 
   switch (model) {
     case ShadingModel::Lambert: return 0.0;
     case ShadingModel::Phong: return std::pow(std::max(glm::dot(glm::reflect(-l, n), v), 0.0), shininess);
-    case ShadingModel::BlinnPhong: return std::pow(std::max(glm::dot(n, glm::normalize(l + v)), 0.0), shininess);
+    case ShadingModel::BlinnPhong: return std::pow(std::max(glm::dot(n, normalize_or_zero(l + v)), 0.0), shininess);
   }
   return 0.0;
 }
@@ -57,7 +64,7 @@ glm::dvec3 reference_shade(const Scene& scene, const glm::dvec3& p, const glm::d
   glm::dvec3 color = albedo * sh.ambient;
   for (const Light& light : scene.lights) {
     const glm::dvec3 l =
-        light.kind == LightKind::Point ? glm::normalize(light.position - p) : light.direction;
+        light.kind == LightKind::Point ? normalize_or_zero(light.position - p) : light.direction;
     const glm::dvec3 radiance = light.color * light.intensity;
     const double ndotl = std::max(glm::dot(n, l), 0.0);
     color += albedo * radiance * (sh.diffuse * ndotl);

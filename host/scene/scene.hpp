@@ -40,7 +40,7 @@ struct Sphere { glm::dvec3 center{0.0}; double radius = 1.0; };
 struct Box { glm::dvec3 center{0.0}; glm::dvec3 half_size{0.5}; };
 /// A box whose edges are rounded by radius; half_size includes the rounding.
 struct RoundBox { glm::dvec3 center{0.0}; glm::dvec3 half_size{0.5}; double radius = 0.1; };
-/// The edges of a box, as bars of the given thickness.
+/// The twelve edges of a box as square bars 2 * thickness wide, flush with its faces.
 struct BoxFrame { glm::dvec3 center{0.0}; glm::dvec3 half_size{0.5}; double thickness = 0.05; };
 /// A torus in the xz plane.
 struct Torus { glm::dvec3 center{0.0}; double major_radius = 1.0; double minor_radius = 0.25; };

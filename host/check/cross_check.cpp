@@ -1,0 +1,237 @@
+// Pixel-by-pixel comparison of two renders. Every tolerance is derived per pixel from the scene's
+// settings; docs/accuracy.md gives the reasoning behind each.
+#include "check/cross_check.hpp"
+
+#include "scene/camera_model.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace clmarch {
+namespace {
+
+/// Float unit roundoff.
+constexpr double kUnitRoundoff = 0x1p-24;
+/// Rounding steps between a ray parameter and a distance value: the position o + t*d, the
+/// direction's normalisation and the distance function each round a few times.
+constexpr double kRoundingSteps = 16.0;
+/// Below this |cos| between ray and normal a ray is grazing; its depth bound stops growing.
+constexpr double kGrazingCosine = 0.1;
+/// Colors are delivered in 8 bits: half a step is the smallest difference that can show.
+constexpr double kColorQuantum = 0.5 / 255.0;
+/// Share of pixels whose figure may exceed its tolerance (the p99 criteria).
+constexpr double kQuantile = 0.99;
+/// Hit/miss flips away from edges need a ray whose closest approach sits within rounding of
+/// epsilon, or a step budget that ends within one step of a hit: 1 pixel in 1000 at most.
+constexpr double kInteriorMismatchShare = 0.001;
+/// Of the pixels on a hit/miss edge, the share that may flip (they are decided by a margin of
+/// order epsilon at the silhouette).
+constexpr double kSilhouetteMismatchShare = 0.1;
+
+ErrorSummary summarise(std::vector<double> values) {
+  ErrorSummary s;
+  if (values.empty()) return s;
+  std::sort(values.begin(), values.end());
+  const auto at = [&](double q) { return values[static_cast<std::size_t>(q * static_cast<double>(values.size() - 1))]; };
+  s.p50 = at(0.5);
+  s.p99 = at(kQuantile);
+  s.max = values.back();
+  return s;
+}
+
+bool is_hit(const FrameBuffers& b, int i, int j) { return std::isfinite(b.at(Channel::Depth, i, j)); }
+
+glm::dvec3 normal_at(const FrameBuffers& b, int i, int j) {
+  return {b.at(Channel::NX, i, j), b.at(Channel::NY, i, j), b.at(Channel::NZ, i, j)};
+}
+
+double angle_between(const glm::dvec3& a, const glm::dvec3& b) {
+  const double la = glm::length(a), lb = glm::length(b);
+  if (la == 0.0 || lb == 0.0) return M_PI;
+  return std::acos(std::clamp(glm::dot(a, b) / (la * lb), -1.0, 1.0));
+}
+
+/// Largest change of the shaded color per radian of normal change: the lights' radiance times the
+/// slope of the diffuse and specular terms.
+double color_per_radian(const Scene& scene) {
+  double radiance = 0.0;
+  for (const Light& light : scene.lights) {
+    radiance += light.intensity * std::max({light.color.r, light.color.g, light.color.b});
+  }
+  const Shading& s = scene.shading;
+  const double specular_slope = s.model == ShadingModel::Lambert ? 0.0 : s.specular * s.shininess;
+  return radiance * (s.diffuse + specular_slope);
+}
+
+}  // namespace
+
+CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const FrameBuffers& reference) {
+  CheckReport r;
+  const int w = reference.width, h = reference.height;
+  r.pixels = w * h;
+  const CameraBasis basis = camera_basis(scene.camera, w, h);
+  const double eps = scene.render.epsilon;
+  const double normal_h = scene.render.normal_epsilon;
+  const double origin_size = glm::length(basis.origin);
+  const double color_slope = color_per_radian(scene);
+
+  std::vector<double> depth_abs, depth_rel, depth_eps, depth_tol, normal_deg, normal_tol, color_abs, color_tol;
+  double steps_sum = 0.0, squared_color = 0.0;
+  int edge_pixels = 0, color_samples = 0;
+  for (int j = 0; j < h; ++j) {
+    for (int i = 0; i < w; ++i) {
+      const bool hit_cl = is_hit(opencl, i, j), hit_ref = is_hit(reference, i, j);
+      bool edge = false;
+      for (int dj = -1; dj <= 1; ++dj) {
+        for (int di = -1; di <= 1; ++di) {
+          const int ni = i + di, nj = j + dj;
+          if (ni < 0 || nj < 0 || ni >= w || nj >= h) continue;
+          edge = edge || is_hit(reference, ni, nj) != hit_ref || is_hit(opencl, ni, nj) != hit_cl;
+        }
+      }
+      edge_pixels += edge;
+      const double step_diff = std::abs(opencl.at(Channel::Steps, i, j) - reference.at(Channel::Steps, i, j));
+      steps_sum += step_diff;
+      r.steps_diff_max = std::max(r.steps_diff_max, step_diff);
+      for (Channel c : {Channel::R, Channel::G, Channel::B}) {
+        const double diff = std::abs(opencl.at(c, i, j) - reference.at(c, i, j));
+        squared_color += diff * diff;
+        r.color_max_abs = std::max(r.color_max_abs, diff);
+      }
+      if (hit_cl != hit_ref) {
+        (edge ? r.mask_mismatch_silhouette : r.mask_mismatch_interior) += 1;
+        continue;
+      }
+      if (!hit_ref) continue;
+      ++r.both_hit;
+      const double t_ref = reference.at(Channel::Depth, i, j);
+      const double dt = std::abs(static_cast<double>(opencl.at(Channel::Depth, i, j)) - t_ref);
+      const glm::dvec3 dir = pixel_ray_direction(basis, i, j);
+      const glm::dvec3 n_ref = normal_at(reference, i, j);
+      const double cosine = std::max(std::abs(glm::dot(dir, n_ref)), kGrazingCosine);
+      const double rounding = kRoundingSteps * kUnitRoundoff * (origin_size + t_ref);
+      // Both marches stop within epsilon / cos short of the surface.
+      const double depth_tolerance = eps / cosine + rounding;
+      depth_abs.push_back(dt);
+      depth_rel.push_back(dt / std::max(t_ref, 1e-30));
+      depth_eps.push_back(dt / eps);
+      depth_tol.push_back(dt / depth_tolerance);
+      // Finite differences of a 1-Lipschitz field move by at most the shift of the point: the
+      // normal estimates of points dt apart differ by at most sqrt(3) (dt + rounding) / h.
+      const double normal_tolerance = std::sqrt(3.0) * (dt + rounding) / normal_h;
+      const double angle = angle_between(normal_at(opencl, i, j), n_ref);
+      normal_deg.push_back(angle * 180.0 / M_PI);
+      normal_tol.push_back(angle / normal_tolerance);
+      if (step_diff == 0.0) {
+        double diff = 0.0;
+        for (Channel c : {Channel::R, Channel::G, Channel::B}) {
+          diff = std::max(diff, static_cast<double>(std::abs(opencl.at(c, i, j) - reference.at(c, i, j))));
+        }
+        color_abs.push_back(diff);
+        color_tol.push_back(diff / (color_slope * normal_tolerance + kColorQuantum));
+        ++color_samples;
+      }
+    }
+  }
+  r.depth_abs = summarise(depth_abs);
+  r.depth_rel = summarise(depth_rel);
+  r.depth_in_epsilons = summarise(depth_eps);
+  r.depth_in_tolerances = summarise(depth_tol);
+  r.steps_diff_mean = r.pixels ? steps_sum / r.pixels : 0.0;
+  r.normal_angle_p99 = summarise(normal_deg).p99;
+  r.color_p99_abs = summarise(color_abs).p99;
+  const double mse = squared_color / (3.0 * std::max(r.pixels, 1));
+  r.color_psnr_db = mse > 0.0 ? 10.0 * std::log10(1.0 / mse) : std::numeric_limits<double>::infinity();
+
+  CheckReport::Tolerances& t = r.tolerances;
+  t.mask_mismatch_interior = static_cast<int>(std::ceil(kInteriorMismatchShare * r.pixels));
+  t.mask_mismatch_silhouette = static_cast<int>(std::ceil(kSilhouetteMismatchShare * edge_pixels)) + 2;
+  t.depth_in_tolerances_p99 = 1.0;
+  t.steps_diff_mean = 1.0;
+  const double normal_ratio_p99 = summarise(normal_tol).p99;
+  const double color_ratio_p99 = summarise(color_tol).p99;
+  t.normal_angle_p99 = r.normal_angle_p99 / std::max(normal_ratio_p99, 1e-300);
+  t.color_p99_abs = r.color_p99_abs / std::max(color_ratio_p99, 1e-300);
+
+  if (r.mask_mismatch_interior > t.mask_mismatch_interior) {
+    r.failures.push_back(fmt::format("{} interior pixels hit on one side only (at most {})", r.mask_mismatch_interior,
+                                     t.mask_mismatch_interior));
+  }
+  if (r.mask_mismatch_silhouette > t.mask_mismatch_silhouette) {
+    r.failures.push_back(fmt::format("{} silhouette pixels hit on one side only (at most {} of {} edge pixels)",
+                                     r.mask_mismatch_silhouette, t.mask_mismatch_silhouette, edge_pixels));
+  }
+  if (r.depth_in_tolerances.p99 > t.depth_in_tolerances_p99) {
+    r.failures.push_back(fmt::format("depth error p99 is {:.3g} times its per-pixel tolerance (epsilon / cos + rounding)",
+                                     r.depth_in_tolerances.p99));
+  }
+  if (r.steps_diff_mean > t.steps_diff_mean) {
+    r.failures.push_back(fmt::format("steps differ by {:.3g} on average (at most {})", r.steps_diff_mean, t.steps_diff_mean));
+  }
+  if (normal_ratio_p99 > 1.0) {
+    r.failures.push_back(fmt::format("normal angle error p99 is {:.3g} times its per-pixel tolerance", normal_ratio_p99));
+  }
+  if (color_ratio_p99 > 1.0) {
+    r.failures.push_back(fmt::format("color error p99 is {:.3g} times its per-pixel tolerance", color_ratio_p99));
+  }
+  if (!r.failures.empty()) return r;
+  // Ratios at most 1 mean the tolerance in absolute units is at least the measured p99.
+  if (normal_ratio_p99 == 0.0) t.normal_angle_p99 = 0.0;
+  if (color_ratio_p99 == 0.0) t.color_p99_abs = 0.0;
+  return r;
+}
+
+nlohmann::json CheckReport::to_json() const {
+  const auto summary = [](const ErrorSummary& s) { return nlohmann::json{{"p50", s.p50}, {"p99", s.p99}, {"max", s.max}}; };
+  return {{"passed", passed()},
+          {"pixels", pixels},
+          {"both_hit", both_hit},
+          {"mask_mismatch", {{"silhouette", mask_mismatch_silhouette}, {"interior", mask_mismatch_interior}}},
+          {"depth_abs", summary(depth_abs)},
+          {"depth_rel", summary(depth_rel)},
+          {"depth_in_epsilons", summary(depth_in_epsilons)},
+          {"depth_in_tolerances", summary(depth_in_tolerances)},
+          {"steps_diff", {{"mean", steps_diff_mean}, {"max", steps_diff_max}}},
+          {"normal_angle_deg_p99", normal_angle_p99},
+          {"color", {{"max_abs", color_max_abs}, {"p99_abs", color_p99_abs}, {"psnr_db", color_psnr_db}}},
+          {"tolerances",
+           {{"mask_mismatch_interior", tolerances.mask_mismatch_interior},
+            {"mask_mismatch_silhouette", tolerances.mask_mismatch_silhouette},
+            {"depth_in_tolerances_p99", tolerances.depth_in_tolerances_p99},
+            {"steps_diff_mean", tolerances.steps_diff_mean}}},
+          {"failures", failures}};
+}
+
+std::string CheckReport::to_text() const {
+  std::string out;
+  out += fmt::format("pixels            {} ({} hit on both sides)\n", pixels, both_hit);
+  out += fmt::format("hit-mask mismatch silhouette {} (max {}), interior {} (max {})\n", mask_mismatch_silhouette,
+                     tolerances.mask_mismatch_silhouette, mask_mismatch_interior, tolerances.mask_mismatch_interior);
+  out += fmt::format("depth abs         p50 {:.3g}  p99 {:.3g}  max {:.3g}\n", depth_abs.p50, depth_abs.p99, depth_abs.max);
+  out += fmt::format("depth rel         p50 {:.3g}  p99 {:.3g}  max {:.3g}\n", depth_rel.p50, depth_rel.p99, depth_rel.max);
+  out += fmt::format("depth / epsilon   p50 {:.3g}  p99 {:.3g}  max {:.3g}\n", depth_in_epsilons.p50, depth_in_epsilons.p99,
+                     depth_in_epsilons.max);
+  out += fmt::format("depth / tolerance p50 {:.3g}  p99 {:.3g} (max 1)  max {:.3g}\n", depth_in_tolerances.p50,
+                     depth_in_tolerances.p99, depth_in_tolerances.max);
+  out += fmt::format("steps difference  mean {:.3g} (max {})  max {}\n", steps_diff_mean, tolerances.steps_diff_mean, steps_diff_max);
+  out += fmt::format("normal angle p99  {:.3g} deg\n", normal_angle_p99);
+  out += fmt::format("color             max abs {:.3g}  p99 abs {:.3g}  PSNR {:.1f} dB\n", color_max_abs, color_p99_abs, color_psnr_db);
+  out += passed() ? "check passed\n" : "check FAILED:\n";
+  for (const std::string& f : failures) out += "  " + f + "\n";
+  return out;
+}
+
+FrameBuffers difference_image(const FrameBuffers& a, const FrameBuffers& b) {
+  FrameBuffers out(a.width, a.height);
+  for (int c = 0; c < kChannelCount; ++c) {
+    for (std::size_t i = 0; i < out.planes[c].size(); ++i) {
+      const float x = a.planes[c][i], y = b.planes[c][i];
+      out.planes[c][i] = (std::isinf(x) && std::isinf(y)) ? 0.0f : std::abs(x - y);
+    }
+  }
+  return out;
+}
+
+}  // namespace clmarch

@@ -1,0 +1,66 @@
+// Compares an OpenCL render with the CPU reference pixel by pixel, with tolerances derived from the
+// scene's settings (docs/accuracy.md).
+#pragma once
+
+#include "render/frame_buffers.hpp"
+#include "scene/scene.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace clmarch {
+
+/// p50 / p99 / max of a set of non-negative errors.
+struct ErrorSummary {
+  double p50 = 0.0;
+  double p99 = 0.0;
+  double max = 0.0;
+};
+
+/// One comparison, the figures of `clmarch check`.
+struct CheckReport {
+  int pixels = 0;
+  int both_hit = 0;
+  /// Pixels where exactly one side hits, next to a hit/miss edge in either image, or elsewhere.
+  int mask_mismatch_silhouette = 0;
+  int mask_mismatch_interior = 0;
+  ErrorSummary depth_abs;
+  ErrorSummary depth_rel;
+  /// Depth error divided by epsilon, the hit threshold.
+  ErrorSummary depth_in_epsilons;
+  /// Depth error divided by the pixel's own tolerance (epsilon / cos + float rounding).
+  ErrorSummary depth_in_tolerances;
+  double steps_diff_mean = 0.0;
+  double steps_diff_max = 0.0;
+  /// Degrees, over pixels both hit.
+  double normal_angle_p99 = 0.0;
+  double color_max_abs = 0.0;
+  double color_p99_abs = 0.0;
+  double color_psnr_db = 0.0;
+
+  /// The tolerances in force, and what failed.
+  struct Tolerances {
+    int mask_mismatch_interior = 0;
+    int mask_mismatch_silhouette = 0;
+    double depth_in_tolerances_p99 = 1.0;
+    double steps_diff_mean = 1.0;
+    double normal_angle_p99 = 0.0;
+    double color_p99_abs = 0.0;
+  } tolerances;
+  std::vector<std::string> failures;
+
+  bool passed() const { return failures.empty(); }
+  nlohmann::json to_json() const;
+  /// A short human-readable report, one figure per line.
+  std::string to_text() const;
+};
+
+/// Compares opencl (rendered from scene) with reference (the same scene on the CPU reference).
+CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const FrameBuffers& reference);
+
+/// |a - b| per channel, for the difference image of a failing check.
+FrameBuffers difference_image(const FrameBuffers& a, const FrameBuffers& b);
+
+}  // namespace clmarch

@@ -1,0 +1,62 @@
+// `clmarch check`.
+#include "cli/check_command.hpp"
+
+#include "check/cross_check.hpp"
+#include "common/errors.hpp"
+#include "image/atomic_file.hpp"
+#include "image/image_writer.hpp"
+#include "reference/reference_renderer.hpp"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <iostream>
+
+namespace clmarch {
+
+CLI::App* add_check_command(CLI::App& app, CheckCommandOptions& options) {
+  CLI::App* check = app.add_subcommand("check", "Render a scene with OpenCL and the CPU reference and compare them pixel by pixel");
+  check->footer(
+      "Exit code 0 when every figure is within its tolerance (docs/accuracy.md), 1 otherwise.\n"
+      "Examples:\n"
+      "  clmarch check scenes/torus.yaml --size 160x90\n"
+      "  clmarch check scenes/torus.yaml --json --out-dir /tmp/torus-check");
+  add_scene_options(*check, options.scene);
+  check->add_flag("--json", options.json, "Print the report as one JSON object");
+  check->add_option("--out-dir", options.out_dir,
+                    "When the check fails, write opencl.png, reference.png and difference.exr (all channels) here");
+  return check;
+}
+
+int run_check_command(const CheckCommandOptions& options) {
+  if (!options.out_dir.empty() && !std::filesystem::is_directory(options.out_dir)) {
+    throw InputError(fmt::format("--out-dir {}: no such folder", options.out_dir));
+  }
+  const Scene scene = load_scene_with_options(options.scene);
+  OpenClOptions cl = opencl_options(options.scene);
+  cl.purpose = KernelPurpose::Shaded;
+  const RenderResult opencl = render_opencl(scene, cl);
+  const FrameBuffers reference = render_reference(scene);
+  const CheckReport report = cross_check(scene, opencl.buffers, reference);
+  if (options.json) {
+    nlohmann::json json = report.to_json();
+    json["scene"] = options.scene.scene_path;
+    json["device"] = opencl.stats.device;
+    json["lanes"] = opencl.stats.lanes;
+    std::cout << json.dump() << std::endl;
+  } else {
+    std::cout << fmt::format("{} on {} ({} lanes) against the CPU reference\n", options.scene.scene_path,
+                             opencl.stats.device, opencl.stats.lanes)
+              << report.to_text();
+  }
+  if (!report.passed() && !options.out_dir.empty()) {
+    const std::filesystem::path dir(options.out_dir);
+    write_color_image(dir / "opencl.png", opencl.buffers);
+    write_color_image(dir / "reference.png", reference);
+    write_buffers_exr(dir / "difference.exr", difference_image(opencl.buffers, reference));
+    std::cerr << fmt::format("clmarch: wrote opencl.png, reference.png and difference.exr in {}\n", options.out_dir);
+  }
+  return report.passed() ? kExitOk : kExitCheckFailed;
+}
+
+}  // namespace clmarch
