@@ -1,6 +1,7 @@
 // The reference march, normal estimate and shading in double, and the row-parallel frame loop.
 #include "reference/reference_renderer.hpp"
 
+#include "common/progress.hpp"
 #include "reference/reference_sdf.hpp"
 #include "scene/camera_model.hpp"
 
@@ -103,6 +104,7 @@ FrameBuffers render_reference(const Scene& scene) {
   const int height = scene.render.height;
   const CameraBasis basis = camera_basis(scene.camera, width, height);
   FrameBuffers fb(width, height);
+  ProgressLine progress("reference rows", height);
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
     for (int j = rows.begin(); j != rows.end(); ++j) {
       for (int i = 0; i < width; ++i) {
@@ -116,6 +118,7 @@ FrameBuffers render_reference(const Scene& scene) {
         fb.at(Channel::NY, i, j) = static_cast<float>(r.normal.y);
         fb.at(Channel::NZ, i, j) = static_cast<float>(r.normal.z);
       }
+      progress.advance();
     }
   });
   return fb;

@@ -34,7 +34,8 @@ glm::dvec3 reference_shade(const Scene& scene, const glm::dvec3& p, const glm::d
 RayResult reference_trace(const Scene& scene, const glm::dvec3& origin, const glm::dvec3& direction);
 
 /// Renders scene.render.width x height through the camera contract (camera_model.hpp), rows in
-/// parallel. Always fills the shaded color; other views are derived from the buffers elsewhere.
+/// parallel, with a progress line on a terminal. Always fills the shaded color; other views are
+/// derived from the buffers elsewhere.
 FrameBuffers render_reference(const Scene& scene);
 
 }  // namespace clmarch

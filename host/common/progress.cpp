@@ -1,0 +1,37 @@
+// The progress line.
+#include "common/progress.hpp"
+
+#include <fmt/format.h>
+
+#include <cstdio>
+
+#include <unistd.h>
+
+namespace clmarch {
+
+ProgressLine::ProgressLine(std::string label, long long total)
+    : label_(std::move(label)), total_(total), enabled_(isatty(STDERR_FILENO) == 1),
+      start_(std::chrono::steady_clock::now()), last_draw_(start_) {}
+
+ProgressLine::~ProgressLine() {
+  if (drawn_) std::fputs("\r\033[K", stderr);
+}
+
+void ProgressLine::advance(long long done) {
+  const long long now_done = done_ += done;
+  if (!enabled_) return;
+  std::unique_lock lock(draw_, std::try_to_lock);
+  if (!lock) return;
+  const auto now = std::chrono::steady_clock::now();
+  // Work shorter than a second stays silent.
+  if (now - start_ < std::chrono::seconds(1) || now - last_draw_ < std::chrono::milliseconds(250)) return;
+  last_draw_ = now;
+  const double elapsed = std::chrono::duration<double>(now - start_).count();
+  const double fraction = static_cast<double>(now_done) / static_cast<double>(total_);
+  const double left = fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
+  std::fputs(fmt::format("\r\033[K{}: {:.0f}% ({}/{}), {:.1f} s left", label_, 100.0 * fraction, now_done, total_, left).c_str(),
+             stderr);
+  drawn_ = true;
+}
+
+}  // namespace clmarch

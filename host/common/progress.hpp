@@ -1,0 +1,33 @@
+// Progress of long work on stderr: a single self-rewriting line, only when stderr is a terminal.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <mutex>
+#include <string>
+
+namespace clmarch {
+
+class ProgressLine {
+ public:
+  /// label names the work ("reference"); total counts its units (rows, tiles, frames).
+  ProgressLine(std::string label, long long total);
+  ~ProgressLine();
+  ProgressLine(const ProgressLine&) = delete;
+  ProgressLine& operator=(const ProgressLine&) = delete;
+
+  /// Adds done units; safe to call from any thread. Redraws at most four times a second.
+  void advance(long long done = 1);
+
+ private:
+  std::string label_;
+  long long total_;
+  bool enabled_;
+  std::atomic<long long> done_{0};
+  std::chrono::steady_clock::time_point start_;
+  std::chrono::steady_clock::time_point last_draw_;
+  std::mutex draw_;
+  bool drawn_ = false;
+};
+
+}  // namespace clmarch
