@@ -35,15 +35,17 @@ typedef struct MarchParams {
   CLMARCH_INT width;
   CLMARCH_INT height;
   CLMARCH_INT pixel_count;  /* width * height */
-  CLMARCH_INT plane_stride; /* floats per output plane (pixel_count rounded up to whole packets) */
+  CLMARCH_INT first_pixel;  /* row-major index of the first pixel of this dispatch (images render in chunks) */
+  CLMARCH_INT plane_stride; /* floats per output plane (the chunk rounded up to whole packets) */
   CLMARCH_INT max_steps;
   CLMARCH_FLOAT epsilon;
   CLMARCH_FLOAT max_distance;
   CLMARCH_FLOAT normal_epsilon;
+  CLMARCH_INT padding[3];
 } MarchParams;
 
 #ifndef __OPENCL_VERSION__
-static_assert(sizeof(MarchParams) == 4 * 16 + 8 * 4, "MarchParams layout must match OpenCL C");
+static_assert(sizeof(MarchParams) == 4 * 16 + 12 * 4, "MarchParams layout must match OpenCL C");
 #endif
 
 #endif

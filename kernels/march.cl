@@ -5,7 +5,7 @@
 
 __kernel void march(const MarchParams params, __global float* out) {
   const int base = (int)get_global_id(0) * LANES;
-  const vint pixel = base + LANE_IOTA;
+  const vint pixel = params.first_pixel + base + LANE_IOTA;
   const vint live = MASK(pixel < params.pixel_count);
   const vec3v origin = v3_from(params.origin);
   const vec3v dir = camera_ray(&params, pixel % params.width, pixel / params.width);

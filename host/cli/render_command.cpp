@@ -96,7 +96,8 @@ int run_render_command(const RenderCommandOptions& options) {
     const RenderStats& s = result.stats;
     nlohmann::json line = {{"backend", options.backend}, {"device", s.device},         {"lanes", s.lanes},
                            {"width", scene.render.width}, {"height", scene.render.height}, {"build_ms", s.build_ms},
-                           {"kernel_ms", s.kernel_ms},  {"steps", s.steps},            {"rays_per_s", s.rays_per_s}};
+                           {"kernel_ms", s.kernel_ms},  {"steps", s.steps},            {"rays_per_s", s.rays_per_s},
+                           {"chunks", s.chunks}};
     std::cout << line.dump() << std::endl;
   }
   return kExitOk;

@@ -4,6 +4,8 @@
 
 #include "cl/cl_errors.hpp"
 #include "cl/device_program.hpp"
+#include "common/cancellation.hpp"
+#include "common/progress.hpp"
 #include "device_types.h"
 #include "image/atomic_file.hpp"
 #include "scene/camera_model.hpp"
@@ -43,6 +45,16 @@ Dispatch plan_dispatch(const DeviceEntry& device, std::size_t count, int lanes) 
   return d;
 }
 
+/// Pixels per dispatch: the output buffer must fit the device's largest allocation and a quarter
+/// of its memory; 4 M pixels at most so that progress and cancellation come often.
+std::size_t chunk_pixels_for(const DeviceEntry& device) {
+  constexpr std::size_t kResponsiveChunk = std::size_t{1} << 22;
+  const std::size_t bytes_per_pixel = CLMARCH_CHANNEL_COUNT * sizeof(float);
+  const std::size_t max_alloc = device.device.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
+  const std::size_t global = device.device.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>() / 4;
+  return std::max<std::size_t>(1, std::min({kResponsiveChunk, max_alloc / bytes_per_pixel, global / bytes_per_pixel}));
+}
+
 struct PreparedProgram {
   DeviceProgram program;
   int lanes = 1;
@@ -66,7 +78,8 @@ RenderResult render_opencl(const Scene& scene, const OpenClOptions& options) {
   const int width = scene.render.width;
   const int height = scene.render.height;
   const std::size_t pixels = static_cast<std::size_t>(width) * height;
-  const Dispatch dispatch = plan_dispatch(dp.device, pixels, prepared.lanes);
+  const std::size_t chunk_limit = options.max_chunk_pixels ? options.max_chunk_pixels : chunk_pixels_for(dp.device);
+  const Dispatch dispatch = plan_dispatch(dp.device, std::min(pixels, chunk_limit), prepared.lanes);
 
   const CameraBasis basis = camera_basis(scene.camera, width, height);
   MarchParams params{};
@@ -85,31 +98,41 @@ RenderResult render_opencl(const Scene& scene, const OpenClOptions& options) {
 
   RenderResult result;
   result.buffers = FrameBuffers(width, height);
-  std::vector<float> host(dispatch.plane_stride * CLMARCH_CHANNEL_COUNT, 0.0f);
+  const std::size_t chunk_pixels = dispatch.plane_stride;
+  const std::size_t chunk_count = (pixels + chunk_pixels - 1) / chunk_pixels;
+  ProgressLine progress("OpenCL chunks", static_cast<long long>(chunk_count));
   double kernel_ms = 0.0;
   with_device_errors(dp.device, [&] {
-    cl::Buffer out(dp.context, CL_MEM_WRITE_ONLY | CL_MEM_HOST_READ_ONLY, host.size() * sizeof(float));
+    const std::size_t bytes = dispatch.plane_stride * CLMARCH_CHANNEL_COUNT * sizeof(float);
+    cl::Buffer out(dp.context, CL_MEM_WRITE_ONLY | CL_MEM_HOST_READ_ONLY, bytes);
     // Planes the kernel does not write (no shading, no normals) must read back as zeros.
-    dp.queue.enqueueFillBuffer(out, 0.0f, 0, host.size() * sizeof(float));
+    dp.queue.enqueueFillBuffer(out, 0.0f, 0, bytes);
     cl::Kernel kernel(dp.program, "march");
-    kernel.setArg(0, sizeof(MarchParams), &params);
     kernel.setArg(1, out);
-    cl::Event done;
-    dp.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(dispatch.global_items),
-                                  cl::NDRange(dispatch.local_items), nullptr, &done);
-    dp.queue.enqueueReadBuffer(out, CL_TRUE, 0, host.size() * sizeof(float), host.data());
-    kernel_ms = event_milliseconds(done);
+    for (std::size_t first = 0; first < pixels; first += chunk_pixels) {
+      throw_if_cancelled();
+      const std::size_t count = std::min(chunk_pixels, pixels - first);
+      params.first_pixel = static_cast<cl_int>(first);
+      kernel.setArg(0, sizeof(MarchParams), &params);
+      cl::Event done;
+      dp.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(dispatch.global_items),
+                                    cl::NDRange(dispatch.local_items), nullptr, &done);
+      for (int c = 0; c < kChannelCount; ++c) {
+        dp.queue.enqueueReadBuffer(out, CL_FALSE, c * dispatch.plane_stride * sizeof(float), count * sizeof(float),
+                                   result.buffers.planes[c].data() + first);
+      }
+      dp.queue.finish();
+      kernel_ms += event_milliseconds(done);
+      progress.advance();
+    }
   });
-  for (int c = 0; c < kChannelCount; ++c) {
-    const auto plane_begin = host.begin() + static_cast<std::ptrdiff_t>(c * dispatch.plane_stride);
-    std::copy(plane_begin, plane_begin + static_cast<std::ptrdiff_t>(pixels), result.buffers.planes[c].begin());
-  }
 
   RenderStats& stats = result.stats;
   stats.device = dp.device.label();
   stats.lanes = prepared.lanes;
   stats.build_ms = dp.build_ms;
   stats.kernel_ms = kernel_ms;
+  stats.chunks = static_cast<int>(chunk_count);
   const auto& steps = result.buffers.plane(Channel::Steps);
   stats.steps = std::accumulate(steps.begin(), steps.end(), std::uint64_t{0},
                                 [](std::uint64_t sum, float s) { return sum + static_cast<std::uint64_t>(s); });

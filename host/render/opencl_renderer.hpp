@@ -22,6 +22,9 @@ struct OpenClOptions {
   KernelPurpose purpose = KernelPurpose::Shaded;
   /// Where to write the exact program source before building; empty: nowhere.
   std::string dump_kernel_path;
+  /// Most pixels per dispatch; 0: as many as the device's largest buffer allows (capped so that
+  /// progress and Ctrl-C stay responsive).
+  std::size_t max_chunk_pixels = 0;
 };
 
 /// Figures of one OpenCL render (--stats).
@@ -34,6 +37,8 @@ struct RenderStats {
   /// Sum of the steps buffer: march iterations over all pixels.
   std::uint64_t steps = 0;
   double rays_per_s = 0.0;
+  /// Dispatches the image was split into.
+  int chunks = 1;
 };
 
 struct RenderResult {
@@ -41,8 +46,9 @@ struct RenderResult {
   RenderStats stats;
 };
 
-/// Renders scene at scene.render.width x height. Without shading in the purpose, R, G, B stay 0;
-/// without normals, N stays 0.
+/// Renders scene at scene.render.width x height, in chunks of pixels when the image's buffers exceed
+/// what the device allocates at once. Without shading in the purpose, R, G, B stay 0; without
+/// normals, N stays 0. Polls cancellation between chunks.
 RenderResult render_opencl(const Scene& scene, const OpenClOptions& options);
 
 /// The scene's generated map() and map_color() evaluated at points on the device.
