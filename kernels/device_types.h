@@ -23,7 +23,12 @@ typedef cl_float4 float4;
 #define CLMARCH_CHANNEL_NX 5
 #define CLMARCH_CHANNEL_NY 6
 #define CLMARCH_CHANNEL_NZ 7
-#define CLMARCH_CHANNEL_COUNT 8
+/* Not an EXR channel: the wall steps of the tiling's cell traversal, part of steps. */
+#define CLMARCH_CHANNEL_WALL_STEPS 8
+#define CLMARCH_CHANNEL_COUNT 9
+
+/* Lights, two float4 each, positions relative to the camera (computed on the host in double). */
+#define CLMARCH_LIGHT_FLOAT4S 2
 
 /* Per-frame march parameters: the camera contract's basis and the march limits. Changing any of
  * these does not rebuild the program. */
@@ -32,6 +37,7 @@ typedef struct MarchParams {
   float4 forward;      /* xyz = f, unit */
   float4 right_extent; /* xyz = r * aspect * tan(fov / 2) */
   float4 up_extent;    /* xyz = u * tan(fov / 2) */
+  float4 origin_in_cell; /* tiling (cells): xyz = camera offset inside its cell, 0 <= x < cell */
   CLMARCH_INT width;
   CLMARCH_INT height;
   CLMARCH_INT pixel_count;  /* width * height */
@@ -45,7 +51,7 @@ typedef struct MarchParams {
 } MarchParams;
 
 #ifndef __OPENCL_VERSION__
-static_assert(sizeof(MarchParams) == 4 * 16 + 12 * 4, "MarchParams layout must match OpenCL C");
+static_assert(sizeof(MarchParams) == 5 * 16 + 12 * 4, "MarchParams layout must match OpenCL C");
 #endif
 
 #endif

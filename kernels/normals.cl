@@ -1,20 +1,30 @@
 /* Surface normals from the distance field by finite differences with step h: central differences
- * (6 taps) or Inigo Quilez's tetrahedral 4 taps (NORMAL_TETRAHEDRAL). */
+ * (6 taps) or Inigo Quilez's tetrahedral 4 taps (NORMAL_TETRAHEDRAL). The point is in the frame
+ * map() is written in: under tiling the hit cell's own frame, so taps past a wall still see that
+ * cell's geometry, and under the mod method taps wrap like the march did. */
+
+SDF_INLINE vfloat field(vec3v p) {
+#if defined(TILING_MOD)
+  return map(wrap_to_cell(p));
+#else
+  return map(p);
+#endif
+}
 
 #ifdef NORMAL_TETRAHEDRAL
 SDF_INLINE vec3v estimate_normal(vec3v p, float h) {
   /* Taps at h * k.xyy, k.yyx, k.yxy, k.xxx with k = (1, -1). */
-  vfloat a = map(v3(p.x + h, p.y - h, p.z - h));
-  vfloat b = map(v3(p.x - h, p.y - h, p.z + h));
-  vfloat c = map(v3(p.x - h, p.y + h, p.z - h));
-  vfloat d = map(v3(p.x + h, p.y + h, p.z + h));
+  vfloat a = field(v3(p.x + h, p.y - h, p.z - h));
+  vfloat b = field(v3(p.x - h, p.y - h, p.z + h));
+  vfloat c = field(v3(p.x - h, p.y + h, p.z - h));
+  vfloat d = field(v3(p.x + h, p.y + h, p.z + h));
   return v3_normalize(v3(a - b - c + d, -a - b + c + d, -a + b - c + d));
 }
 #else
 SDF_INLINE vec3v estimate_normal(vec3v p, float h) {
-  vfloat dx = map(v3(p.x + h, p.y, p.z)) - map(v3(p.x - h, p.y, p.z));
-  vfloat dy = map(v3(p.x, p.y + h, p.z)) - map(v3(p.x, p.y - h, p.z));
-  vfloat dz = map(v3(p.x, p.y, p.z + h)) - map(v3(p.x, p.y, p.z - h));
+  vfloat dx = field(v3(p.x + h, p.y, p.z)) - field(v3(p.x - h, p.y, p.z));
+  vfloat dy = field(v3(p.x, p.y + h, p.z)) - field(v3(p.x, p.y - h, p.z));
+  vfloat dz = field(v3(p.x, p.y, p.z + h)) - field(v3(p.x, p.y, p.z - h));
   return v3_normalize(v3(dx, dy, dz));
 }
 #endif

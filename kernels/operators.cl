@@ -24,3 +24,13 @@ SDF_INLINE vfloat op_smooth_subtraction(vfloat a, vfloat b, float k) {
   vfloat h = smooth_subtraction_blend(a, b, k);
   return mix(a, -b, h) + k * h * (1.0f - h);
 }
+
+/* Centred domain repetition along one axis (IQ's opRep, floor-based like GLSL mod): the
+ * coordinate inside its cell, in [-period/2, period/2). The distance stays a bound only while the
+ * child fits inside the cell. */
+SDF_INLINE vfloat op_repeat_axis(vfloat x, float period) { return x - period * floor(x / period + 0.5f); }
+
+/* Crum's displacement texture amplitude * sin(f x) sin(f y) sin(f z). */
+SDF_INLINE vfloat displacement(vec3v p, float amplitude, float frequency) {
+  return amplitude * sin(frequency * p.x) * sin(frequency * p.y) * sin(frequency * p.z);
+}

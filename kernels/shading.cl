@@ -1,6 +1,9 @@
 /* Direct lighting: Lambert diffuse plus Phong or Blinn-Phong specular (SHADING_MODEL_PHONG,
- * SHADING_MODEL_BLINN_PHONG), with the constants SHADING_DIFFUSE, SHADING_SPECULAR and
- * SHADING_SHININESS, and the step-count ambient occlusion of the Crum article (SHADING_STEP_AO). */
+ * SHADING_MODEL_BLINN_PHONG), with the constants SHADING_DIFFUSE, SHADING_SPECULAR,
+ * SHADING_SHININESS and AMBIENT_COLOR, LIGHT_COUNT lights from a constant buffer, the step-count
+ * ambient occlusion of the Crum article (SHADING_STEP_AO) and Beer-Lambert fog (FOG_DENSITY,
+ * FOG_COLOR). Positions are relative to the camera, so lighting keeps its precision far from the
+ * origin. */
 
 SDF_INLINE vec3v point_light_direction(vec3v p, float4 position) { return v3_normalize(v3_sub(v3_from(position), p)); }
 
@@ -13,6 +16,9 @@ SDF_INLINE vfloat specular_term(vec3v n, vec3v l, vec3v v) {
   vec3v half_vector = v3_normalize(v3_add(l, v));
   return pow(fmax(v3_dot(n, half_vector), 0.0f), (vfloat)(SHADING_SHININESS));
 #else
+  (void)n;
+  (void)l;
+  (void)v;
   return (vfloat)(0.0f);
 #endif
 }
@@ -35,4 +41,23 @@ SDF_INLINE vec3v apply_step_ao(vec3v color, vfloat steps) {
   (void)steps;
   return color;
 #endif
+}
+
+/* Lit color at p_rel (the hit point relative to the camera, at depth t) with unit normal n, seen
+ * along -view. Each light is (xyz position relative to the camera, w = 1) or (xyz unit direction
+ * towards the light, w = 0), then its radiance. */
+SDF_INLINE vec3v shade(vec3v p_rel, vfloat t, vec3v n, vec3v view, vfloat steps, vec3v albedo, __constant float4* lights) {
+  vec3v color = v3_mul(albedo, v3_from(AMBIENT_COLOR));
+  for (int k = 0; k < LIGHT_COUNT; ++k) {
+    const float4 where = lights[CLMARCH_LIGHT_FLOAT4S * k];
+    const vec3v l = where.w > 0.5f ? point_light_direction(p_rel, where) : v3_from(where);
+    color = add_light(color, albedo, n, l, view, lights[CLMARCH_LIGHT_FLOAT4S * k + 1]);
+  }
+  color = v3_max0(apply_step_ao(color, steps));
+#ifdef FOG_DENSITY
+  color = v3_mix(v3_from(FOG_COLOR), color, exp(-FOG_DENSITY * t));
+#else
+  (void)t;
+#endif
+  return color;
 }

@@ -75,6 +75,13 @@ const std::vector<SdfCase>& sdf_cases() {
       // Scale 2 about the origin, then the shift: half (4, 2, 6) centred at (0, 0, 10).
       {"scale_translate", "box: {half_size: [1, 2, 3], rotate: [0, 0, 90], scale: 2, translate: [0, 0, 10]}",
        {{{5, 0, 10}, 1.0}, {{0, 3, 10}, 1.0}, {{0, 0, 17}, 1.0}}},
+      // Period 2 along x and z: (4, 0, 0) is a sphere centre; y is not repeated.
+      {"repeat", "repeat: {period: [2, 0, 2], children: [{sphere: {radius: 0.5}}]}",
+       {{{4, 0, 0}, -0.5}, {{5, 0, 0.5}, std::sqrt(1.25) - 0.5}, {{0, 3, 0}, 2.5}, {{-6, 0, 8}, -0.5}}},
+      // (d + 0.1 sin(2x) sin(2y) sin(2z)) / (1 + 0.1 * 2 * sqrt(3)).
+      {"displace", "displace: {amplitude: 0.1, frequency: 2, children: [{sphere: {radius: 1}}]}",
+       {{{0, 2, 0}, 1.0 / (1.0 + 0.2 * kSqrt3)},
+        {{0.5, 0.5, 0.5}, (std::sqrt(0.75) - 1.0 + 0.1 * std::pow(std::sin(1.0), 3)) / (1.0 + 0.2 * kSqrt3)}}},
       {"transformed_operator", "union: {translate: [0, 5, 0], scale: 3, children: [{sphere: {radius: 1}}]}",
        {{{0, 5, 0}, -3.0}, {{0, 10, 0}, 2.0}}},
   };

@@ -310,6 +310,14 @@ Node default_node(NodeKind kind, std::size_t primitive_index) {
   if (is_primitive(kind)) {
     return leaf(default_primitive(primitive_index, std::make_index_sequence<std::variant_size_v<Primitive>>()), kind);
   }
+  if (kind == NodeKind::Repeat || kind == NodeKind::Displace) {
+    // One child that fits its repetition cell, so the field stays continuous and 1-Lipschitz.
+    Node node = op_node(kind, {sphere_node({0.0, 0.0, 0.0}, 0.5)}, 0.0);
+    node.repeat_period = {2.0, 0.0, 2.0};
+    node.displace_amplitude = 0.1;
+    node.displace_frequency = 2.0;
+    return node;
+  }
   Node other = sphere_node({0.3, 0.2, 0.0}, 0.6, kRed);
   return op_node(kind, {sphere_node({0.0, 0.0, 0.0}, 0.5), other}, is_smooth_operator(kind) ? 0.25 : 0.0);
 }

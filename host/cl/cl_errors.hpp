@@ -7,8 +7,15 @@
 
 namespace clmarch {
 
+/// clGetPlatformIDs without any installed driver (cl_khr_icd); not in the core headers.
+inline constexpr int kClPlatformNotFoundKhr = -1001;
+
 /// Symbolic name of an OpenCL status code ("CL_OUT_OF_RESOURCES").
 std::string cl_status_name(int status);
+
+/// "OpenCL error on NAME (PLATFORM): clCall failed with CL_STATUS (what it means)" on the first
+/// line; a failed build adds "build log of NAME:" and the log on the lines after.
+std::string device_error_message(const DeviceEntry& device, const cl::Error& error);
 
 /// Runs call and turns a cl::Error into DeviceError naming the device and the failing API call;
 /// build failures carry the device's build log verbatim.

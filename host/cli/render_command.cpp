@@ -79,6 +79,7 @@ int run_render_command(const RenderCommandOptions& options) {
     result.stats.device = "CPU reference (double)";
     result.stats.kernel_ms = ms;
     for (float s : result.buffers.plane(Channel::Steps)) result.stats.steps += static_cast<std::uint64_t>(s);
+    for (float s : result.buffers.plane(Channel::WallSteps)) result.stats.wall_steps += static_cast<std::uint64_t>(s);
     result.stats.rays_per_s = static_cast<double>(scene.render.width) * scene.render.height / (ms * 1e-3);
   } else {
     OpenClOptions cl = opencl_options(options.scene);
@@ -97,7 +98,7 @@ int run_render_command(const RenderCommandOptions& options) {
     nlohmann::json line = {{"backend", options.backend}, {"device", s.device},         {"lanes", s.lanes},
                            {"width", scene.render.width}, {"height", scene.render.height}, {"build_ms", s.build_ms},
                            {"kernel_ms", s.kernel_ms},  {"steps", s.steps},            {"rays_per_s", s.rays_per_s},
-                           {"chunks", s.chunks}};
+                           {"chunks", s.chunks}, {"surface_steps", s.steps - s.wall_steps}, {"wall_steps", s.wall_steps}};
     std::cout << line.dump() << std::endl;
   }
   return kExitOk;

@@ -37,26 +37,18 @@ std::string feature_defines(const Scene& scene, const KernelOptions& options) {
     out += fmt::format("#define SHADING_SHININESS {}\n", cl_float(s.shininess));
     if (s.step_ao > 0.0) out += fmt::format("#define SHADING_STEP_AO {}\n", cl_float(s.step_ao));
     out += fmt::format("#define BACKGROUND_COLOR {}\n", cl_float4(s.background));
+    out += fmt::format("#define AMBIENT_COLOR {}\n", cl_float4(s.ambient));
+    out += fmt::format("#define LIGHT_COUNT {}\n", scene.lights.size());
+    if (s.fog) {
+      out += fmt::format("#define FOG_DENSITY {}\n", cl_float(s.fog->density));
+      out += fmt::format("#define FOG_COLOR {}\n", cl_float4(s.fog->color));
+    }
+  }
+  if (scene.tiling && options.purpose != KernelPurpose::EvalPoints) {
+    out += scene.tiling->method == TilingMethod::Cells ? "#define TILING_CELLS\n" : "#define TILING_MOD\n";
+    out += fmt::format("#define TILING_CELL {}\n", cl_float4(scene.tiling->cell));
   }
   return out;
-}
-
-std::string generate_shade_function(const Scene& scene) {
-  std::string lights;
-  for (const Light& light : scene.lights) {
-    const std::string radiance = cl_float4(light.color * light.intensity);
-    const std::string direction = light.kind == LightKind::Point
-                                      ? fmt::format("point_light_direction(p, {})", cl_float4(light.position))
-                                      : fmt::format("v3_from({})", cl_float4(light.direction));
-    lights += fmt::format("  color = add_light(color, albedo, n, {}, view, {});\n", direction, radiance);
-  }
-  return fmt::format(
-      "/* Lit color at surface point p with unit normal n, seen along -view. */\n"
-      "SDF_INLINE vec3v shade(vec3v p, vec3v n, vec3v view, vfloat steps, vec3v albedo) {{\n"
-      "  (void)p;\n"
-      "  vec3v color = v3_mul(albedo, v3_from({}));\n{}"
-      "  return v3_max0(apply_step_ao(color, steps));\n}}\n",
-      cl_float4(scene.shading.ambient), lights);
 }
 
 }  // namespace
@@ -72,12 +64,13 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
   if (shading) src += kernel_file("shading.cl");
   src += "#line 1 \"generated scene\"\n";
   src += generate_sdf_functions(scene.sdf);
-  if (shading) src.append("\n").append(generate_shade_function(scene));
   if (options.purpose == KernelPurpose::EvalPoints) {
     src += kernel_file("eval_points.cl");
     return src;
   }
   src += kernel_file("camera.cl");
+  src += kernel_file("march_loop.cl");
+  if (scene.tiling) src += kernel_file("tiling.cl");
   if (options.purpose != KernelPurpose::DepthSteps) src += kernel_file("normals.cl");
   src += kernel_file("march.cl");
   return src;

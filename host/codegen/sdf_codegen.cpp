@@ -102,12 +102,33 @@ class SdfEmitter {
   }
 
   Value emit_operator(const Node& node, const std::string& p, const glm::dvec3& color) {
+    if (node.kind == NodeKind::Repeat) return emit_repeat(node, p, color);
+    if (node.kind == NodeKind::Displace) return emit_displace(node, p, color);
     Value acc = emit(node.children.front(), p, color);
     for (std::size_t i = 1; i < node.children.size(); ++i) {
       const Value next = emit(node.children[i], p, color);
       acc = combine(node, acc, next);
     }
     return acc;
+  }
+
+  Value emit_repeat(const Node& node, const std::string& p, const glm::dvec3& color) {
+    const glm::dvec3& period = node.repeat_period;
+    const auto axis = [&](const char* c, double length) {
+      return length > 0.0 ? fmt::format("op_repeat_axis({}.{}, {})", p, c, cl_float(length)) : fmt::format("{}.{}", p, c);
+    };
+    const std::string q = fresh("p");
+    line(fmt::format("vec3v {} = v3({}, {}, {});  /* repeat */", q, axis("x", period.x), axis("y", period.y), axis("z", period.z)));
+    return emit(node.children.front(), q, color);
+  }
+
+  Value emit_displace(const Node& node, const std::string& p, const glm::dvec3& color) {
+    const Value child = emit(node.children.front(), p, color);
+    Value out{fresh("d"), child.color};
+    line(fmt::format("vfloat {} = ({} + displacement({}, {}, {})) * {};  /* displace */", out.distance, child.distance, p,
+                     cl_float(node.displace_amplitude), cl_float(node.displace_frequency),
+                     cl_float(1.0 / displacement_lipschitz(node))));
+    return out;
   }
 
   Value combine(const Node& node, const Value& a, const Value& b) {

@@ -17,6 +17,10 @@ enum ExitCode : int {
   kExitDeviceFault = 3,
   /// Writing an output file failed.
   kExitOutputFailed = 4,
+  /// A bug: an exception no other code covers (sysexits' EX_SOFTWARE).
+  kExitInternalError = 70,
+  /// Interrupted by SIGINT (Ctrl-C); SIGTERM gives 128 + 15 = 143.
+  kExitInterrupted = 130,
 };
 
 /// Bad input from the user; the message is one line naming the file or option, what and why.

@@ -1,6 +1,9 @@
 // The progress line.
 #include "common/progress.hpp"
 
+#include "common/cancellation.hpp"
+#include "common/log.hpp"
+
 #include <fmt/format.h>
 
 #include <cstdio>
@@ -9,8 +12,10 @@
 
 namespace clmarch {
 
+bool progress_enabled() { return verbosity() != Verbosity::Quiet && isatty(STDERR_FILENO) == 1; }
+
 ProgressLine::ProgressLine(std::string label, long long total)
-    : label_(std::move(label)), total_(total), enabled_(isatty(STDERR_FILENO) == 1),
+    : label_(std::move(label)), total_(total), enabled_(progress_enabled()),
       start_(std::chrono::steady_clock::now()), last_draw_(start_) {}
 
 ProgressLine::~ProgressLine() {
@@ -18,6 +23,7 @@ ProgressLine::~ProgressLine() {
 }
 
 void ProgressLine::advance(long long done) {
+  throw_if_cancelled();
   const long long now_done = done_ += done;
   if (!enabled_) return;
   std::unique_lock lock(draw_, std::try_to_lock);

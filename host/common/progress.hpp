@@ -1,4 +1,5 @@
-// Progress of long work on stderr: a single self-rewriting line, only when stderr is a terminal.
+// Progress of long work on stderr: a single self-rewriting line, only when stderr is a terminal
+// and not with --quiet. Reporting progress is also a cancellation point (Ctrl-C).
 #pragma once
 
 #include <atomic>
@@ -7,6 +8,9 @@
 #include <string>
 
 namespace clmarch {
+
+/// True when progress lines are drawn: stderr is a terminal and the verbosity is not Quiet.
+bool progress_enabled();
 
 class ProgressLine {
  public:
@@ -17,6 +21,8 @@ class ProgressLine {
   ProgressLine& operator=(const ProgressLine&) = delete;
 
   /// Adds done units; safe to call from any thread. Redraws at most four times a second.
+  /// Throws Cancelled once cancellation was requested, so that every loop which reports progress
+  /// (the OpenCL chunks, the reference's rows inside tbb::parallel_for) stops at its next unit.
   void advance(long long done = 1);
 
  private:

@@ -1,7 +1,9 @@
 // Temporary-then-rename file writing.
 #include "image/atomic_file.hpp"
 
+#include "common/cancellation.hpp"
 #include "common/errors.hpp"
+#include "common/pending_file.hpp"
 
 #include <fmt/format.h>
 #include <fmt/std.h>
@@ -17,8 +19,11 @@ void write_atomically(const std::filesystem::path& target,
                       const std::function<void(const std::filesystem::path& temp)>& write) {
   std::filesystem::path temp = target;
   temp.replace_filename(fmt::format(".{}.clmarch-{}{}", target.stem().string(), getpid(), target.extension().string()));
+  const PendingFile pending(temp);
   try {
     write(temp);
+    // A Ctrl-C during the write leaves no new file: the temporary one goes, the target stays as it was.
+    throw_if_cancelled();
     std::error_code error;
     std::filesystem::rename(temp, target, error);
     if (error) throw OutputError(fmt::format("{}: cannot write: {}", target.string(), error.message()));

@@ -10,7 +10,8 @@ namespace clmarch {
 
 /// Calls write(temp_path) with a temporary path in the target's folder that keeps the target's
 /// extension, then renames it to target. On any exception the temporary file is removed and the
-/// exception propagates.
+/// exception propagates. When cancellation was requested during the write, it throws Cancelled
+/// instead of renaming; a second signal, which exits at once, removes the temporary file too.
 void write_atomically(const std::filesystem::path& target,
                       const std::function<void(const std::filesystem::path& temp)>& write);
 

@@ -4,12 +4,14 @@
 #include "common/progress.hpp"
 #include "reference/reference_sdf.hpp"
 #include "scene/camera_model.hpp"
+#include "scene/tiling_model.hpp"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 
 namespace clmarch {
@@ -22,18 +24,101 @@ glm::dvec3 normalize_or_zero(const glm::dvec3& v) {
   return length > 0.0 ? v / length : glm::dvec3(0.0);
 }
 
-glm::dvec3 central_normal(const Node& root, const glm::dvec3& p, double h) {
-  const auto f = [&](const glm::dvec3& q) { return reference_distance(root, q); };
+using Field = std::function<double(const glm::dvec3&)>;
+
+glm::dvec3 central_normal(const Field& f, const glm::dvec3& p, double h) {
   const glm::dvec3 x(h, 0.0, 0.0), y(0.0, h, 0.0), z(0.0, 0.0, h);
   return normalize_or_zero(glm::dvec3(f(p + x) - f(p - x), f(p + y) - f(p - y), f(p + z) - f(p - z)));
 }
 
 // Inigo Quilez's four-sample tetrahedron; cheaper than central differences but only first order.
-glm::dvec3 tetrahedral_normal(const Node& root, const glm::dvec3& p, double h) {
-  const auto f = [&](const glm::dvec3& q) { return reference_distance(root, q); };
+glm::dvec3 tetrahedral_normal(const Field& f, const glm::dvec3& p, double h) {
   const glm::dvec3 xyy(1.0, -1.0, -1.0), yyx(-1.0, -1.0, 1.0), yxy(-1.0, 1.0, -1.0), xxx(1.0, 1.0, 1.0);
   return normalize_or_zero(xyy * f(p + xyy * h) + yyx * f(p + yyx * h) + yxy * f(p + yxy * h) +
-                        xxx * f(p + xxx * h));
+                           xxx * f(p + xxx * h));
+}
+
+glm::dvec3 normal_of(const Field& f, const glm::dvec3& p, NormalMethod method, double h) {
+  switch (method) {
+    case NormalMethod::Central: return central_normal(f, p, h);
+    case NormalMethod::Tetrahedral: return tetrahedral_normal(f, p, h);
+  }
+  return glm::dvec3(0.0);
+}
+
+/// p wrapped into the tiling cell, floor-based like GLSL mod.
+glm::dvec3 wrap_to_cell(const glm::dvec3& p, const glm::dvec3& cell) { return p - cell * glm::floor(p / cell); }
+
+/// Where a march ended: the depth, the point in the tree's own frame, the steps.
+struct MarchEnd {
+  bool hit = false;
+  double depth = 0.0;
+  glm::dvec3 local{0.0};
+  int steps = 0;
+  int wall_steps = 0;
+};
+
+MarchEnd march_plain(const Scene& scene, const Field& field, const glm::dvec3& origin, const glm::dvec3& direction) {
+  const RenderSettings& rs = scene.render;
+  MarchEnd end;
+  double t = 0.0;
+  for (int i = 0; i < rs.max_steps; ++i) {
+    const glm::dvec3 p = origin + t * direction;
+    const double d = field(p);
+    ++end.steps;
+    if (d < rs.epsilon) {
+      end.hit = true;
+      end.depth = t;
+      end.local = p;
+      return end;
+    }
+    t += d;
+    if (t >= rs.max_distance) break;
+  }
+  return end;
+}
+
+// The unit-cell traversal: inside the current cell the ray is entry + s * direction; when the
+// wall it heads for is no farther along the ray than the surface, it steps exactly onto that wall
+// and re-enters the neighbouring cell at the opposite wall (several axes at once at edges and
+// corners).
+MarchEnd march_cells(const Scene& scene, const glm::dvec3& origin, const glm::dvec3& direction) {
+  const RenderSettings& rs = scene.render;
+  const glm::dvec3 cell = scene.tiling->cell;
+  MarchEnd end;
+  glm::dvec3 entry = offset_in_cell(origin, cell);
+  double t_entry = 0.0, s = 0.0;
+  for (int i = 0; i < rs.max_steps; ++i) {
+    const glm::dvec3 p = entry + s * direction;
+    const double d = reference_distance(scene.sdf, p);
+    glm::dvec3 wall_axis(std::numeric_limits<double>::infinity());
+    for (int a = 0; a < 3; ++a) {
+      if (direction[a] == 0.0) continue;
+      const double to_wall = direction[a] > 0.0 ? cell[a] - p[a] : -p[a];
+      wall_axis[a] = std::max(to_wall / direction[a], 0.0);
+    }
+    const double wall = std::min({wall_axis.x, wall_axis.y, wall_axis.z});
+    ++end.steps;
+    if (d < rs.epsilon) {
+      end.hit = true;
+      end.depth = t_entry + s;
+      end.local = p;
+      return end;
+    }
+    if (wall <= d) {
+      ++end.wall_steps;
+      const glm::dvec3 at_wall = p + wall * direction;
+      for (int a = 0; a < 3; ++a) {
+        entry[a] = wall_axis[a] == wall ? (direction[a] > 0.0 ? 0.0 : cell[a]) : std::clamp(at_wall[a], 0.0, cell[a]);
+      }
+      t_entry += s + wall;
+      s = 0.0;
+    } else {
+      s += d;
+    }
+    if (t_entry + s >= rs.max_distance) break;
+  }
+  return end;
 }
 
 // Specular factor of one light; only called where n.l > 0.
@@ -50,18 +135,14 @@ double specular_term(ShadingModel model, const glm::dvec3& n, const glm::dvec3& 
 }  // namespace
 
 glm::dvec3 reference_normal(const Node& root, const glm::dvec3& p, NormalMethod method, double h) {
-  switch (method) {
-    case NormalMethod::Central: return central_normal(root, p, h);
-    case NormalMethod::Tetrahedral: return tetrahedral_normal(root, p, h);
-  }
-  return glm::dvec3(0.0);
+  return normal_of([&](const glm::dvec3& q) { return reference_distance(root, q); }, p, method, h);
 }
 
-glm::dvec3 reference_shade(const Scene& scene, const glm::dvec3& p, const glm::dvec3& n,
-                           const glm::dvec3& direction, int steps) {
+glm::dvec3 reference_shade(const Scene& scene, const glm::dvec3& p_local, const glm::dvec3& p, const glm::dvec3& n,
+                           const glm::dvec3& direction, int steps, double depth) {
   const Shading& sh = scene.shading;
   const glm::dvec3 v = -direction;
-  const glm::dvec3 albedo = reference_sample(scene.sdf, p).color;
+  const glm::dvec3 albedo = reference_sample(scene.sdf, p_local).color;
   glm::dvec3 color = albedo * sh.ambient;
   for (const Light& light : scene.lights) {
     const glm::dvec3 l =
@@ -72,30 +153,38 @@ glm::dvec3 reference_shade(const Scene& scene, const glm::dvec3& p, const glm::d
     if (ndotl > 0.0) color += radiance * (sh.specular * specular_term(sh.model, n, l, v, sh.shininess));
   }
   if (sh.step_ao > 0.0) color -= static_cast<double>(steps) * steps / sh.step_ao;
-  return glm::max(color, 0.0);
+  color = glm::max(color, 0.0);
+  if (sh.fog) color = sh.fog->color + (color - sh.fog->color) * std::exp(-sh.fog->density * depth);
+  return color;
 }
 
 RayResult reference_trace(const Scene& scene, const glm::dvec3& origin, const glm::dvec3& direction) {
   const RenderSettings& rs = scene.render;
-  RayResult r;
-  double t = 0.0;
-  for (int i = 0; i < rs.max_steps; ++i) {
-    const glm::dvec3 p = origin + t * direction;
-    const double d = reference_distance(scene.sdf, p);
-    ++r.steps;
-    if (d < rs.epsilon) {
-      r.hit = true;
-      r.depth = t;
-      r.normal = reference_normal(scene.sdf, p, rs.normal_method, rs.normal_epsilon);
-      r.color = reference_shade(scene, p, r.normal, direction, r.steps);
-      return r;
-    }
-    t += d;
-    if (t >= rs.max_distance) break;
+  Field field = [&](const glm::dvec3& p) { return reference_distance(scene.sdf, p); };
+  MarchEnd end;
+  if (!scene.tiling) {
+    end = march_plain(scene, field, origin, direction);
+  } else if (scene.tiling->method == TilingMethod::Mod) {
+    // The sample point wraps into the cell, and so do the normal's taps.
+    field = [&](const glm::dvec3& p) { return reference_distance(scene.sdf, wrap_to_cell(p, scene.tiling->cell)); };
+    end = march_plain(scene, field, origin, direction);
+    end.local = wrap_to_cell(end.local, scene.tiling->cell);
+  } else {
+    end = march_cells(scene, origin, direction);
   }
-  // Running out of steps is a miss too, like leaving through max_distance.
-  r.depth = std::numeric_limits<double>::infinity();
-  r.color = scene.shading.background;
+  RayResult r;
+  r.steps = end.steps;
+  r.wall_steps = end.wall_steps;
+  if (!end.hit) {
+    // Running out of steps is a miss too, like leaving through max_distance.
+    r.depth = std::numeric_limits<double>::infinity();
+    r.color = scene.shading.background;
+    return r;
+  }
+  r.hit = true;
+  r.depth = end.depth;
+  r.normal = normal_of(field, end.local, rs.normal_method, rs.normal_epsilon);
+  r.color = reference_shade(scene, end.local, origin + end.depth * direction, r.normal, direction, r.steps, end.depth);
   return r;
 }
 
@@ -117,6 +206,7 @@ FrameBuffers render_reference(const Scene& scene) {
         fb.at(Channel::NX, i, j) = static_cast<float>(r.normal.x);
         fb.at(Channel::NY, i, j) = static_cast<float>(r.normal.y);
         fb.at(Channel::NZ, i, j) = static_cast<float>(r.normal.z);
+        fb.at(Channel::WallSteps, i, j) = static_cast<float>(r.wall_steps);
       }
       progress.advance();
     }

@@ -59,6 +59,11 @@ SdfSample fold_smooth(const Node& node, const glm::dvec3& p, const glm::dvec3& c
   return fold_children(node, p, color, [&](const SdfSample& a, const SdfSample& b) { return op(a, b, k); });
 }
 
+SdfSample only_child(const Node& node, const glm::dvec3& p, const glm::dvec3& color) {
+  if (node.children.size() != 1) malformed(node, "needs exactly one child");
+  return sample_node(node.children.front(), p, color);
+}
+
 // The node's own kind in its local frame p; color is its effective albedo.
 SdfSample sample_local(const Node& node, const glm::dvec3& p, const glm::dvec3& color) {
   using S = SdfSample;
@@ -86,6 +91,21 @@ SdfSample sample_local(const Node& node, const glm::dvec3& p, const glm::dvec3& 
     case NodeKind::SmoothSubtraction:
       return fold_smooth(node, p, color,
                          [](const S& a, const S& b, double k) { return op_smooth_subtraction(a, b, k); });
+    case NodeKind::Repeat: {
+      glm::dvec3 q = p;
+      for (int a = 0; a < 3; ++a) {
+        const double c = node.repeat_period[a];
+        if (c > 0.0) q[a] = p[a] - c * std::floor(p[a] / c + 0.5);
+      }
+      return only_child(node, q, color);
+    }
+    case NodeKind::Displace: {
+      S s = only_child(node, p, color);
+      const double f = node.displace_frequency;
+      const double texture = node.displace_amplitude * std::sin(f * p.x) * std::sin(f * p.y) * std::sin(f * p.z);
+      s.distance = (s.distance + texture) / displacement_lipschitz(node);
+      return s;
+    }
   }
   malformed(node, "has an unknown kind");
 }

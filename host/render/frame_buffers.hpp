@@ -8,11 +8,12 @@
 
 namespace clmarch {
 
-/// Output channels; the order is also the plane order of the OpenCL output buffer.
-enum class Channel { R, G, B, Depth, Steps, NX, NY, NZ };
-inline constexpr int kChannelCount = 8;
-/// EXR channel names, indexed by Channel.
-inline constexpr const char* kChannelNames[kChannelCount] = {"R", "G", "B", "depth", "steps", "N.x", "N.y", "N.z"};
+/// Output channels; the order is also the plane order of the OpenCL output buffer. WallSteps (the
+/// part of steps spent stepping to cell walls under tiling) is not an EXR channel of the contract.
+enum class Channel { R, G, B, Depth, Steps, NX, NY, NZ, WallSteps };
+inline constexpr int kChannelCount = 9;
+/// Channel names (the EXR's, for the first eight), indexed by Channel.
+inline constexpr const char* kChannelNames[kChannelCount] = {"R", "G", "B", "depth", "steps", "N.x", "N.y", "N.z", "wall_steps"};
 
 /// Row-major planes, pixel (i, j) at j * width + i, j = 0 the top row. Linear color, depth +inf on
 /// a miss, steps = distance evaluations of the march, N = unit normal (0 on a miss).

@@ -9,6 +9,7 @@
 #include "device_types.h"
 #include "image/atomic_file.hpp"
 #include "scene/camera_model.hpp"
+#include "scene/tiling_model.hpp"
 
 #include <algorithm>
 #include <numeric>
@@ -55,6 +56,24 @@ std::size_t chunk_pixels_for(const DeviceEntry& device) {
   return std::max<std::size_t>(1, std::min({kResponsiveChunk, max_alloc / bytes_per_pixel, global / bytes_per_pixel}));
 }
 
+/// Lights as the kernel reads them (kernels/shading.cl): positions relative to the camera.
+std::vector<cl_float4> light_data(const Scene& scene) {
+  std::vector<cl_float4> data;
+  for (const Light& light : scene.lights) {
+    cl_float4 where = light.kind == LightKind::Point ? to_cl(light.position - scene.camera.position) : to_cl(light.direction);
+    where.s[3] = light.kind == LightKind::Point ? 1.0f : 0.0f;
+    data.push_back(where);
+    data.push_back(to_cl(light.color * light.intensity));
+  }
+  if (data.empty()) data.push_back(to_cl(glm::dvec3(0.0)));  // a buffer may not be empty
+  return data;
+}
+
+std::uint64_t plane_total(const std::vector<float>& plane) {
+  return std::accumulate(plane.begin(), plane.end(), std::uint64_t{0},
+                         [](std::uint64_t sum, float s) { return sum + static_cast<std::uint64_t>(s); });
+}
+
 struct PreparedProgram {
   DeviceProgram program;
   int lanes = 1;
@@ -95,6 +114,8 @@ RenderResult render_opencl(const Scene& scene, const OpenClOptions& options) {
   params.epsilon = static_cast<float>(scene.render.epsilon);
   params.max_distance = static_cast<float>(scene.render.max_distance);
   params.normal_epsilon = static_cast<float>(scene.render.normal_epsilon);
+  if (scene.tiling) params.origin_in_cell = to_cl(offset_in_cell(scene.camera.position, scene.tiling->cell));
+  const std::vector<cl_float4> lights = light_data(scene);
 
   RenderResult result;
   result.buffers = FrameBuffers(width, height);
@@ -107,8 +128,11 @@ RenderResult render_opencl(const Scene& scene, const OpenClOptions& options) {
     cl::Buffer out(dp.context, CL_MEM_WRITE_ONLY | CL_MEM_HOST_READ_ONLY, bytes);
     // Planes the kernel does not write (no shading, no normals) must read back as zeros.
     dp.queue.enqueueFillBuffer(out, 0.0f, 0, bytes);
+    cl::Buffer light_buffer(dp.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, lights.size() * sizeof(cl_float4),
+                            const_cast<cl_float4*>(lights.data()));
     cl::Kernel kernel(dp.program, "march");
     kernel.setArg(1, out);
+    kernel.setArg(2, light_buffer);
     for (std::size_t first = 0; first < pixels; first += chunk_pixels) {
       throw_if_cancelled();
       const std::size_t count = std::min(chunk_pixels, pixels - first);
@@ -133,9 +157,8 @@ RenderResult render_opencl(const Scene& scene, const OpenClOptions& options) {
   stats.build_ms = dp.build_ms;
   stats.kernel_ms = kernel_ms;
   stats.chunks = static_cast<int>(chunk_count);
-  const auto& steps = result.buffers.plane(Channel::Steps);
-  stats.steps = std::accumulate(steps.begin(), steps.end(), std::uint64_t{0},
-                                [](std::uint64_t sum, float s) { return sum + static_cast<std::uint64_t>(s); });
+  stats.steps = plane_total(result.buffers.plane(Channel::Steps));
+  stats.wall_steps = plane_total(result.buffers.plane(Channel::WallSteps));
   stats.rays_per_s = kernel_ms > 0.0 ? static_cast<double>(pixels) / (kernel_ms * 1e-3) : 0.0;
   return result;
 }

@@ -36,6 +36,8 @@ struct RenderStats {
   double kernel_ms = 0.0;
   /// Sum of the steps buffer: march iterations over all pixels.
   std::uint64_t steps = 0;
+  /// The part of steps that stepped to a cell wall (tiling's cell traversal).
+  std::uint64_t wall_steps = 0;
   double rays_per_s = 0.0;
   /// Dispatches the image was split into.
   int chunks = 1;

@@ -3,6 +3,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <cmath>
+
 namespace clmarch {
 
 std::string_view node_kind_name(NodeKind kind) {
@@ -33,6 +35,10 @@ bool is_primitive(NodeKind kind) {
 bool is_smooth_operator(NodeKind kind) {
   return kind == NodeKind::SmoothUnion || kind == NodeKind::SmoothIntersection ||
          kind == NodeKind::SmoothSubtraction;
+}
+
+double displacement_lipschitz(const Node& displace) {
+  return 1.0 + displace.displace_amplitude * displace.displace_frequency * std::sqrt(3.0);
 }
 
 bool Transform::is_identity() const {

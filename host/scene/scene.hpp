@@ -74,12 +74,21 @@ struct Node {
   Primitive primitive;
   /// Blend radius of the smooth operators.
   double smooth_k = 0.0;
+  /// repeat: centred domain repetition with this period per axis (0 = not repeated on that axis).
+  glm::dvec3 repeat_period{0.0};
+  /// displace: adds amplitude * sin(f x) sin(f y) sin(f z) (Crum's texture), f = frequency.
+  double displace_amplitude = 0.0;
+  double displace_frequency = 1.0;
   /// Operands of an operator, folded left: union(a, b, c) = union(union(a, b), c).
   std::vector<Node> children;
   Transform transform;
   /// Albedo of this subtree, unless a descendant sets its own.
   std::optional<glm::dvec3> color;
 };
+
+/// Lipschitz constant of a displace node's field, 1 + amplitude * frequency * sqrt(3): its distance
+/// is divided by it so the march never steps past the displaced surface.
+double displacement_lipschitz(const Node& displace);
 
 /// Camera of the contract in docs/scene-format.md (fov is vertical, in degrees).
 struct Camera {
@@ -125,6 +134,12 @@ inline constexpr const char* kShadingModelNames[] = {"lambert", "phong", "blinn_
 enum class View { Shaded, Normals, Depth, Steps };
 inline constexpr const char* kViewNames[] = {"shaded", "normals", "depth", "steps"};
 
+/// Beer-Lambert fog on hits: color = mix(fog color, color, exp(-density * depth)).
+struct Fog {
+  glm::dvec3 color{1.0};
+  double density = 0.1;
+};
+
 /// Lighting model and the look of misses.
 struct Shading {
   ShadingModel model = ShadingModel::Lambert;
@@ -135,7 +150,19 @@ struct Shading {
   /// Step-count ambient occlusion (Crum): subtracts steps^2 / step_ao from each channel; 0 = off.
   double step_ao = 0.0;
   glm::dvec3 background{0.0};
+  std::optional<Fog> fog;
   View view = View::Shaded;
+};
+
+enum class TilingMethod { Cells, Mod };
+inline constexpr const char* kTilingMethodNames[] = {"cells", "mod"};
+
+/// Infinite repetition of the whole tree, written in cell-local coordinates 0 <= p < cell.
+struct Tiling {
+  glm::dvec3 cell{1.0};
+  /// cells: unit-cell traversal (march inside one cell, step to its wall, wrap); mod: the cheap
+  /// modulo of the sample point.
+  TilingMethod method = TilingMethod::Cells;
 };
 
 /// A whole scene file after loading and validation.
@@ -147,6 +174,8 @@ struct Scene {
   Node sdf;
   std::vector<Light> lights;
   Shading shading;
+  /// Absent: the scene is not repeated.
+  std::optional<Tiling> tiling;
 };
 
 }  // namespace clmarch

@@ -25,13 +25,14 @@ class SceneReader {
   Scene read(const YAML::Node& root, const std::string& source_name) {
     Scene scene;
     scene.source_name = source_name;
-    yaml_.expect_map(root, "the scene", {"description", "camera", "render", "sdf", "lights", "shading"});
+    yaml_.expect_map(root, "the scene", {"description", "camera", "render", "sdf", "lights", "shading", "tiling"});
     if (const YAML::Node description = root["description"]) yaml_.text(description, "description");
     if (const YAML::Node camera = root["camera"]) scene.camera = read_camera(camera);
     if (const YAML::Node render = root["render"]) scene.render = read_render(render);
     scene.sdf = read_node(yaml_.required(root, "sdf", "sdf (the distance field tree)"), "sdf", 1);
     if (const YAML::Node lights = root["lights"]) scene.lights = read_lights(lights);
     if (const YAML::Node shading = root["shading"]) scene.shading = read_shading(shading);
+    if (const YAML::Node tiling = root["tiling"]) scene.tiling = read_tiling(tiling);
     return scene;
   }
 
@@ -103,9 +104,26 @@ class SceneReader {
     return lights;
   }
 
+  Tiling read_tiling(const YAML::Node& node) {
+    Tiling tiling;
+    yaml_.expect_map(node, "tiling", {"cell", "method"});
+    yaml_.optional_vec3(node, "cell", "tiling.cell", tiling.cell, Range::positive());
+    if (node["method"]) tiling.method = static_cast<TilingMethod>(yaml_.choice(node["method"], "tiling.method", kTilingMethodNames));
+    return tiling;
+  }
+
+  Fog read_fog(const YAML::Node& node) {
+    Fog fog;
+    yaml_.expect_map(node, "shading.fog", {"color", "density"});
+    if (node["color"]) fog.color = yaml_.color(node["color"], "shading.fog.color");
+    yaml_.optional_number(node, "density", "shading.fog.density", fog.density, Range::non_negative());
+    return fog;
+  }
+
   Shading read_shading(const YAML::Node& node) {
     Shading shading;
-    yaml_.expect_map(node, "shading", {"model", "ambient", "diffuse", "specular", "shininess", "step_ao", "background", "view"});
+    yaml_.expect_map(node, "shading", {"model", "ambient", "diffuse", "specular", "shininess", "step_ao", "background", "fog", "view"});
+    if (node["fog"]) shading.fog = read_fog(node["fog"]);
     if (node["model"]) shading.model = static_cast<ShadingModel>(yaml_.choice(node["model"], "shading.model", kShadingModelNames));
     if (node["ambient"]) shading.ambient = yaml_.color(node["ambient"], "shading.ambient");
     yaml_.optional_number(node, "diffuse", "shading.diffuse", shading.diffuse, Range::non_negative());
@@ -237,14 +255,25 @@ class SceneReader {
 
   void read_operator(Node& node, const YAML::Node& value, const std::string& path, int depth) {
     const bool smooth = is_smooth_operator(node.kind);
+    const bool modifier = node.kind == NodeKind::Repeat || node.kind == NodeKind::Displace;
     YAML::Node children;
     if (value.IsSequence()) {
       if (smooth) yaml_.fail(value, fmt::format("{} needs a blend radius: write {{k: 0.5, children: [...]}}", path));
+      if (modifier) yaml_.fail(value, fmt::format("{} takes parameters: write it as a map with children: [node]", path));
       children = value;
     } else if (value.IsMap()) {
       if (smooth) {
         yaml_.expect_map(value, path, {"children", "k", CLMARCH_COMMON_NODE_KEYS});
         node.smooth_k = yaml_.number(yaml_.required(value, "k", path + ".k"), path + ".k", Range::positive());
+      } else if (node.kind == NodeKind::Repeat) {
+        yaml_.expect_map(value, path, {"children", "period", CLMARCH_COMMON_NODE_KEYS});
+        const YAML::Node period = yaml_.required(value, "period", path + ".period");
+        node.repeat_period = yaml_.vec3(period, path + ".period", Range::non_negative());
+        if (node.repeat_period == glm::dvec3(0.0)) yaml_.fail(period, path + ".period must repeat along at least one axis (a component > 0)");
+      } else if (node.kind == NodeKind::Displace) {
+        yaml_.expect_map(value, path, {"children", "amplitude", "frequency", CLMARCH_COMMON_NODE_KEYS});
+        yaml_.optional_number(value, "amplitude", path + ".amplitude", node.displace_amplitude, Range::non_negative());
+        yaml_.optional_number(value, "frequency", path + ".frequency", node.displace_frequency, Range::positive());
       } else {
         yaml_.expect_map(value, path, {"children", CLMARCH_COMMON_NODE_KEYS});
       }
@@ -258,6 +287,9 @@ class SceneReader {
     const std::size_t minimum = subtracts ? 2 : 1;
     if (children.size() < minimum) {
       yaml_.fail(children, fmt::format("{} needs at least {} child node{} (got {})", path, minimum, minimum > 1 ? "s" : "", children.size()));
+    }
+    if (modifier && children.size() != 1) {
+      yaml_.fail(children, fmt::format("{} takes exactly 1 child node (got {}); wrap several in a union", path, children.size()));
     }
     for (std::size_t i = 0; i < children.size(); ++i) {
       node.children.push_back(read_node(children[i], fmt::format("{}[{}]", path, i), depth + 1));

@@ -1,0 +1,15 @@
+// Ctrl-C and SIGTERM: the first one asks the work to stop at its next cancellation point (the CLI
+// then exits 128 + signal, writing nothing); a second one exits at once.
+#pragma once
+
+namespace clmarch {
+
+/// Installs the SIGINT and SIGTERM handlers. The first signal sets cancellation_requested();
+/// a second removes the temporary output file being written, if any, and _exits 128 + signal.
+void install_interrupt_handlers();
+
+/// 128 + the number of the first signal received: 130 for SIGINT, 143 for SIGTERM; 130 when none
+/// was (cancellation requested in-process).
+int interrupted_exit_code();
+
+}  // namespace clmarch

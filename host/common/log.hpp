@@ -1,0 +1,22 @@
+// Messages on stderr besides errors: the normal "clmarch: wrote ..." lines, the --verbose details,
+// and nothing at all with --quiet. One setting for the whole process, chosen by the CLI.
+#pragma once
+
+#include <string_view>
+
+namespace clmarch {
+
+/// How much the program says on stderr; errors are printed whatever it is.
+enum class Verbosity { Quiet, Normal, Verbose };
+inline constexpr const char* kVerbosityNames[] = {"quiet", "normal", "verbose"};
+
+/// The process-wide setting (default Normal); set once by the CLI before any work starts.
+void set_verbosity(Verbosity verbosity);
+Verbosity verbosity();
+
+/// "clmarch: " + line on stderr unless --quiet (results: the files written).
+void log_info(std::string_view line);
+/// "clmarch: " + line on stderr with --verbose only (device, build, dispatch details).
+void log_verbose(std::string_view line);
+
+}  // namespace clmarch
