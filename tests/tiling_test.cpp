@@ -1,0 +1,228 @@
+// Tiling's unit-cell traversal against the exact answer: a lattice of spheres whose first hit is
+// found by a 3D grid walk (Amanatides-Woo) with closed-form ray-sphere intersections in double,
+// with the camera near and very far from the origin, and the rays that stress a grid walk.
+#include "analytic_intersections.hpp"
+#include "render/opencl_renderer.hpp"
+#include "scene/camera_model.hpp"
+#include "support/test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace clmarch {
+namespace {
+
+// A lattice with a different cell size per axis; each cell holds one sphere well inside it.
+const glm::dvec3 kCell(1.0, 1.5, 0.75);
+const Sphere kCellSphere{{0.5, 0.75, 0.375}, 0.3};
+constexpr double kGrazingCosine = 0.1;
+// Float rounding in the cell's frame: the coordinates are at most a cell wide, plus the depth.
+constexpr double kFloatRelative = 16.0 * 0x1p-24;
+
+std::string lattice_yaml(const glm::dvec3& position, const glm::dvec3& look_at, int width, int height,
+                         const char* up = "[0, 1, 0]") {
+  return fmt::format(
+      "camera: {{position: [{}, {}, {}], look_at: [{}, {}, {}], up: {}, fov: 60}}\n"
+      "render: {{width: {}, height: {}, max_steps: 1000, epsilon: 1.0e-4, max_distance: 30}}\n"
+      "tiling: {{cell: [1, 1.5, 0.75], method: cells}}\n"
+      "sdf: {{sphere: {{center: [0.5, 0.75, 0.375], radius: 0.3}}}}\n",
+      position.x, position.y, position.z, look_at.x, look_at.y, look_at.z, up, width, height);
+}
+
+struct LatticeHit {
+  double depth = 0.0;
+  glm::dvec3 normal{0.0};
+};
+
+/// First sphere of the lattice along the ray, by walking the cells it crosses in order.
+std::optional<LatticeHit> lattice_first_hit(const glm::dvec3& o, const glm::dvec3& d, double max_distance) {
+  glm::dvec3 index = glm::floor(o / kCell);
+  glm::dvec3 next_wall, step_t;
+  for (int a = 0; a < 3; ++a) {
+    step_t[a] = d[a] != 0.0 ? kCell[a] / std::abs(d[a]) : INFINITY;
+    next_wall[a] = d[a] > 0.0 ? ((index[a] + 1.0) * kCell[a] - o[a]) / d[a]
+                 : d[a] < 0.0 ? (index[a] * kCell[a] - o[a]) / d[a]
+                              : INFINITY;
+  }
+  double t = 0.0;
+  while (t < max_distance) {
+    const Sphere sphere{index * kCell + kCellSphere.center, kCellSphere.radius};
+    if (const std::optional<double> hit = intersect_sphere(o, d, sphere)) {
+      return LatticeHit{*hit, glm::normalize(o + *hit * d - sphere.center)};
+    }
+    // The sphere lies inside its cell, so a miss here means the ray leaves the cell first.
+    int axis = 0;
+    for (int a = 1; a < 3; ++a) {
+      if (next_wall[a] < next_wall[axis]) axis = a;
+    }
+    t = next_wall[axis];
+    next_wall[axis] += step_t[axis];
+    index[axis] += d[axis] > 0.0 ? 1.0 : -1.0;
+  }
+  return std::nullopt;
+}
+
+FrameBuffers render_lattice(const glm::dvec3& position, const glm::dvec3& look_at, int width, int height,
+                            KernelPurpose purpose = KernelPurpose::DepthSteps) {
+  const Scene scene = testing::scene_from_yaml(lattice_yaml(position, look_at, width, height));
+  OpenClOptions options;
+  options.purpose = purpose;
+  return render_opencl(scene, options).buffers;
+}
+
+void expect_lattice_depths(const glm::dvec3& position, const glm::dvec3& look_at) {
+  SCOPED_TRACE(fmt::format("camera at ({}, {}, {})", position.x, position.y, position.z));
+  const int w = 48, h = 32;
+  const FrameBuffers buffers = render_lattice(position, look_at, w, h, KernelPurpose::Normals);
+  const Scene scene = testing::scene_from_yaml(lattice_yaml(position, look_at, w, h));
+  const CameraBasis basis = camera_basis(scene.camera, w, h);
+  std::vector<std::optional<LatticeHit>> truth;
+  std::vector<double> cosine;
+  for (int j = 0; j < h; ++j) {
+    for (int i = 0; i < w; ++i) {
+      const glm::dvec3 dir = pixel_ray_direction(basis, i, j);
+      truth.push_back(lattice_first_hit(basis.origin, dir, scene.render.max_distance));
+      cosine.push_back(truth.back() ? std::abs(glm::dot(dir, truth.back()->normal)) : 0.0);
+    }
+  }
+  const auto hit_at = [&](int i, int j) { return truth[static_cast<std::size_t>(j) * w + i].has_value(); };
+  int compared = 0, hits = 0;
+  for (int j = 0; j < h; ++j) {
+    for (int i = 0; i < w; ++i) {
+      const std::size_t k = static_cast<std::size_t>(j) * w + i;
+      bool silhouette = hit_at(i, j) && cosine[k] < kGrazingCosine;
+      for (int dj = -1; dj <= 1; ++dj) {
+        for (int di = -1; di <= 1; ++di) {
+          const int ni = i + di, nj = j + dj;
+          if (ni >= 0 && nj >= 0 && ni < w && nj < h && hit_at(ni, nj) != hit_at(i, j)) silhouette = true;
+        }
+      }
+      if (silhouette) continue;
+      ++compared;
+      const float depth = buffers.at(Channel::Depth, i, j);
+      ASSERT_EQ(std::isfinite(depth), hit_at(i, j)) << "pixel " << i << "," << j;
+      if (!hit_at(i, j)) continue;
+      ++hits;
+      const double t = truth[k]->depth;
+      const double rounding = kFloatRelative * (glm::length(kCell) + t) * 4.0;
+      EXPECT_LE(t - depth, scene.render.epsilon / cosine[k] + rounding) << "pixel " << i << "," << j;
+      EXPECT_GE(t - depth, -rounding) << "pixel " << i << "," << j;
+      // The normal comes from the hit cell's own frame.
+      const glm::dvec3 n(buffers.at(Channel::NX, i, j), buffers.at(Channel::NY, i, j), buffers.at(Channel::NZ, i, j));
+      EXPECT_GT(glm::dot(n, truth[k]->normal), 0.999) << "pixel " << i << "," << j;
+    }
+  }
+  EXPECT_GT(compared, w * h / 2);
+  EXPECT_GT(hits, w * h / 5);
+}
+
+const glm::dvec3 kNearCamera(0.3, 0.6, 0.1);
+const glm::dvec3 kView(2.7, 1.3, 4.1);
+
+TEST(TilingCells, MatchesTheGridWalkNearTheOrigin) { expect_lattice_depths(kNearCamera, kNearCamera + kView); }
+
+// Whole numbers of cells away along each axis and a diagonal: the same picture, as exact as near
+// the origin (the seed's world-space mod loses all precision long before 1e7).
+TEST(TilingCells, MatchesTheGridWalkFarFromTheOrigin) {
+  for (double distance : {1e3, 1e5, 1e7}) {
+    for (const glm::dvec3& axis : {glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, -1), glm::dvec3(1, -1, 1)}) {
+      const glm::dvec3 shift = glm::round(axis * distance / kCell) * kCell;
+      expect_lattice_depths(kNearCamera + shift, kNearCamera + shift + kView);
+    }
+  }
+}
+
+TEST(TilingCells, FarCameraRendersTheSameImage) {
+  const FrameBuffers near = render_lattice(kNearCamera, kNearCamera + kView, 48, 32);
+  const glm::dvec3 shift = glm::round(glm::dvec3(1e7, -1e7, 1e7) / kCell) * kCell;
+  const FrameBuffers far = render_lattice(kNearCamera + shift, kNearCamera + shift + kView, 48, 32);
+  int differing = 0;
+  for (std::size_t k = 0; k < near.plane(Channel::Depth).size(); ++k) {
+    const float a = near.plane(Channel::Depth)[k], b = far.plane(Channel::Depth)[k];
+    if (std::isfinite(a) != std::isfinite(b) || (std::isfinite(a) && std::abs(a - b) > 1e-5f * (1.0f + a))) ++differing;
+  }
+  EXPECT_LE(differing, 2);
+}
+
+/// Depth and steps of the single ray of a 1x1 image, which is exactly the camera's forward axis.
+struct OneRay {
+  float depth;
+  float steps;
+  float wall_steps;
+};
+
+OneRay march_one_ray(const glm::dvec3& position, const glm::dvec3& direction, int lanes) {
+  const bool vertical = direction.x == 0.0 && direction.z == 0.0;
+  const Scene scene = testing::scene_from_yaml(lattice_yaml(position, position + direction, 1, 1, vertical ? "[1, 0, 0]" : "[0, 1, 0]"));
+  OpenClOptions options;
+  options.lanes = lanes;
+  options.purpose = KernelPurpose::Normals;
+  const FrameBuffers b = render_opencl(scene, options).buffers;
+  for (Channel c : {Channel::Steps, Channel::NX, Channel::NY, Channel::NZ}) {
+    EXPECT_TRUE(std::isfinite(b.at(c, 0, 0))) << kChannelNames[static_cast<int>(c)];
+  }
+  EXPECT_FALSE(std::isnan(b.at(Channel::Depth, 0, 0)));
+  return {b.at(Channel::Depth, 0, 0), b.at(Channel::Steps, 0, 0), b.at(Channel::WallSteps, 0, 0)};
+}
+
+struct SpecialRay {
+  std::string name;
+  glm::dvec3 position;
+  glm::dvec3 direction;
+};
+
+void PrintTo(const SpecialRay& r, std::ostream* os) { *os << r.name; }
+
+// Rays a grid walk can get wrong: along axes (zero direction components), starting exactly on a
+// wall or a corner, running along a wall or an edge, crossing edges (two walls at once).
+const std::vector<SpecialRay>& special_rays() {
+  static const std::vector<SpecialRay> rays = {
+      {"along_x_from_wall", {0.0, 0.75, 0.375}, {1, 0, 0}},
+      {"against_x_from_wall", {0.0, 0.75, 0.375}, {-1, 0, 0}},
+      {"along_z_off_centre", {0.35, 0.75, 0.0}, {0, 0, 1}},
+      {"along_y_far_away", {0.5 + 4e6, 1.2, 0.375 - 3e6}, {0, -1, 0}},
+      {"along_edge_from_corner", {0.0, 0.0, 0.0}, {1, 0, 0}},
+      {"along_wall", {0.3, 0.0, 0.2}, {0.6, 0, 0.8}},
+      {"through_edges", {0.0, 0.0, 0.0}, {1.0, 1.5, 0.0}},
+      {"through_edges_off_plane", {0.0, 0.0, 0.375}, {-1.0, -1.5, 0.0}},
+      {"through_corners", {0.0, 0.0, 0.0}, {-1.0, 1.5, 0.75}},
+      {"from_far_corner", {1e7, -1.5e6, 7.5e5}, {0.3, 0.2, 1.0}},
+  };
+  return rays;
+}
+
+class TilingSpecialRays : public ::testing::TestWithParam<SpecialRay> {};
+
+TEST_P(TilingSpecialRays, TerminateAndMatchTheGridWalk) {
+  const SpecialRay& r = GetParam();
+  const glm::dvec3 dir = glm::normalize(r.direction);
+  const std::optional<LatticeHit> truth = lattice_first_hit(r.position, dir, 30.0);
+  for (int lanes : {1, 16}) {
+    const OneRay ray = march_one_ray(r.position, dir, lanes);
+    EXPECT_LT(ray.steps, 1000.0f) << "the step budget must not run out on a " << r.name << " ray";
+    EXPECT_LE(ray.wall_steps, ray.steps);
+    ASSERT_EQ(std::isfinite(ray.depth), truth.has_value()) << "lanes " << lanes;
+    if (truth) {
+      const double bound = 1e-4 / std::max(std::abs(glm::dot(dir, truth->normal)), kGrazingCosine) + 1e-5;
+      EXPECT_NEAR(ray.depth, truth->depth, bound) << "lanes " << lanes;
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Rays, TilingSpecialRays, ::testing::ValuesIn(special_rays()),
+                         [](const auto& info) { return info.param.name; });
+
+TEST(TilingCells, StepsCountWallStepsToo) {
+  // Straight along x through the gaps between the spheres: only wall steps and distance steps
+  // in between, and every one is counted.
+  const OneRay ray = march_one_ray({0.0, 0.05, 0.05}, {1, 0, 0}, 16);
+  EXPECT_TRUE(std::isinf(ray.depth));
+  EXPECT_GE(ray.wall_steps, 29.0f) << "one wall per cell over max_distance 30";
+  EXPECT_GT(ray.steps, ray.wall_steps);
+}
+
+}  // namespace
+}  // namespace clmarch
