@@ -44,9 +44,15 @@ Scene scene_from_yaml(const std::string& yaml) { return load_scene_text(yaml, "t
 
 std::filesystem::path source_path(const std::string& relative) { return std::filesystem::path(CLMARCH_SOURCE_DIR) / relative; }
 
-CommandResult run_clmarch(const std::vector<std::string>& args) {
+CommandResult run_clmarch(const std::vector<std::string>& args, const std::vector<std::string>& environment) {
   TempDir capture;
-  std::string command = shell_quote(CLMARCH_BINARY);
+  std::string command;
+  if (!environment.empty()) {
+    command = "env";
+    for (const std::string& setting : environment) command.append(" ").append(shell_quote(setting));
+    command.append(" ");
+  }
+  command.append(shell_quote(CLMARCH_BINARY));
   for (const std::string& a : args) command.append(" ").append(shell_quote(a));
   command.append(" >").append(shell_quote((capture / "out").string()));
   command.append(" 2>").append(shell_quote((capture / "err").string())).append(" </dev/null");

@@ -21,8 +21,9 @@ struct CommandResult {
   std::string err;
 };
 
-/// Runs the built clmarch executable with args (no shell quoting needed for plain arguments).
-CommandResult run_clmarch(const std::vector<std::string>& args);
+/// Runs the built clmarch executable with args (no shell quoting needed for plain arguments);
+/// environment holds extra NAME=VALUE settings for it.
+CommandResult run_clmarch(const std::vector<std::string>& args, const std::vector<std::string>& environment = {});
 
 /// An image read with OpenImageIO: interleaved channels as float in [0, 1] for 8-bit files.
 struct Image {

@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# Fuzzes the scene loader and the code generator with libFuzzer for a bounded time.
+# Usage: scripts/fuzz.sh [SECONDS]   (default 60; scripts/test.sh runs it in CI)
+# Builds build-fuzz/ with clang, ASan and UBSan. New interesting inputs collect in
+# build-fuzz/corpus; an input that crashes, hangs (> 10 s) or trips a sanitizer is written to
+# build-fuzz/artifacts/ and the script fails: fix the bug and add the input to
+# tests/fuzz_regressions/ (tests/fuzz_regressions_test.cpp then loads it in every test run).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds=${1:-60}
+cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
+  -DCLMARCH_FUZZ=ON -DCLMARCH_BUILD_TESTS=OFF >/dev/null
+cmake --build build-fuzz --target clmarch_fuzz_scene
+mkdir -p build-fuzz/corpus build-fuzz/artifacts
+# The first folder receives new inputs; scenes/ and the regression inputs only seed it.
+seeds=(scenes)
+[ -d tests/fuzz_regressions ] && seeds+=(tests/fuzz_regressions)
+build-fuzz/clmarch_fuzz_scene -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=4096 \
+  -dict=fuzz/scene.dict -artifact_prefix=build-fuzz/artifacts/ -print_final_stats=1 \
+  build-fuzz/corpus "${seeds[@]}" 2> build-fuzz/fuzz.log || {
+  tail -n 60 build-fuzz/fuzz.log >&2
+  echo "fuzz.sh: the fuzzer found a bug; its input is in build-fuzz/artifacts/" >&2
+  exit 1
+}
+grep -E "^(stat::number_of_executed_units|Done)" build-fuzz/fuzz.log >&2 || true
