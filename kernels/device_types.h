@@ -47,7 +47,8 @@ typedef struct MarchParams {
   CLMARCH_FLOAT epsilon;
   CLMARCH_FLOAT max_distance;
   CLMARCH_FLOAT normal_epsilon;
-  CLMARCH_INT padding[3];
+  CLMARCH_FLOAT camera_height; /* world y of the camera, for height fog */
+  CLMARCH_INT padding[2];
 } MarchParams;
 
 #ifndef __OPENCL_VERSION__

@@ -7,9 +7,9 @@ __kernel void eval_points(__global const float* xs, __global const float* ys, __
                           __global float* green, __global float* blue) {
   const int base = (int)get_global_id(0) * LANES;
   const vec3v p = v3(LOAD_LANES(base, xs), LOAD_LANES(base, ys), LOAD_LANES(base, zs));
-  vec3v albedo;
+  vec3v albedo, surface;
   STORE_LANES(map(p), base, distance);
-  STORE_LANES(map_color(p, &albedo), base, color_distance);
+  STORE_LANES(map_color(p, &albedo, &surface), base, color_distance);
   STORE_LANES(albedo.x, base, red);
   STORE_LANES(albedo.y, base, green);
   STORE_LANES(albedo.z, base, blue);

@@ -1,7 +1,54 @@
 /* The sphere-tracing kernel: each work-item marches LANES consecutive pixels in lock-step (the
  * loops: march_loop.cl, tiling.cl), then writes depth (+inf on a miss), steps and wall steps, and
- * with NEED_NORMALS / NEED_SHADING the normal and the lit color, into planes of out
+ * with NEED_NORMALS / NEED_SHADING the normal and the final color, into planes of out
  * (CLMARCH_CHANNEL_*), plane_stride floats each. */
+
+#if defined(NEED_SHADING)
+/* The surface met by a ray from the camera-relative point relative_origin, marched in map()'s
+ * frame (m), with its normal and material. */
+SDF_INLINE Hit surface_at(const MarchResult* m, vec3v relative_origin, vec3v dir, float normal_epsilon) {
+  Hit hit;
+  hit.point = m->local_point;
+  hit.relative = v3_add(relative_origin, v3_scale(dir, m->t));
+  hit.normal = estimate_normal(m->local_point, normal_epsilon);
+  map_color(m->local_point, &hit.albedo, &hit.surface);
+  hit.steps = m->steps;
+  return hit;
+}
+#endif
+
+#if defined(NEED_SHADING) && defined(REFLECTION_BOUNCES)
+/* Adds the mirror bounces of the PBR course: each bounce's color weighted by the product of the
+ * reflectivities met so far; a bounce that misses shows the sky. */
+SDF_INLINE vec3v add_reflections(vec3v color, Hit hit, vec3v dir, vint live, const MarchParams* params, __constant float4* lights) {
+  MarchLimits limits = {params->max_steps, params->epsilon, 0, 0.0f};
+  vfloat weight = (vfloat)(1.0f);
+  vint active = live;
+  for (int bounce = 0; bounce < REFLECTION_BOUNCES; ++bounce) {
+    weight *= hit.surface.z;
+    active &= MASK(weight > 0.0f);
+    if (!LANE_ANY(active)) break;
+    /* reflect(dir, n) = dir - 2 dot(dir, n) n */
+    dir = v3_sub(dir, v3_scale(hit.normal, 2.0f * v3_dot(dir, hit.normal)));
+    const vec3v origin = v3_add(hit.point, v3_scale(hit.normal, REFLECTION_OFFSET));
+    const vec3v relative_origin = v3_add(hit.relative, v3_scale(hit.normal, REFLECTION_OFFSET));
+    const MarchResult r = MARCH(origin, dir, active, (vfloat)(0.0f), (vfloat)(params->max_distance), limits);
+    vec3v seen = miss_color(dir, r.closest);
+    const vint reflected_hit = active & r.hit;
+    if (LANE_ANY(reflected_hit)) {
+      const Hit next = surface_at(&r, relative_origin, dir, params->normal_epsilon);
+      seen = v3_select(seen, shade(&next, v3_scale(dir, -1.0f), reflected_hit, lights), reflected_hit);
+      hit.point = v3_select(hit.point, next.point, reflected_hit);
+      hit.relative = v3_select(hit.relative, next.relative, reflected_hit);
+      hit.normal = v3_select(hit.normal, next.normal, reflected_hit);
+      hit.surface = v3_select(hit.surface, next.surface, reflected_hit);
+    }
+    color = v3_select(color, v3_add(color, v3_scale(seen, weight)), active);
+    active = reflected_hit;
+  }
+  return color;
+}
+#endif
 
 __kernel void march(const MarchParams params, __global float* out, __constant float4* lights) {
   const int base = (int)get_global_id(0) * LANES;
@@ -9,12 +56,12 @@ __kernel void march(const MarchParams params, __global float* out, __constant fl
   const vint live = MASK(pixel < params.pixel_count);
   const vec3v dir = camera_ray(&params, pixel % params.width, pixel / params.width);
 #if defined(TILING_CELLS)
-  const MarchResult m = march_cells(&params, live, dir);
-#elif defined(TILING_MOD)
-  const MarchResult m = march_mod(&params, live, v3_from(params.origin), dir);
+  const vec3v origin = v3_from(params.origin_in_cell);
 #else
-  const MarchResult m = march_plain(&params, live, v3_from(params.origin), dir);
+  const vec3v origin = v3_from(params.origin);
 #endif
+  const MarchLimits limits = {params.max_steps, params.epsilon, 0, 0.0f};
+  const MarchResult m = MARCH(origin, dir, live, (vfloat)(0.0f), (vfloat)(params.max_distance), limits);
 
   const int stride = params.plane_stride;
   STORE_LANES(select((vfloat)(INFINITY), m.t, m.hit), base, out + CLMARCH_CHANNEL_DEPTH * stride);
@@ -24,21 +71,27 @@ __kernel void march(const MarchParams params, __global float* out, __constant fl
 #ifdef NEED_NORMALS
   vec3v normal = v3_splat(0.0f);
 #ifdef NEED_SHADING
-  vec3v color = v3_from(BACKGROUND_COLOR);
+  vec3v color = miss_color(dir, m.closest);
 #endif
   if (LANE_ANY(m.hit)) {
-    normal = v3_select(v3_splat(0.0f), estimate_normal(m.local_point, params.normal_epsilon), m.hit);
 #ifdef NEED_SHADING
-    vec3v albedo;
-    map_color(m.local_point, &albedo);
-    const vec3v lit = shade(v3_scale(dir, m.t), m.t, normal, v3_scale(dir, -1.0f), m.steps, albedo, lights);
+    const Hit hit = surface_at(&m, v3_splat(0.0f), dir, params.normal_epsilon);
+    normal = v3_select(normal, hit.normal, m.hit);
+    vec3v lit = shade(&hit, v3_scale(dir, -1.0f), m.hit, lights);
+#if defined(REFLECTION_BOUNCES)
+    lit = add_reflections(lit, hit, dir, m.hit, &params, lights);
+#endif
+    lit = apply_fog(lit, dir, m.t, params.camera_height);
     color = v3_select(color, lit, m.hit);
+#else
+    normal = v3_select(normal, estimate_normal(m.local_point, params.normal_epsilon), m.hit);
 #endif
   }
   STORE_LANES(normal.x, base, out + CLMARCH_CHANNEL_NX * stride);
   STORE_LANES(normal.y, base, out + CLMARCH_CHANNEL_NY * stride);
   STORE_LANES(normal.z, base, out + CLMARCH_CHANNEL_NZ * stride);
 #ifdef NEED_SHADING
+  color = tone_map(color);
   STORE_LANES(color.x, base, out + CLMARCH_CHANNEL_R * stride);
   STORE_LANES(color.y, base, out + CLMARCH_CHANNEL_G * stride);
   STORE_LANES(color.z, base, out + CLMARCH_CHANNEL_B * stride);

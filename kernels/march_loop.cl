@@ -1,6 +1,8 @@
 /* The plain sphere-tracing loop and the result type every march loop (tiling.cl too) returns. A
- * lane goes idle once its ray hits (distance < epsilon), passes max_distance or the step budget
- * ends (both misses). */
+ * lane goes idle once its ray hits (distance < epsilon), passes its end or the step budget runs
+ * out (both misses). The same loop serves camera rays, reflection rays and shadow rays; a shadow
+ * ray also tracks Inigo Quilez's penumbra min(k h / t) (soft_mode 1, or 2 for his improved
+ * variant), and every ray the closest approach to the surface (for the glow of misses). */
 
 /* What the march of one packet found. */
 typedef struct {
@@ -9,25 +11,66 @@ typedef struct {
   vfloat wall_steps; /* iterations that stepped to a cell wall (tiling) */
   vint hit;
   vec3v local_point; /* the hit point in the frame map() is written in (a cell's, under tiling) */
+  vfloat closest;    /* smallest distance met on the way */
+  vfloat penumbra;   /* soft shadows: light reaching the start point, 1 when unoccluded */
 } MarchResult;
 
-SDF_INLINE MarchResult march_plain(const MarchParams* params, vint live, vec3v origin, vec3v dir) {
+/* Limits of one march; soft_mode and soft_k only matter for shadow rays. */
+typedef struct {
+  int max_steps;
+  float epsilon;
+  int soft_mode; /* 0: none, 1: classic penumbra, 2: improved */
+  float soft_k;
+} MarchLimits;
+
+SDF_INLINE MarchResult march_result_init(vfloat t_start) {
   MarchResult m;
-  m.t = (vfloat)(0.0f);
+  m.t = t_start;
   m.steps = (vfloat)(0.0f);
   m.wall_steps = (vfloat)(0.0f);
   m.hit = (vint)(0);
-  vint active = live;
-  for (int step = 0; step < params->max_steps && LANE_ANY(active); ++step) {
-    vfloat d = map(v3_add(origin, v3_scale(dir, m.t)));
-    m.steps += select((vfloat)(0.0f), (vfloat)(1.0f), active);
-    vint arrived = active & MASK(d < params->epsilon);
-    m.hit |= arrived;
-    active &= ~arrived;
-    m.t = select(m.t, m.t + d, active);
-    active &= MASK(m.t < params->max_distance);
-  }
-  m.local_point = v3_add(origin, v3_scale(dir, m.t));
+  m.closest = (vfloat)(INFINITY);
+  m.penumbra = (vfloat)(1.0f);
   return m;
 }
 
+/* Folds one distance sample h at depth t into the closest approach and the penumbra; previous is
+ * the sample before (the improved variant estimates the true closest point between the two). */
+SDF_INLINE void track_approach(MarchResult* m, vfloat h, vfloat previous, vint active, const MarchLimits* limits) {
+  m->closest = select(m->closest, fmin(m->closest, h), active);
+  if (limits->soft_mode == 1) {
+    m->penumbra = select(m->penumbra, fmin(m->penumbra, limits->soft_k * h / fmax(m->t, 1e-6f)), active);
+  } else if (limits->soft_mode == 2) {
+    const vfloat y = h * h / (2.0f * previous);
+    const vfloat d = sqrt(fmax(h * h - y * y, 0.0f));
+    m->penumbra = select(m->penumbra, fmin(m->penumbra, limits->soft_k * d / fmax(m->t - y, 1e-6f)), active);
+  }
+}
+
+/* Marches origin + t * dir for t from t_start; lanes stop at t_end (a miss). */
+SDF_INLINE MarchResult march_plain(vec3v origin, vec3v dir, vint live, vfloat t_start, vfloat t_end, MarchLimits limits) {
+  MarchResult m = march_result_init(t_start);
+  vint active = live;
+  vfloat previous = (vfloat)(1e20f);
+  for (int step = 0; step < limits.max_steps && LANE_ANY(active); ++step) {
+    const vfloat d = field(v3_add(origin, v3_scale(dir, m.t)));
+    m.steps += select((vfloat)(0.0f), (vfloat)(1.0f), active);
+    track_approach(&m, d, previous, active, &limits);
+    previous = d;
+    const vint arrived = active & MASK(d < limits.epsilon);
+    m.hit |= arrived;
+    active &= ~arrived;
+    m.t = select(m.t, m.t + d, active);
+    active &= MASK(m.t < t_end);
+  }
+  m.local_point = v3_add(origin, v3_scale(dir, m.t));
+#if defined(TILING_MOD)
+  m.local_point = wrap_to_cell(m.local_point);
+#endif
+  return m;
+}
+
+#if !defined(TILING_CELLS)
+/* One march, whichever tiling the scene has: origin + t * dir, origin in map()'s frame. */
+#define MARCH(origin, dir, live, t_start, t_end, limits) march_plain((origin), (dir), (live), (t_start), (t_end), (limits))
+#endif

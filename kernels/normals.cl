@@ -1,15 +1,7 @@
 /* Surface normals from the distance field by finite differences with step h: central differences
  * (6 taps) or Inigo Quilez's tetrahedral 4 taps (NORMAL_TETRAHEDRAL). The point is in the frame
  * map() is written in: under tiling the hit cell's own frame, so taps past a wall still see that
- * cell's geometry, and under the mod method taps wrap like the march did. */
-
-SDF_INLINE vfloat field(vec3v p) {
-#if defined(TILING_MOD)
-  return map(wrap_to_cell(p));
-#else
-  return map(p);
-#endif
-}
+ * cell's geometry, and under the mod method taps wrap like the march did (field.cl). */
 
 #ifdef NORMAL_TETRAHEDRAL
 SDF_INLINE vec3v estimate_normal(vec3v p, float h) {

@@ -1,12 +1,73 @@
-/* Direct lighting: Lambert diffuse plus Phong or Blinn-Phong specular (SHADING_MODEL_PHONG,
- * SHADING_MODEL_BLINN_PHONG), with the constants SHADING_DIFFUSE, SHADING_SPECULAR,
- * SHADING_SHININESS and AMBIENT_COLOR, LIGHT_COUNT lights from a constant buffer, the step-count
- * ambient occlusion of the Crum article (SHADING_STEP_AO) and Beer-Lambert fog (FOG_DENSITY,
- * FOG_COLOR). Positions are relative to the camera, so lighting keeps its precision far from the
- * origin. */
+/* Direct lighting of a surface point: Lambert diffuse with Phong or Blinn-Phong specular, or a
+ * PBR material (Cook-Torrance: GGX distribution, Smith-Schlick geometry, Fresnel-Schlick) with
+ * metallic and roughness; LIGHT_COUNT lights from a constant buffer; hard or soft shadows by
+ * marching towards each light (SHADOW_MODE); ambient occlusion by marching along the normal
+ * (AO_SAMPLES) and from the step count (SHADING_STEP_AO). Light positions are relative to the
+ * camera, so lighting keeps its precision far from the origin; shadow and occlusion rays run in
+ * the frame of map(), like the camera ray. */
+
+/* The surface where a ray hit. */
+typedef struct {
+  vec3v point;    /* in map()'s frame */
+  vec3v relative; /* relative to the camera, for the lights */
+  vec3v normal;
+  vec3v albedo;
+  vec3v surface;  /* x = metallic, y = roughness, z = reflectivity */
+  vfloat steps;
+} Hit;
 
 SDF_INLINE vec3v point_light_direction(vec3v p, float4 position) { return v3_normalize(v3_sub(v3_from(position), p)); }
 
+#if defined(SHADOW_MODE)
+/* Light reaching p from unit direction l over distance t_end: 0 behind an occluder, 1 unlit by
+ * none, the penumbra in between for soft shadows. */
+SDF_INLINE vfloat shadow_factor(vec3v p, vec3v n, vec3v l, vfloat t_end, vint live) {
+  MarchLimits limits = {SHADOW_MAX_STEPS, SHADOW_EPSILON, SHADOW_MODE - 1, SHADOW_K};
+  /* Leave the surface along its normal first so the ray does not hit its own start. */
+  const vec3v origin = v3_add(p, v3_scale(n, SHADOW_EPSILON * 4.0f));
+  const MarchResult m = MARCH(origin, l, live, (vfloat)(SHADOW_MIN_T), t_end, limits);
+  const vfloat lit = SHADOW_MODE == 1 ? (vfloat)(1.0f) : clamp(m.penumbra, 0.0f, 1.0f);
+  return select(lit, (vfloat)(0.0f), m.hit);
+}
+#endif
+
+#if defined(AO_SAMPLES)
+/* The PBR-course occlusion: from 1, subtract (i delta - sdf(p + n i delta))^2 / i over the samples,
+ * then raise to AO_POWER. */
+SDF_INLINE vfloat normal_occlusion(vec3v p, vec3v n) {
+  vfloat occlusion = (vfloat)(1.0f);
+  for (int i = AO_SAMPLES; i > 0; --i) {
+    const float along = (float)i * AO_STEP;
+    const vfloat gap = along - field(v3_add(p, v3_scale(n, along)));
+    occlusion -= gap * gap / (float)i;
+  }
+  return pow(clamp(occlusion, 0.0f, 1.0f), (vfloat)(AO_POWER));
+}
+#endif
+
+#if defined(SHADING_MODEL_PBR)
+/* Cook-Torrance reflectance times n.l for one light. */
+SDF_INLINE vec3v pbr_light(vec3v n, vec3v l, vec3v v, vec3v albedo, vfloat metallic, vfloat roughness) {
+  const vec3v h = v3_normalize(v3_add(l, v));
+  const vfloat n_dot_l = fmax(v3_dot(n, l), 0.0f);
+  const vfloat n_dot_v = fmax(v3_dot(n, v), 0.0f);
+  const vfloat n_dot_h = fmax(v3_dot(n, h), 0.0f);
+  const vfloat h_dot_v = fmax(v3_dot(h, v), 0.0f);
+  const vfloat a = roughness * roughness;
+  const vfloat a2 = a * a;
+  const vfloat denom = n_dot_h * n_dot_h * (a2 - 1.0f) + 1.0f;
+  const vfloat distribution = a2 / (M_PI_F * denom * denom);
+  const vfloat k = (roughness + 1.0f) * (roughness + 1.0f) / 8.0f;
+  const vfloat geometry = n_dot_v / (n_dot_v * (1.0f - k) + k) * n_dot_l / (n_dot_l * (1.0f - k) + k);
+  const vec3v f0 = v3_mix(v3_splat(0.04f), albedo, metallic);
+  const vfloat schlick = pow(1.0f - h_dot_v, (vfloat)(5.0f));
+  const vec3v fresnel = v3_add(f0, v3_scale(v3_sub(v3_splat(1.0f), f0), schlick));
+  const vfloat specular = distribution * geometry / (4.0f * n_dot_v * n_dot_l + 1e-4f);
+  const vec3v diffuse_weight = v3_scale(v3_sub(v3_splat(1.0f), fresnel), 1.0f - metallic);
+  const vec3v diffuse = v3_scale(v3_mul(diffuse_weight, albedo), M_1_PI_F);
+  return v3_scale(v3_add(diffuse, v3_scale(fresnel, specular)), n_dot_l);
+}
+#else
 SDF_INLINE vfloat specular_term(vec3v n, vec3v l, vec3v v) {
 #if defined(SHADING_MODEL_PHONG)
   /* reflect(-l, n) = 2 dot(n, l) n - l */
@@ -23,14 +84,14 @@ SDF_INLINE vfloat specular_term(vec3v n, vec3v l, vec3v v) {
 #endif
 }
 
-/* Adds one light of the given radiance (color * intensity) arriving from unit direction l. */
-SDF_INLINE vec3v add_light(vec3v color, vec3v albedo, vec3v n, vec3v l, vec3v v, float4 radiance) {
-  vfloat n_dot_l = fmax(v3_dot(n, l), 0.0f);
-  vec3v lit = v3_mul(albedo, v3_scale(v3_from(radiance), SHADING_DIFFUSE * n_dot_l));
-  vfloat specular = select((vfloat)(0.0f), specular_term(n, l, v), MASK(n_dot_l > 0.0f));
-  lit = v3_add(lit, v3_scale(v3_from(radiance), SHADING_SPECULAR * specular));
-  return v3_add(color, lit);
+/* Lambert plus the specular model, times n.l where it applies, for one light. */
+SDF_INLINE vec3v classic_light(vec3v n, vec3v l, vec3v v, vec3v albedo) {
+  const vfloat n_dot_l = fmax(v3_dot(n, l), 0.0f);
+  const vfloat specular = select((vfloat)(0.0f), specular_term(n, l, v), MASK(n_dot_l > 0.0f));
+  const vfloat white = SHADING_SPECULAR * specular;
+  return v3_add(v3_scale(albedo, SHADING_DIFFUSE * n_dot_l), v3(white, white, white));
 }
+#endif
 
 /* Darkens by steps^2 / SHADING_STEP_AO: many steps mean the ray crept past nearby geometry. */
 SDF_INLINE vec3v apply_step_ao(vec3v color, vfloat steps) {
@@ -43,21 +104,31 @@ SDF_INLINE vec3v apply_step_ao(vec3v color, vfloat steps) {
 #endif
 }
 
-/* Lit color at p_rel (the hit point relative to the camera, at depth t) with unit normal n, seen
- * along -view. Each light is (xyz position relative to the camera, w = 1) or (xyz unit direction
- * towards the light, w = 0), then its radiance. */
-SDF_INLINE vec3v shade(vec3v p_rel, vfloat t, vec3v n, vec3v view, vfloat steps, vec3v albedo, __constant float4* lights) {
-  vec3v color = v3_mul(albedo, v3_from(AMBIENT_COLOR));
+/* Lit color of the surface, seen along -view (unit). Each light is (xyz position relative to the
+ * camera, w = 1) or (xyz unit direction towards the light, w = 0), then its radiance. */
+SDF_INLINE vec3v shade(const Hit* hit, vec3v view, vint live, __constant float4* lights) {
+  vfloat ambient_occlusion = (vfloat)(1.0f);
+#if defined(AO_SAMPLES)
+  ambient_occlusion = normal_occlusion(hit->point, hit->normal);
+#endif
+  vec3v color = v3_scale(v3_mul(hit->albedo, v3_from(AMBIENT_COLOR)), ambient_occlusion);
   for (int k = 0; k < LIGHT_COUNT; ++k) {
     const float4 where = lights[CLMARCH_LIGHT_FLOAT4S * k];
-    const vec3v l = where.w > 0.5f ? point_light_direction(p_rel, where) : v3_from(where);
-    color = add_light(color, albedo, n, l, view, lights[CLMARCH_LIGHT_FLOAT4S * k + 1]);
-  }
-  color = v3_max0(apply_step_ao(color, steps));
-#ifdef FOG_DENSITY
-  color = v3_mix(v3_from(FOG_COLOR), color, exp(-FOG_DENSITY * t));
+    const float4 radiance = lights[CLMARCH_LIGHT_FLOAT4S * k + 1];
+    const bool is_point = where.w > 0.5f;
+    const vec3v l = is_point ? point_light_direction(hit->relative, where) : v3_from(where);
+#if defined(SHADING_MODEL_PBR)
+    vec3v lit = pbr_light(hit->normal, l, view, hit->albedo, hit->surface.x, hit->surface.y);
 #else
-  (void)t;
+    vec3v lit = classic_light(hit->normal, l, view, hit->albedo);
 #endif
-  return color;
+#if defined(SHADOW_MODE)
+    const vfloat t_end = is_point ? v3_length(v3_sub(v3_from(where), hit->relative)) : (vfloat)(SHADOW_MAX_T);
+    lit = v3_scale(lit, shadow_factor(hit->point, hit->normal, l, t_end, live & MASK(v3_dot(hit->normal, l) > 0.0f)));
+#else
+    (void)live;
+#endif
+    color = v3_add(color, v3_mul(lit, v3_from(radiance)));
+  }
+  return v3_max0(apply_step_ao(color, hit->steps));
 }

@@ -23,3 +23,14 @@ build-fuzz/clmarch_fuzz_scene -max_total_time="$seconds" -timeout=10 -rss_limit_
   exit 1
 }
 grep -E "^(stat::number_of_executed_units|Done)" build-fuzz/fuzz.log >&2 || true
+# Generated OpenCL C must compile for every scene the loader accepts: build the programs of up to
+# CLMARCH_FUZZ_BUILDS (default 10) accepted corpus inputs on the OpenCL device, newest first.
+mapfile -t inputs < <(ls -t build-fuzz/corpus/* 2>/dev/null)
+if [ ${#inputs[@]} -gt 0 ]; then
+  CLMARCH_FUZZ_BUILDS=${CLMARCH_FUZZ_BUILDS:-10} build-fuzz/clmarch_fuzz_scene "${inputs[@]}" \
+    > build-fuzz/builds.log 2>&1 || {
+    tail -n 60 build-fuzz/builds.log >&2
+    echo "fuzz.sh: an accepted scene failed to build; the input is named above" >&2
+    exit 1
+  }
+fi

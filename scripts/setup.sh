@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs what clmarch needs from Debian's packages, skipping what is present. Run as root (or
-# with sudo available); safe to run again.
+# with sudo available); safe to run again. clang and libclang-rt-14-dev (libFuzzer and clang's
+# sanitizer runtimes) are for scripts/fuzz.sh.
 set -euo pipefail
 
 packages=(
@@ -9,6 +10,7 @@ packages=(
   libglm-dev libopenimageio-dev openimageio-tools
   libyaml-cpp-dev libcli11-dev libfmt-dev nlohmann-json3-dev libtbb-dev
   libgtest-dev libbenchmark-dev
+  clang libclang-rt-14-dev
 )
 
 missing=()

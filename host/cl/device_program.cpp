@@ -2,9 +2,14 @@
 // builds (PoCL: ~/.cache/pocl/kcache); docs/performance.md has the measured first and second times.
 #include "cl/device_program.hpp"
 
+#include "cl/build_cache.hpp"
 #include "cl/cl_errors.hpp"
+#include "common/log.hpp"
+
+#include <fmt/format.h>
 
 #include <chrono>
+#include <optional>
 
 namespace clmarch {
 
@@ -15,10 +20,22 @@ DeviceProgram build_device_program(const DeviceEntry& device, const std::string&
     out.context = cl::Context(device.device);
     out.queue = cl::CommandQueue(out.context, device.device, CL_QUEUE_PROFILING_ENABLE);
     out.program = cl::Program(out.context, source);
+    log_verbose(fmt::format("device {}, {}, build options '{}'", device.label(),
+                            device.is_gpu ? "GPU" : device.is_cpu ? "CPU" : "other", kBuildOptions));
+    const bool probe_cache = verbosity() == Verbosity::Verbose;
+    std::optional<BuildCacheProbe> probe;
+    if (probe_cache) probe.emplace(device);
     const auto start = std::chrono::steady_clock::now();
-    out.program.build(std::vector<cl::Device>{device.device}, "-cl-std=CL1.2");
+    out.program.build(std::vector<cl::Device>{device.device}, kBuildOptions);
     out.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     out.build_log = out.program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device.device);
+    if (probe) {
+      const BuildCache cache = probe->result();
+      std::string where;
+      if (!probe->folder().empty()) where = fmt::format(" ({})", probe->folder().string());
+      log_verbose(fmt::format("build {:.0f} ms, driver cache {}{}", out.build_ms,
+                              kBuildCacheNames[static_cast<int>(cache)], where));
+    }
     return out;
   });
 }

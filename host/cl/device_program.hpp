@@ -7,6 +7,9 @@
 
 namespace clmarch {
 
+/// Options of every build: OpenCL C 1.2, which every driver we target compiles.
+inline constexpr const char* kBuildOptions = "-cl-std=CL1.2";
+
 struct DeviceProgram {
   DeviceEntry device;
   cl::Context context;
@@ -18,7 +21,8 @@ struct DeviceProgram {
   std::string build_log;
 };
 
-/// Builds source for the device (OpenCL C 1.2). Throws DeviceError with the build log on failure.
+/// Builds source for the device with kBuildOptions. Throws DeviceError with the build log on
+/// failure. With --verbose it logs the device, the options, the build time and the driver cache.
 DeviceProgram build_device_program(const DeviceEntry& device, const std::string& source);
 
 /// Milliseconds between the start and end of a profiled event.

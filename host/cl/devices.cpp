@@ -40,12 +40,14 @@ std::vector<DeviceEntry> list_devices() {
   return entries;
 }
 
+std::string no_device_message() {
+  return "no OpenCL platform or device found (clGetPlatformIDs, clGetDeviceIDs); install an OpenCL driver such as "
+         "pocl-opencl-icd";
+}
+
 DeviceEntry select_device(std::optional<int> index) {
   const std::vector<DeviceEntry> devices = list_devices();
-  if (devices.empty()) {
-    throw DeviceError("no OpenCL device found (clGetPlatformIDs/clGetDeviceIDs); install an OpenCL driver such as "
-                      "pocl-opencl-icd, or use --backend reference");
-  }
+  if (devices.empty()) throw DeviceError(no_device_message());
   if (index) {
     if (*index < 0 || *index >= static_cast<int>(devices.size())) {
       throw InputError(fmt::format("--device {}: no such device (there are {}: see `clmarch devices`)", *index,
@@ -63,5 +65,7 @@ DeviceEntry select_device(std::optional<int> index) {
 }
 
 int default_lanes(const DeviceEntry& device) { return device.is_gpu ? 1 : 16; }
+
+std::size_t default_local_size(const DeviceEntry& device) { return device.is_gpu ? 64 : 8; }
 
 }  // namespace clmarch

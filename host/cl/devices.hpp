@@ -30,8 +30,15 @@ std::vector<DeviceEntry> list_devices();
 /// device. Throws InputError for an unknown index and DeviceError when there is no device.
 DeviceEntry select_device(std::optional<int> index);
 
+/// The DeviceError message when there is no device: what was called and what to install.
+std::string no_device_message();
+
 /// Pixels per work-item that suit the device: explicit vector packets on CPUs (PoCL does not
 /// vectorise the per-pixel march loop), one pixel per work-item on GPUs.
 int default_lanes(const DeviceEntry& device);
+
+/// Work-items per work-group: GPUs want many; PoCL loops over the items of a group on one core, and
+/// one fixed size keeps its per-size compile of the work-group function cached.
+std::size_t default_local_size(const DeviceEntry& device);
 
 }  // namespace clmarch

@@ -3,6 +3,7 @@
 
 #include "check/cross_check.hpp"
 #include "common/errors.hpp"
+#include "common/log.hpp"
 #include "image/atomic_file.hpp"
 #include "image/image_writer.hpp"
 #include "reference/reference_renderer.hpp"
@@ -20,11 +21,13 @@ CLI::App* add_check_command(CLI::App& app, CheckCommandOptions& options) {
       "Exit code 0 when every figure is within its tolerance (docs/accuracy.md), 1 otherwise.\n"
       "Examples:\n"
       "  clmarch check scenes/torus.yaml --size 160x90\n"
-      "  clmarch check scenes/torus.yaml --json --out-dir /tmp/torus-check");
+      "  clmarch check scenes/torus.yaml --json --out-dir /tmp/torus-check\n"
+      "  clmarch check scenes/two_spheres.yaml --set shading.view=normals --lanes 1 --device 0");
   add_scene_options(*check, options.scene);
-  check->add_flag("--json", options.json, "Print the report as one JSON object");
+  check->add_flag("--json", options.json, "Print the report as one JSON object on stdout (e.g. --json)");
   check->add_option("--out-dir", options.out_dir,
-                    "When the check fails, write opencl.png, reference.png and difference.exr (all channels) here");
+                    "When the check fails, write opencl.png, reference.png and difference.exr (all channels) into "
+                    "this existing folder (e.g. --out-dir /tmp/torus-check)");
   return check;
 }
 
@@ -54,7 +57,7 @@ int run_check_command(const CheckCommandOptions& options) {
     write_color_image(dir / "opencl.png", opencl.buffers);
     write_color_image(dir / "reference.png", reference);
     write_buffers_exr(dir / "difference.exr", difference_image(opencl.buffers, reference));
-    std::cerr << fmt::format("clmarch: wrote opencl.png, reference.png and difference.exr in {}\n", options.out_dir);
+    log_info(fmt::format("wrote opencl.png, reference.png and difference.exr in {}", options.out_dir));
   }
   return report.passed() ? kExitOk : kExitCheckFailed;
 }

@@ -14,9 +14,7 @@ CLI::App* add_devices_command(CLI::App& app) {
 
 int run_devices_command() {
   const std::vector<DeviceEntry> devices = list_devices();
-  if (devices.empty()) {
-    throw DeviceError("no OpenCL platform or device found (clGetPlatformIDs); install an OpenCL driver such as pocl-opencl-icd");
-  }
+  if (devices.empty()) throw DeviceError(no_device_message());
   std::optional<int> chosen;
   try {
     chosen = select_device(std::nullopt).index;

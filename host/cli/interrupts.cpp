@@ -34,8 +34,14 @@ void install_interrupt_handlers() {
   sigemptyset(&action.sa_mask);
   // Restart interrupted system calls: PoCL, TBB and OpenImageIO do not expect EINTR.
   action.sa_flags = SA_RESTART;
-  sigaction(SIGINT, &action, nullptr);
-  sigaction(SIGTERM, &action, nullptr);
+  for (int signal : {SIGINT, SIGTERM}) {
+    struct sigaction previous = {};
+    sigaction(signal, nullptr, &previous);
+    // A signal the parent ignores stays ignored (`nohup`, `cmd &` in a script): Ctrl-C in that
+    // terminal is meant for the foreground job, not for us.
+    if (previous.sa_handler == SIG_IGN) continue;
+    sigaction(signal, &action, nullptr);
+  }
 }
 
 int interrupted_exit_code() {

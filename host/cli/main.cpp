@@ -1,8 +1,12 @@
-// clmarch: the command-line entry point. Parses the command and maps errors to exit codes.
+// clmarch: the command-line entry point. Parses the command, installs the Ctrl-C handlers and
+// hands errors to run_reporting_errors, which maps them to exit codes.
 #include "cli/check_command.hpp"
 #include "cli/devices_command.hpp"
+#include "cli/error_report.hpp"
+#include "cli/interrupts.hpp"
 #include "cli/render_command.hpp"
 #include "common/errors.hpp"
+#include "common/log.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -10,8 +14,28 @@
 
 int main(int argc, char** argv) {
   using namespace clmarch;
-  CLI::App app{"clmarch: a sphere tracer of signed distance fields on OpenCL"};
+  install_interrupt_handlers();
+  CLI::App app{"clmarch: a sphere tracer of signed distance fields on OpenCL", "clmarch"};
   app.require_subcommand(1);
+  // Global flags may also follow the subcommand: `clmarch render x.yaml --quiet`.
+  app.fallthrough();
+  bool quiet = false;
+  bool verbose = false;
+  CLI::Option* quiet_flag =
+      app.add_flag("-q,--quiet", quiet, "Print nothing on success: no 'wrote' line, no progress (errors still print)");
+  app.add_flag("-v,--verbose", verbose,
+               "Also print the device, build options and time, driver cache hit or miss, lanes and local size")
+      ->excludes(quiet_flag);
+  app.footer(
+      "Examples:\n"
+      "  clmarch render scenes/torus.yaml                  # writes ./torus.png\n"
+      "  clmarch --verbose render scenes/torus.yaml        # device, build and dispatch details on stderr\n"
+      "  clmarch render scenes/torus.yaml --quiet -o t.png # silent unless it fails\n"
+      "  clmarch check scenes/torus.yaml --size 160x90     # OpenCL against the CPU reference\n"
+      "  clmarch devices                                   # the indices --device takes\n"
+      "Exit codes: 0 success, 1 check failed, 2 bad input, 3 OpenCL/device fault, 4 output not written,\n"
+      "70 internal error, 130 interrupted (Ctrl-C; 143 for SIGTERM). See docs/cli.md.\n"
+      "Help on a command: clmarch render --help, clmarch check --help.");
   RenderCommandOptions render_options;
   CLI::App* render = add_render_command(app, render_options);
   CheckCommandOptions check_options;
@@ -27,19 +51,11 @@ int main(int argc, char** argv) {
     std::cerr << "clmarch: " << e.what() << " (see clmarch --help)\n";
     return kExitBadInput;
   }
-  try {
+  set_verbosity(quiet ? Verbosity::Quiet : verbose ? Verbosity::Verbose : Verbosity::Normal);
+  return run_reporting_errors([&] {
     if (render->parsed()) return run_render_command(render_options);
     if (check->parsed()) return run_check_command(check_options);
     if (devices->parsed()) return run_devices_command();
-  } catch (const InputError& e) {
-    std::cerr << e.what() << "\n";
-    return kExitBadInput;
-  } catch (const DeviceError& e) {
-    std::cerr << e.what() << "\n";
-    return kExitDeviceFault;
-  } catch (const OutputError& e) {
-    std::cerr << e.what() << "\n";
-    return kExitOutputFailed;
-  }
-  return kExitOk;
+    return static_cast<int>(kExitOk);
+  });
 }

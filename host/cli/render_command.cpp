@@ -1,7 +1,10 @@
 // `clmarch render`.
 #include "cli/render_command.hpp"
 
+#include "cl/devices.hpp"
+#include "common/cancellation.hpp"
 #include "common/errors.hpp"
+#include "common/log.hpp"
 #include "image/atomic_file.hpp"
 #include "image/image_writer.hpp"
 #include "reference/reference_renderer.hpp"
@@ -9,6 +12,7 @@
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <chrono>
@@ -33,19 +37,31 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& options) {
   CLI::App* render = app.add_subcommand("render", "Render a scene to an image and per-pixel buffers");
   render->footer(
       "Examples:\n"
-      "  clmarch render scenes/torus.yaml -o torus.png\n"
+      "  clmarch render scenes/torus.yaml                          # writes ./torus.png\n"
+      "  clmarch render scenes/torus.yaml -o torus.exr             # linear float image\n"
       "  clmarch render scenes/torus.yaml --size 1280x720 --buffers torus.exr --stats\n"
-      "  clmarch render scenes/torus.yaml --set render.epsilon=1e-5 --set shading.view=normals -o n.png");
+      "  clmarch render scenes/torus.yaml --set render.epsilon=1e-5 --set shading.view=normals -o n.png\n"
+      "  clmarch render scenes/torus.yaml --backend reference -o ref.png   # CPU, double precision\n"
+      "  clmarch render scenes/torus.yaml --device 0 --lanes 1     # one pixel per work-item\n"
+      "  clmarch render scenes/torus.yaml --dump-kernel torus.cl   # the OpenCL C that is built\n"
+      "  clmarch render scenes/torus.yaml --quiet                  # nothing on stderr unless it fails\n"
+      "  clmarch render scenes/torus.yaml --verbose                # device, build, cache, lanes, local size\n"
+      "Ctrl-C stops the render and writes nothing (exit code 130). Options: docs/cli.md.");
   add_scene_options(*render, options.scene);
   render->add_option("-o,--output", options.output,
                      "Color image; the format follows the extension (exr, hdr: linear float; png, jpg, tif and the "
                      "other formats OpenImageIO writes: 8-bit sRGB). "
-                     "Default: SCENE_NAME.png in the current folder");
-  render->add_option("--buffers", options.buffers, "Write all buffers to one float EXR: R, G, B, depth, steps, N.x, N.y, N.z");
-  render->add_option("--backend", options.backend, "opencl, or reference (the double-precision CPU renderer)")
+                     "Default: SCENE_NAME.png in the current folder (e.g. -o torus.exr)");
+  render->add_option("--buffers", options.buffers,
+                     "Write all buffers to one float EXR: R, G, B, depth, steps, N.x, N.y, N.z (e.g. --buffers torus.exr)");
+  render->add_option("--backend", options.backend,
+                     "opencl (default), or reference: the double-precision CPU renderer, which needs no OpenCL "
+                     "(e.g. --backend reference)")
       ->check(CLI::IsMember({"opencl", "reference"}));
-  render->add_option("--dump-kernel", options.dump_kernel, "Write the exact OpenCL C source that is built");
-  render->add_flag("--stats", options.stats, "Print one JSON line of figures on stdout");
+  render->add_option("--dump-kernel", options.dump_kernel,
+                     "Write the exact OpenCL C source that is built, before building it (e.g. --dump-kernel torus.cl)");
+  render->add_flag("--stats", options.stats,
+                   "Print one JSON line of figures on stdout: device, lanes, build_ms, kernel_ms, steps, rays_per_s");
   return render;
 }
 
@@ -71,8 +87,12 @@ int run_render_command(const RenderCommandOptions& options) {
   if (!options.dump_kernel.empty()) check_output_folder(options.dump_kernel, "--dump-kernel");
 
   const Scene scene = load_scene_with_options(options.scene);
+  log_verbose(fmt::format("scene {}: {}x{} pixels, max_steps {}", options.scene.scene_path, scene.render.width,
+                          scene.render.height, scene.render.max_steps));
   RenderResult result;
   if (options.backend == "reference") {
+    log_verbose(fmt::format("rendering on the CPU reference (double precision, {} threads)",
+                            tbb::this_task_arena::max_concurrency()));
     const auto start = std::chrono::steady_clock::now();
     result.buffers = render_reference(scene);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -86,12 +106,19 @@ int run_render_command(const RenderCommandOptions& options) {
     cl.purpose = purpose_for(scene, !options.buffers.empty());
     cl.dump_kernel_path = options.dump_kernel;
     result = render_opencl(scene, cl);
+    // RenderStats does not carry the local size yet; default_local_size is the rule the renderer's
+    // own local_size() follows (they must agree until the renderer reports the size it used).
+    log_verbose(fmt::format("lanes {} (pixels per work-item), local size {}, {} chunk{}, kernel {:.1f} ms",
+                            result.stats.lanes, default_local_size(select_device(options.scene.device)),
+                            result.stats.chunks, result.stats.chunks == 1 ? "" : "s", result.stats.kernel_ms));
   }
+  // A Ctrl-C that came too late for the renderer's own checks still writes nothing.
+  throw_if_cancelled();
   apply_view(result.buffers, scene.shading.view, scene.render);
 
   write_color_image(output, result.buffers);
   if (!options.buffers.empty()) write_buffers_exr(options.buffers, result.buffers);
-  std::cerr << fmt::format("clmarch: wrote {}{}\n", output, options.buffers.empty() ? "" : " and " + options.buffers);
+  log_info(fmt::format("wrote {}{}", output, options.buffers.empty() ? "" : " and " + options.buffers));
 
   if (options.stats) {
     const RenderStats& s = result.stats;

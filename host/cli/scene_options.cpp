@@ -17,8 +17,10 @@ void add_scene_options(CLI::App& command, SceneOptions& options) {
                      "Override any scene key: key.path=value, e.g. --set render.epsilon=1e-5 "
                      "--set camera.position=[0,0,1e6] (list items by index: sdf.union.0.sphere.radius=2)")
       ->take_all();
-  command.add_option("--device", options.device, "OpenCL device index from `clmarch devices` (default: first GPU, else first CPU)");
-  command.add_option("--lanes", options.lanes, "Pixels each work-item marches as one vector (default: 16 on CPUs, 1 on GPUs)")
+  command.add_option("--device", options.device,
+                     "OpenCL device index from `clmarch devices` (default: first GPU, else first CPU; e.g. --device 0)");
+  command.add_option("--lanes", options.lanes,
+                     "Pixels each work-item marches as one vector (default: 16 on CPUs, 1 on GPUs; e.g. --lanes 1)")
       ->check(CLI::IsMember({1, 4, 8, 16}));
 }
 

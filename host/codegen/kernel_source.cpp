@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <initializer_list>
 #include <stdexcept>
 
 namespace clmarch {
@@ -17,6 +19,60 @@ std::string kernel_file(std::string_view name) {
     if (file.name == name) return fmt::format("#line 1 \"kernels/{}\"\n{}\n", name, file.contents);
   }
   throw std::logic_error(fmt::format("kernel file {} is not embedded", name));
+}
+
+/// Shadows, normal-marched occlusion and reflections.
+std::string surface_effect_defines(const Scene& scene) {
+  const Shading& s = scene.shading;
+  std::string out;
+  if (s.shadows) {
+    out += fmt::format("#define SHADOW_MODE {}\n", static_cast<int>(s.shadows->mode) + 1);
+    out += fmt::format("#define SHADOW_K {}\n", cl_float(s.shadows->k));
+    out += fmt::format("#define SHADOW_MIN_T {}\n", cl_float(s.shadows->min_t));
+    out += fmt::format("#define SHADOW_MAX_T {}\n", cl_float(s.shadows->max_t));
+    out += fmt::format("#define SHADOW_MAX_STEPS {}\n", s.shadows->max_steps);
+    out += fmt::format("#define SHADOW_EPSILON {}\n", cl_float(scene.render.epsilon));
+  }
+  if (s.ambient_occlusion) {
+    out += fmt::format("#define AO_SAMPLES {}\n", s.ambient_occlusion->samples);
+    out += fmt::format("#define AO_STEP {}\n", cl_float(s.ambient_occlusion->step));
+    out += fmt::format("#define AO_POWER {}\n", cl_float(s.ambient_occlusion->power));
+  }
+  if (s.reflection_bounces > 0) {
+    out += fmt::format("#define REFLECTION_BOUNCES {}\n", s.reflection_bounces);
+    out += fmt::format("#define REFLECTION_OFFSET {}\n", cl_float(reflection_offset(scene.render)));
+  }
+  return out;
+}
+
+/// Sky, glows, height fog, tone mapping.
+std::string atmosphere_defines(const Shading& s) {
+  std::string out;
+  if (s.sky) {
+    out += fmt::format("#define SKY_HORIZON {}\n", cl_float4(s.sky->horizon));
+    out += fmt::format("#define SKY_ZENITH {}\n", cl_float4(s.sky->zenith));
+  }
+  if (s.glow) {
+    out += fmt::format("#define GLOW_COLOR {}\n", cl_float4(s.glow->color));
+    out += fmt::format("#define GLOW_RADIUS {}\n", cl_float(s.glow->radius));
+  }
+  if (s.planetary_glow) {
+    out += fmt::format("#define PLANET_GLOW_COLOR {}\n", cl_float4(s.planetary_glow->color));
+    out += fmt::format("#define PLANET_GLOW_SHARPNESS {}\n", cl_float(s.planetary_glow->sharpness));
+    out += fmt::format("#define PLANET_GLOW_SUN {}\n", cl_float4(s.planetary_glow->sun_direction));
+  }
+  if (s.height_fog) {
+    const HeightFog& f = *s.height_fog;
+    out += fmt::format("#define HEIGHT_FOG_DENSITY {}\n", cl_float(f.density));
+    out += fmt::format("#define HEIGHT_FOG_FALLOFF {}\n", cl_float(f.falloff));
+    out += fmt::format("#define HEIGHT_FOG_COLOR {}\n", cl_float4(f.color));
+    out += fmt::format("#define HEIGHT_FOG_SUN_COLOR {}\n", cl_float4(f.sun_color));
+    out += fmt::format("#define HEIGHT_FOG_SUN_DIRECTION {}\n", cl_float4(f.sun_direction));
+    out += fmt::format("#define HEIGHT_FOG_SUN_POWER {}\n", cl_float(f.sun_power));
+  }
+  if (s.tone_map == ToneMap::Reinhard) out += "#define TONE_MAP_REINHARD\n";
+  if (s.gamma != 1.0) out += fmt::format("#define DISPLAY_GAMMA {}\n", cl_float(s.gamma));
+  return out;
 }
 
 std::string feature_defines(const Scene& scene, const KernelOptions& options) {
@@ -32,6 +88,7 @@ std::string feature_defines(const Scene& scene, const KernelOptions& options) {
     out += "#define NEED_SHADING\n";
     if (s.model == ShadingModel::Phong) out += "#define SHADING_MODEL_PHONG\n";
     if (s.model == ShadingModel::BlinnPhong) out += "#define SHADING_MODEL_BLINN_PHONG\n";
+    if (s.model == ShadingModel::Pbr) out += "#define SHADING_MODEL_PBR\n";
     out += fmt::format("#define SHADING_DIFFUSE {}\n", cl_float(s.diffuse));
     out += fmt::format("#define SHADING_SPECULAR {}\n", cl_float(s.specular));
     out += fmt::format("#define SHADING_SHININESS {}\n", cl_float(s.shininess));
@@ -43,12 +100,21 @@ std::string feature_defines(const Scene& scene, const KernelOptions& options) {
       out += fmt::format("#define FOG_DENSITY {}\n", cl_float(s.fog->density));
       out += fmt::format("#define FOG_COLOR {}\n", cl_float4(s.fog->color));
     }
+    out += atmosphere_defines(s);
+    out += surface_effect_defines(scene);
   }
   if (scene.tiling && options.purpose != KernelPurpose::EvalPoints) {
     out += scene.tiling->method == TilingMethod::Cells ? "#define TILING_CELLS\n" : "#define TILING_MOD\n";
     out += fmt::format("#define TILING_CELL {}\n", cl_float4(scene.tiling->cell));
   }
   return out;
+}
+
+/// True if node or a descendant is of one of kinds: the library files of rare primitives are
+/// compiled in only for the scenes that use them.
+bool uses_kind(const Node& node, std::initializer_list<NodeKind> kinds) {
+  if (std::find(kinds.begin(), kinds.end(), node.kind) != kinds.end()) return true;
+  return std::any_of(node.children.begin(), node.children.end(), [&](const Node& child) { return uses_kind(child, kinds); });
 }
 
 }  // namespace
@@ -60,18 +126,24 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
   src += kernel_file("device_types.h");
   src += kernel_file("lanes.cl");
   src += kernel_file("primitives.cl");
+  if (uses_kind(scene.sdf, {NodeKind::Mandelbulb, NodeKind::Menger})) src += kernel_file("fractals.cl");
+  if (uses_kind(scene.sdf, {NodeKind::Terrain})) src += kernel_file("noise.cl");
   src += kernel_file("operators.cl");
-  if (shading) src += kernel_file("shading.cl");
   src += "#line 1 \"generated scene\"\n";
   src += generate_sdf_functions(scene.sdf);
   if (options.purpose == KernelPurpose::EvalPoints) {
     src += kernel_file("eval_points.cl");
     return src;
   }
+  src += kernel_file("field.cl");
   src += kernel_file("camera.cl");
   src += kernel_file("march_loop.cl");
-  if (scene.tiling) src += kernel_file("tiling.cl");
+  if (scene.tiling && scene.tiling->method == TilingMethod::Cells) src += kernel_file("tiling.cl");
   if (options.purpose != KernelPurpose::DepthSteps) src += kernel_file("normals.cl");
+  if (shading) {
+    src += kernel_file("shading.cl");
+    src += kernel_file("atmosphere.cl");
+  }
   src += kernel_file("march.cl");
   return src;
 }

@@ -11,7 +11,15 @@
 namespace clmarch {
 namespace {
 
-glm::dvec3 default_albedo() { return glm::dvec3(1.0); }
+/// The material a node passes to its subtree: its own settings over the inherited ones.
+Material material_of(const Node& node, const Material& inherited) {
+  Material m = inherited;
+  if (node.color) m.albedo = *node.color;
+  if (node.metallic) m.metallic = *node.metallic;
+  if (node.roughness) m.roughness = *node.roughness;
+  if (node.reflectivity) m.reflectivity = *node.reflectivity;
+  return m;
+}
 
 std::string primitive_call(const Primitive& primitive, const std::string& p) {
   struct Visitor {
@@ -44,22 +52,35 @@ std::string primitive_call(const Primitive& primitive, const std::string& p) {
       return fmt::format("sd_cylinder({}, {}, {}, {})", p, cl_float4(c.center), cl_float(c.radius),
                          cl_float(c.half_height));
     }
+    std::string operator()(const Mandelbulb& m) const {
+      return fmt::format("sd_mandelbulb({}, {}, {}, {}, {})", p, cl_float4(m.center), cl_float(m.power), m.iterations,
+                         cl_float(m.bailout));
+    }
+    std::string operator()(const Menger& m) const {
+      return fmt::format("sd_menger({}, {}, {}, {})", p, cl_float4(m.center), cl_float(m.half_size), m.iterations);
+    }
+    std::string operator()(const Terrain& t) const {
+      return fmt::format("sd_terrain_{}({}, {}, {}, {}, {}, {}u)", kTerrainNoiseNames[static_cast<int>(t.noise)], p,
+                         cl_float(t.height), cl_float(t.amplitude), cl_float(t.frequency), t.octaves, t.seed);
+    }
   };
   return std::visit(Visitor{p}, primitive);
 }
 
-/// Emits the statements of one function body; with_color also tracks the albedo.
+/// Emits the statements of one function body; with_color also tracks the material (albedo and
+/// surface = metallic, roughness, reflectivity), blended by the same rules as the albedo.
 class SdfEmitter {
  public:
   explicit SdfEmitter(bool with_color) : with_color_(with_color) {}
 
   struct Value {
     std::string distance;
-    std::string color;  // empty without color
+    std::string color;    // empty without color
+    std::string surface;  // empty without color
   };
 
-  Value emit(const Node& node, const std::string& p, const glm::dvec3& inherited_color) {
-    const glm::dvec3 color = node.color.value_or(inherited_color);
+  Value emit(const Node& node, const std::string& p, const Material& inherited) {
+    const Material color = material_of(node, inherited);
     const std::string local_p = emit_transform(node.transform, p);
     Value value = is_primitive(node.kind) ? emit_primitive(node, local_p, color) : emit_operator(node, local_p, color);
     if (node.transform.scale != 1.0) {
@@ -67,6 +88,12 @@ class SdfEmitter {
       const std::string scaled = fresh("d");
       line(fmt::format("vfloat {} = {} * {};", scaled, value.distance, cl_float(node.transform.scale)));
       value.distance = scaled;
+    }
+    if (node.step_factor != 1.0) {
+      // Shorter steps for fields steeper than 1 (terrain, fractals, deep smooth unions).
+      const std::string bounded = fresh("d");
+      line(fmt::format("vfloat {} = {} * {};  /* step_factor */", bounded, value.distance, cl_float(node.step_factor)));
+      value.distance = bounded;
     }
     return value;
   }
@@ -90,18 +117,21 @@ class SdfEmitter {
     return q;
   }
 
-  Value emit_primitive(const Node& node, const std::string& p, const glm::dvec3& color) {
+  Value emit_primitive(const Node& node, const std::string& p, const Material& color) {
     Value value{fresh("d"), ""};
     line(fmt::format("vfloat {} = {};  /* {} */", value.distance, primitive_call(node.primitive, p),
                      node_kind_name(node.kind)));
     if (with_color_) {
       value.color = fresh("c");
-      line(fmt::format("vec3v {} = v3_from({});", value.color, cl_float4(color)));
+      line(fmt::format("vec3v {} = v3_from({});", value.color, cl_float4(color.albedo)));
+      value.surface = fresh("s");
+      line(fmt::format("vec3v {} = v3_from({});", value.surface,
+                       cl_float4(glm::dvec3(color.metallic, color.roughness, color.reflectivity))));
     }
     return value;
   }
 
-  Value emit_operator(const Node& node, const std::string& p, const glm::dvec3& color) {
+  Value emit_operator(const Node& node, const std::string& p, const Material& color) {
     if (node.kind == NodeKind::Repeat) return emit_repeat(node, p, color);
     if (node.kind == NodeKind::Displace) return emit_displace(node, p, color);
     Value acc = emit(node.children.front(), p, color);
@@ -112,7 +142,7 @@ class SdfEmitter {
     return acc;
   }
 
-  Value emit_repeat(const Node& node, const std::string& p, const glm::dvec3& color) {
+  Value emit_repeat(const Node& node, const std::string& p, const Material& color) {
     const glm::dvec3& period = node.repeat_period;
     const auto axis = [&](const char* c, double length) {
       return length > 0.0 ? fmt::format("op_repeat_axis({}.{}, {})", p, c, cl_float(length)) : fmt::format("{}.{}", p, c);
@@ -122,9 +152,9 @@ class SdfEmitter {
     return emit(node.children.front(), q, color);
   }
 
-  Value emit_displace(const Node& node, const std::string& p, const glm::dvec3& color) {
+  Value emit_displace(const Node& node, const std::string& p, const Material& color) {
     const Value child = emit(node.children.front(), p, color);
-    Value out{fresh("d"), child.color};
+    Value out{fresh("d"), child.color, child.surface};
     line(fmt::format("vfloat {} = ({} + displacement({}, {}, {})) * {};  /* displace */", out.distance, child.distance, p,
                      cl_float(node.displace_amplitude), cl_float(node.displace_frequency),
                      cl_float(1.0 / displacement_lipschitz(node))));
@@ -132,42 +162,44 @@ class SdfEmitter {
   }
 
   Value combine(const Node& node, const Value& a, const Value& b) {
-    Value out{fresh("d"), ""};
+    Value out{fresh("d"), "", ""};
     const std::string k = cl_float(node.smooth_k);
     const std::string& da = a.distance;
     const std::string& db = b.distance;
-    std::string distance, color;
+    std::string distance, blend;  // blend: {0} = first operand's, {1} = second's
     switch (node.kind) {
       case NodeKind::Union:
         distance = fmt::format("op_union({}, {})", da, db);
-        color = fmt::format("v3_select({}, {}, MASK({} <= {}))", b.color, a.color, da, db);
+        blend = fmt::format("v3_select({}, {}, MASK({} <= {}))", "{1}", "{0}", da, db);
         break;
       case NodeKind::Intersection:
         distance = fmt::format("op_intersection({}, {})", da, db);
-        color = fmt::format("v3_select({}, {}, MASK({} >= {}))", b.color, a.color, da, db);
+        blend = fmt::format("v3_select({}, {}, MASK({} >= {}))", "{1}", "{0}", da, db);
         break;
       case NodeKind::Subtraction:
         distance = fmt::format("op_subtraction({}, {})", da, db);
-        color = fmt::format("v3_select({}, {}, MASK({} >= -{}))", b.color, a.color, da, db);
+        blend = fmt::format("v3_select({}, {}, MASK({} >= -{}))", "{1}", "{0}", da, db);
         break;
       case NodeKind::SmoothUnion:
         distance = fmt::format("op_smooth_union({}, {}, {})", da, db, k);
-        color = fmt::format("v3_mix({}, {}, smooth_union_blend({}, {}, {}))", b.color, a.color, da, db, k);
+        blend = fmt::format("v3_mix({}, {}, smooth_union_blend({}, {}, {}))", "{1}", "{0}", da, db, k);
         break;
       case NodeKind::SmoothIntersection:
         distance = fmt::format("op_smooth_intersection({}, {}, {})", da, db, k);
-        color = fmt::format("v3_mix({}, {}, smooth_intersection_blend({}, {}, {}))", b.color, a.color, da, db, k);
+        blend = fmt::format("v3_mix({}, {}, smooth_intersection_blend({}, {}, {}))", "{1}", "{0}", da, db, k);
         break;
       case NodeKind::SmoothSubtraction:
         distance = fmt::format("op_smooth_subtraction({}, {}, {})", da, db, k);
-        color = fmt::format("v3_mix({}, {}, smooth_subtraction_blend({}, {}, {}))", a.color, b.color, da, db, k);
+        blend = fmt::format("v3_mix({}, {}, smooth_subtraction_blend({}, {}, {}))", "{0}", "{1}", da, db, k);
         break;
       default:
         throw std::logic_error("combine() called on a primitive");
     }
     if (with_color_) {
       out.color = fresh("c");
-      line(fmt::format("vec3v {} = {};", out.color, color));
+      line(fmt::format("vec3v {} = {};", out.color, fmt::format(fmt::runtime(blend), a.color, b.color)));
+      out.surface = fresh("s");
+      line(fmt::format("vec3v {} = {};", out.surface, fmt::format(fmt::runtime(blend), a.surface, b.surface)));
     }
     line(fmt::format("vfloat {} = {};", out.distance, distance));
     return out;
@@ -182,15 +214,17 @@ class SdfEmitter {
 
 std::string generate_sdf_functions(const Node& root) {
   SdfEmitter distance_only(false);
-  const SdfEmitter::Value d = distance_only.emit(root, "p", default_albedo());
+  const SdfEmitter::Value d = distance_only.emit(root, "p", Material{});
   SdfEmitter with_color(true);
-  const SdfEmitter::Value dc = with_color.emit(root, "p", default_albedo());
+  const SdfEmitter::Value dc = with_color.emit(root, "p", Material{});
   return fmt::format(
       "/* Distance to the scene. */\n"
       "SDF_INLINE vfloat map(vec3v p) {{\n{}  return {};\n}}\n\n"
-      "/* Distance to the scene and the albedo there. */\n"
-      "SDF_INLINE vfloat map_color(vec3v p, vec3v* albedo) {{\n{}  *albedo = {};\n  return {};\n}}\n",
-      distance_only.body(), d.distance, with_color.body(), dc.color, dc.distance);
+      "/* Distance to the scene and the material there: albedo, surface = (metallic, roughness,\n"
+      " * reflectivity). */\n"
+      "SDF_INLINE vfloat map_color(vec3v p, vec3v* albedo, vec3v* surface) {{\n{}  *albedo = {};\n"
+      "  *surface = {};\n  return {};\n}}\n",
+      distance_only.body(), d.distance, with_color.body(), dc.color, dc.surface, dc.distance);
 }
 
 }  // namespace clmarch

@@ -8,7 +8,6 @@ namespace clmarch {
 
 /// How much the program says on stderr; errors are printed whatever it is.
 enum class Verbosity { Quiet, Normal, Verbose };
-inline constexpr const char* kVerbosityNames[] = {"quiet", "normal", "verbose"};
 
 /// The process-wide setting (default Normal); set once by the CLI before any work starts.
 void set_verbosity(Verbosity verbosity);

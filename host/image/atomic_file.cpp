@@ -8,9 +8,12 @@
 #include <fmt/format.h>
 #include <fmt/std.h>
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <system_error>
 
+#include <fcntl.h>
 #include <unistd.h>
 
 namespace clmarch {
@@ -55,6 +58,18 @@ void check_output_folder(const std::filesystem::path& path, const std::string& o
   }
   if (std::filesystem::is_directory(path, error)) {
     throw InputError(fmt::format("{} {}: is a folder, expected a file name", option, path.string()));
+  }
+  // access() says yes to root everywhere, and to anyone on /proc or a read-only mount: creating
+  // a file is the only test that a render's result will find a place.
+  const std::filesystem::path probe = folder / fmt::format(".clmarch-probe-{}", getpid());
+  const int fd = open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+  if (fd < 0 && errno != EEXIST) {
+    throw InputError(fmt::format("{} {}: cannot create files in folder {}: {}", option, path.string(), folder.string(),
+                                 std::strerror(errno)));
+  }
+  if (fd >= 0) {
+    close(fd);
+    unlink(probe.c_str());
   }
 }
 

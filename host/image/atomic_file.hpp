@@ -18,8 +18,9 @@ void write_atomically(const std::filesystem::path& target,
 /// Writes text to path atomically. Throws OutputError on failure.
 void write_file_atomically(const std::filesystem::path& path, const std::string& text);
 
-/// Fails with InputError (naming option) unless path's folder exists and is writable; checked
-/// before a render starts so that a bad path costs nothing.
+/// Fails with InputError (naming option) unless path's folder exists and a file can be created in
+/// it (tried with a probe file, removed at once); checked before a render starts so that a bad
+/// path costs nothing.
 void check_output_folder(const std::filesystem::path& path, const std::string& option);
 
 }  // namespace clmarch

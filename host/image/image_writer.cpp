@@ -13,6 +13,13 @@
 namespace clmarch {
 namespace {
 
+/// OpenImageIO's error text on one line, as every message of ours is.
+std::string one_line(std::string text) {
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  for (std::size_t at; (at = text.find('\n')) != std::string::npos;) text.replace(at, 1, "; ");
+  return text;
+}
+
 bool is_float_format(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
@@ -31,14 +38,14 @@ void write_interleaved(const std::filesystem::path& path, const FrameBuffers& bu
   }
   write_atomically(path, [&](const std::filesystem::path& temp) {
     auto out = OIIO::ImageOutput::create(temp.string());
-    if (!out) throw OutputError(fmt::format("{}: cannot write: {}", path.string(), OIIO::geterror()));
+    if (!out) throw OutputError(fmt::format("{}: cannot write: {}", path.string(), one_line(OIIO::geterror())));
     OIIO::ImageSpec spec(buffers.width, buffers.height, static_cast<int>(nc), format);
     spec.channelnames.clear();
     for (Channel c : channels) spec.channelnames.emplace_back(kChannelNames[static_cast<int>(c)]);
     if (srgb) spec.attribute("oiio:ColorSpace", "sRGB");
     const bool ok = out->open(temp.string(), spec) && out->write_image(OIIO::TypeDesc::FLOAT, interleaved.data()) &&
                     out->close();
-    if (!ok) throw OutputError(fmt::format("{}: cannot write: {}", path.string(), out->geterror()));
+    if (!ok) throw OutputError(fmt::format("{}: cannot write: {}", path.string(), one_line(out->geterror())));
   });
 }
 

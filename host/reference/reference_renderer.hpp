@@ -21,20 +21,16 @@ struct RayResult {
   int wall_steps = 0;
   /// Estimated unit normal at the hit; 0 on a miss.
   glm::dvec3 normal{0.0};
-  /// Shaded linear color; shading.background on a miss.
+  /// Final linear color (shaded, with bounces, fog and tone mapping); the sky's on a miss.
   glm::dvec3 color{0.0};
 };
 
 /// Normal at p from finite differences of the field with step h.
 glm::dvec3 reference_normal(const Node& root, const glm::dvec3& p, NormalMethod method, double h);
 
-/// Shaded color of a hit with unit normal n: p_local in the frame of the tree (for the albedo; a
-/// cell's frame under tiling), p its world position (for the lights), reached along the unit
-/// direction after `steps` iterations (they feed the step-count occlusion) at depth (for fog).
-glm::dvec3 reference_shade(const Scene& scene, const glm::dvec3& p_local, const glm::dvec3& p, const glm::dvec3& n,
-                           const glm::dvec3& direction, int steps, double depth);
-
-/// Marches from origin along the unit direction, then shades the hit.
+/// Marches from the world point origin along the unit direction, then shades the hit (with
+/// bounces, fog and tone mapping) or colors the miss. Under the cells tiling origin must be the
+/// camera position plus any offset, as the march starts in the camera's cell.
 RayResult reference_trace(const Scene& scene, const glm::dvec3& origin, const glm::dvec3& direction);
 
 /// Renders scene.render.width x height through the camera contract (camera_model.hpp), rows in

@@ -2,6 +2,9 @@
 // recursive walk of the node tree with transforms and inherited colors.
 #include "reference/reference_sdf.hpp"
 
+#include "reference/reference_fractals.hpp"
+#include "reference/reference_noise.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -42,10 +45,10 @@ const T& params(const Node& node) {
   malformed(node, "carries the parameters of another primitive");
 }
 
-SdfSample sample_node(const Node& node, const glm::dvec3& p_parent, const glm::dvec3& parent_color);
+SdfSample sample_node(const Node& node, const glm::dvec3& p_parent, const Material& parent);
 
 template <class Op>
-SdfSample fold_children(const Node& node, const glm::dvec3& p, const glm::dvec3& color, Op op) {
+SdfSample fold_children(const Node& node, const glm::dvec3& p, const Material& color, Op op) {
   if (node.children.empty()) malformed(node, "has no children");
   SdfSample acc = sample_node(node.children.front(), p, color);
   for (std::size_t i = 1; i < node.children.size(); ++i) acc = op(acc, sample_node(node.children[i], p, color));
@@ -53,20 +56,22 @@ SdfSample fold_children(const Node& node, const glm::dvec3& p, const glm::dvec3&
 }
 
 template <class Op>
-SdfSample fold_smooth(const Node& node, const glm::dvec3& p, const glm::dvec3& color, Op op) {
+SdfSample fold_smooth(const Node& node, const glm::dvec3& p, const Material& color, Op op) {
   const double k = node.smooth_k;
   if (!(k > 0.0)) malformed(node, "needs smooth_k > 0 (got " + std::to_string(k) + ")");
   return fold_children(node, p, color, [&](const SdfSample& a, const SdfSample& b) { return op(a, b, k); });
 }
 
-SdfSample only_child(const Node& node, const glm::dvec3& p, const glm::dvec3& color) {
+SdfSample only_child(const Node& node, const glm::dvec3& p, const Material& color) {
   if (node.children.size() != 1) malformed(node, "needs exactly one child");
   return sample_node(node.children.front(), p, color);
 }
 
-// The node's own kind in its local frame p; color is its effective albedo.
-SdfSample sample_local(const Node& node, const glm::dvec3& p, const glm::dvec3& color) {
+// The node's own kind in its local frame p; material is its effective material (leaves get their
+// surface parameters in sample_node).
+SdfSample sample_local(const Node& node, const glm::dvec3& p, const Material& material) {
   using S = SdfSample;
+  const glm::dvec3& color = material.albedo;
   // One switch over every kind, without default, so -Wswitch flags a kind added to the list.
   switch (node.kind) {
     case NodeKind::Sphere: return S{sd_sphere(p, params<Sphere>(node)), color};
@@ -77,19 +82,22 @@ SdfSample sample_local(const Node& node, const glm::dvec3& p, const glm::dvec3& 
     case NodeKind::Plane: return S{sd_plane(p, params<Plane>(node)), color};
     case NodeKind::Capsule: return S{sd_capsule(p, params<Capsule>(node)), color};
     case NodeKind::Cylinder: return S{sd_cylinder(p, params<Cylinder>(node)), color};
+    case NodeKind::Mandelbulb: return S{sd_mandelbulb(p, params<Mandelbulb>(node)), color};
+    case NodeKind::Menger: return S{sd_menger(p, params<Menger>(node)), color};
+    case NodeKind::Terrain: return S{sd_terrain(p, params<Terrain>(node)), color};
     case NodeKind::Union:
-      return fold_children(node, p, color, [](const S& a, const S& b) { return op_union(a, b); });
+      return fold_children(node, p, material, [](const S& a, const S& b) { return op_union(a, b); });
     case NodeKind::Intersection:
-      return fold_children(node, p, color, [](const S& a, const S& b) { return op_intersection(a, b); });
+      return fold_children(node, p, material, [](const S& a, const S& b) { return op_intersection(a, b); });
     case NodeKind::Subtraction:
-      return fold_children(node, p, color, [](const S& a, const S& b) { return op_subtraction(a, b); });
+      return fold_children(node, p, material, [](const S& a, const S& b) { return op_subtraction(a, b); });
     case NodeKind::SmoothUnion:
-      return fold_smooth(node, p, color, [](const S& a, const S& b, double k) { return op_smooth_union(a, b, k); });
+      return fold_smooth(node, p, material, [](const S& a, const S& b, double k) { return op_smooth_union(a, b, k); });
     case NodeKind::SmoothIntersection:
-      return fold_smooth(node, p, color,
+      return fold_smooth(node, p, material,
                          [](const S& a, const S& b, double k) { return op_smooth_intersection(a, b, k); });
     case NodeKind::SmoothSubtraction:
-      return fold_smooth(node, p, color,
+      return fold_smooth(node, p, material,
                          [](const S& a, const S& b, double k) { return op_smooth_subtraction(a, b, k); });
     case NodeKind::Repeat: {
       glm::dvec3 q = p;
@@ -97,10 +105,10 @@ SdfSample sample_local(const Node& node, const glm::dvec3& p, const glm::dvec3& 
         const double c = node.repeat_period[a];
         if (c > 0.0) q[a] = p[a] - c * std::floor(p[a] / c + 0.5);
       }
-      return only_child(node, q, color);
+      return only_child(node, q, material);
     }
     case NodeKind::Displace: {
-      S s = only_child(node, p, color);
+      S s = only_child(node, p, material);
       const double f = node.displace_frequency;
       const double texture = node.displace_amplitude * std::sin(f * p.x) * std::sin(f * p.y) * std::sin(f * p.z);
       s.distance = (s.distance + texture) / displacement_lipschitz(node);
@@ -110,14 +118,22 @@ SdfSample sample_local(const Node& node, const glm::dvec3& p, const glm::dvec3& 
   malformed(node, "has an unknown kind");
 }
 
-SdfSample sample_node(const Node& node, const glm::dvec3& p_parent, const glm::dvec3& parent_color) {
+SdfSample sample_node(const Node& node, const glm::dvec3& p_parent, const Material& parent) {
   const Transform& xf = node.transform;
   glm::dvec3 p = p_parent - xf.translate;
   // Skipping the identity rotation is only a speed-up: R would be exactly the identity matrix.
   if (xf.rotate_degrees != glm::dvec3(0.0)) p = glm::transpose(xf.world_from_local_rotation()) * p;
   p /= xf.scale;
-  SdfSample s = sample_local(node, p, node.color.value_or(parent_color));
+  Material material = parent;
+  if (node.color) material.albedo = *node.color;
+  if (node.metallic) material.metallic = *node.metallic;
+  if (node.roughness) material.roughness = *node.roughness;
+  if (node.reflectivity) material.reflectivity = *node.reflectivity;
+  SdfSample s = sample_local(node, p, material);
+  if (is_primitive(node.kind)) s.surface = {material.metallic, material.roughness, material.reflectivity};
   s.distance *= xf.scale;
+  // A bound for fields steeper than 1 (terrain, fractals): the march takes shorter steps.
+  s.distance *= node.step_factor;
   return s;
 }
 
@@ -125,7 +141,7 @@ SdfSample sample_node(const Node& node, const glm::dvec3& p_parent, const glm::d
 
 double reference_distance(const Node& root, const glm::dvec3& p) { return reference_sample(root, p).distance; }
 
-SdfSample reference_sample(const Node& root, const glm::dvec3& p) { return sample_node(root, p, glm::dvec3(1.0)); }
+SdfSample reference_sample(const Node& root, const glm::dvec3& p) { return sample_node(root, p, Material{}); }
 
 double sd_sphere(const glm::dvec3& p, const Sphere& sphere) { return glm::length(p - sphere.center) - sphere.radius; }
 
@@ -192,22 +208,23 @@ SdfSample op_union(const SdfSample& a, const SdfSample& b) { return b.distance <
 SdfSample op_intersection(const SdfSample& a, const SdfSample& b) { return b.distance > a.distance ? b : a; }
 
 SdfSample op_subtraction(const SdfSample& a, const SdfSample& b) {
-  return {op_subtraction(a.distance, b.distance), a.distance >= -b.distance ? a.color : b.color};
+  const SdfSample& kept = a.distance >= -b.distance ? a : b;
+  return {op_subtraction(a.distance, b.distance), kept.color, kept.surface};
 }
 
 SdfSample op_smooth_union(const SdfSample& a, const SdfSample& b, double k) {
   const double h = smooth_union_weight(a.distance, b.distance, k);
-  return {op_smooth_union(a.distance, b.distance, k), mix(b.color, a.color, h)};
+  return {op_smooth_union(a.distance, b.distance, k), mix(b.color, a.color, h), mix(b.surface, a.surface, h)};
 }
 
 SdfSample op_smooth_intersection(const SdfSample& a, const SdfSample& b, double k) {
   const double h = smooth_intersection_weight(a.distance, b.distance, k);
-  return {op_smooth_intersection(a.distance, b.distance, k), mix(b.color, a.color, h)};
+  return {op_smooth_intersection(a.distance, b.distance, k), mix(b.color, a.color, h), mix(b.surface, a.surface, h)};
 }
 
 SdfSample op_smooth_subtraction(const SdfSample& a, const SdfSample& b, double k) {
   const double h = smooth_subtraction_weight(a.distance, b.distance, k);
-  return {op_smooth_subtraction(a.distance, b.distance, k), mix(a.color, b.color, h)};
+  return {op_smooth_subtraction(a.distance, b.distance, k), mix(a.color, b.color, h), mix(a.surface, b.surface, h)};
 }
 
 }  // namespace clmarch

@@ -9,10 +9,12 @@
 
 namespace clmarch {
 
-/// The field at a point: signed distance and the albedo of the surface there.
+/// The field at a point: signed distance and the material of the surface there.
 struct SdfSample {
   double distance;
   glm::dvec3 color;
+  /// metallic, roughness, reflectivity (defaults of Material until the tree walk sets them).
+  glm::dvec3 surface{0.0, 0.5, 0.0};
 };
 
 /// Signed distance of the whole tree at the world point p (throws std::invalid_argument on a

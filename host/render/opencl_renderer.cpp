@@ -115,6 +115,7 @@ RenderResult render_opencl(const Scene& scene, const OpenClOptions& options) {
   params.max_distance = static_cast<float>(scene.render.max_distance);
   params.normal_epsilon = static_cast<float>(scene.render.normal_epsilon);
   if (scene.tiling) params.origin_in_cell = to_cl(offset_in_cell(scene.camera.position, scene.tiling->cell));
+  params.camera_height = static_cast<float>(scene.camera.position.y);
   const std::vector<cl_float4> lights = light_data(scene);
 
   RenderResult result;

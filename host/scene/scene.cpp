@@ -3,6 +3,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace clmarch {
@@ -39,6 +40,10 @@ bool is_smooth_operator(NodeKind kind) {
 
 double displacement_lipschitz(const Node& displace) {
   return 1.0 + displace.displace_amplitude * displace.displace_frequency * std::sqrt(3.0);
+}
+
+double reflection_offset(const RenderSettings& render) {
+  return 10.0 * std::max(render.epsilon, render.normal_epsilon);
 }
 
 bool Transform::is_identity() const {

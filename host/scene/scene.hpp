@@ -4,6 +4,7 @@
 
 #include <glm/glm.hpp>
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -50,9 +51,28 @@ struct Plane { glm::dvec3 normal{0.0, 1.0, 0.0}; double offset = 0.0; };
 struct Capsule { glm::dvec3 a{0.0, -0.5, 0.0}; glm::dvec3 b{0.0, 0.5, 0.0}; double radius = 0.25; };
 /// A capped cylinder along y.
 struct Cylinder { glm::dvec3 center{0.0}; double radius = 0.5; double half_height = 0.5; };
+/// The power-n Mandelbulb (pole along z) by its escape-time distance estimator, a bound.
+struct Mandelbulb { glm::dvec3 center{0.0}; double power = 8.0; int iterations = 8; double bailout = 2.0; };
+/// Inigo Quilez's Menger sponge: a cube of half size half_size with iterations levels of crosses cut out.
+struct Menger { glm::dvec3 center{0.0}; double half_size = 1.0; int iterations = 4; };
+/// The noise a terrain's fractal sum is built from (formulas: kernels/noise.cl, reference_noise.cpp).
+enum class TerrainNoise { Value, Perlin, Derivative };
+inline constexpr const char* kTerrainNoiseNames[] = {"value", "perlin", "derivative"};
+/// The height field y = height + amplitude * fbm(frequency * (x, z)); its distance p.y - y is a bound
+/// only with a node step_factor below 1 / sqrt(1 + slope^2).
+struct Terrain {
+  double height = 0.0;
+  double amplitude = 1.0;
+  double frequency = 1.0;
+  int octaves = 6;
+  TerrainNoise noise = TerrainNoise::Value;
+  /// Selects the hash of the lattice values, so one scene can hold different terrains.
+  std::uint32_t seed = 0;
+};
 
 /// Parameters of a primitive; the alternative matches Node::kind.
-using Primitive = std::variant<Sphere, Box, RoundBox, BoxFrame, Torus, Plane, Capsule, Cylinder>;
+using Primitive =
+    std::variant<Sphere, Box, RoundBox, BoxFrame, Torus, Plane, Capsule, Cylinder, Mandelbulb, Menger, Terrain>;
 
 /// Placement of a node: p_world = translate + R(rotate) * (scale * p_local).
 struct Transform {
@@ -82,8 +102,17 @@ struct Node {
   /// Operands of an operator, folded left: union(a, b, c) = union(union(a, b), c).
   std::vector<Node> children;
   Transform transform;
+  /// Multiplies the node's distance (after its scale), in (0, 1]: makes a field that is not
+  /// 1-Lipschitz (terrain, mandelbulb, deep smooth unions) a bound the march cannot overshoot.
+  double step_factor = 1.0;
   /// Albedo of this subtree, unless a descendant sets its own.
   std::optional<glm::dvec3> color;
+  /// PBR metalness in [0, 1] of this subtree (inherited like color; default 0).
+  std::optional<double> metallic;
+  /// PBR roughness in [0.02, 1] (inherited; default 0.5).
+  std::optional<double> roughness;
+  /// Share of the mirror bounce added to the color, in [0, 1] (inherited; default 0).
+  std::optional<double> reflectivity;
 };
 
 /// Lipschitz constant of a displace node's field, 1 + amplitude * frequency * sqrt(3): its distance
@@ -127,8 +156,72 @@ struct Light {
   double intensity = 1.0;
 };
 
-enum class ShadingModel { Lambert, Phong, BlinnPhong };
-inline constexpr const char* kShadingModelNames[] = {"lambert", "phong", "blinn_phong"};
+enum class ShadingModel { Lambert, Phong, BlinnPhong, Pbr };
+inline constexpr const char* kShadingModelNames[] = {"lambert", "phong", "blinn_phong", "pbr"};
+
+/// Material of a surface point: albedo plus the PBR and mirror parameters.
+struct Material {
+  glm::dvec3 albedo{1.0};
+  double metallic = 0.0;
+  double roughness = 0.5;
+  double reflectivity = 0.0;
+};
+
+enum class ShadowMode { Hard, Soft, SoftImproved };
+inline constexpr const char* kShadowModeNames[] = {"hard", "soft", "soft_improved"};
+
+/// Shadows by marching from the surface towards each light (Inigo Quilez's soft shadows).
+struct Shadows {
+  ShadowMode mode = ShadowMode::Soft;
+  /// Penumbra sharpness k of the soft modes.
+  double k = 16.0;
+  /// The shadow ray starts min_t from the surface and, for directional lights, ends at max_t.
+  double min_t = 0.01;
+  double max_t = 20.0;
+  int max_steps = 64;
+};
+
+/// Ambient occlusion by marching along the normal (the PBR course): 1 - sum (i step - sdf)^2 / i,
+/// raised to power.
+struct NormalOcclusion {
+  int samples = 5;
+  double step = 0.05;
+  double power = 1.0;
+};
+
+/// A sky gradient for misses, from horizon (ray level or below) to zenith (straight up).
+struct Sky {
+  glm::dvec3 horizon{0.7, 0.8, 1.0};
+  glm::dvec3 zenith{0.2, 0.4, 0.8};
+};
+
+/// Crum's glow of misses: color * (1 - closest / radius)^2 where the ray passed within radius.
+struct Glow {
+  glm::dvec3 color{1.0};
+  double radius = 0.1;
+};
+
+/// Inigo Quilez's height fog, denser near the ground and tinted towards the sun.
+struct HeightFog {
+  double density = 0.1;
+  double falloff = 0.5;
+  glm::dvec3 color{0.5, 0.6, 0.7};
+  glm::dvec3 sun_color{1.0, 0.9, 0.7};
+  /// Unit vector towards the sun.
+  glm::dvec3 sun_direction{0.0, 1.0, 0.0};
+  double sun_power = 8.0;
+};
+
+/// A scattering glow of the sky at the horizon and towards the sun (the Martian landscape).
+struct PlanetaryGlow {
+  glm::dvec3 color{1.0, 0.5, 0.3};
+  double sharpness = 8.0;
+  /// Unit vector towards the sun.
+  glm::dvec3 sun_direction{0.0, 1.0, 0.0};
+};
+
+enum class ToneMap { None, Reinhard };
+inline constexpr const char* kToneMapNames[] = {"none", "reinhard"};
 
 /// What the color image shows: the lit scene or one of the debug views.
 enum class View { Shaded, Normals, Depth, Steps };
@@ -151,6 +244,18 @@ struct Shading {
   double step_ao = 0.0;
   glm::dvec3 background{0.0};
   std::optional<Fog> fog;
+  std::optional<Shadows> shadows;
+  std::optional<NormalOcclusion> ambient_occlusion;
+  std::optional<Sky> sky;
+  std::optional<Glow> glow;
+  std::optional<HeightFog> height_fog;
+  std::optional<PlanetaryGlow> planetary_glow;
+  /// Mirror bounces for surfaces with reflectivity > 0; 0 = none.
+  int reflection_bounces = 0;
+  ToneMap tone_map = ToneMap::None;
+  /// Display gamma applied after tone mapping (c^(1/gamma)); 1 = none. 8-bit outputs are
+  /// sRGB-encoded on top of this.
+  double gamma = 1.0;
   View view = View::Shaded;
 };
 
@@ -164,6 +269,10 @@ struct Tiling {
   /// modulo of the sample point.
   TilingMethod method = TilingMethod::Cells;
 };
+
+/// How far a mirror bounce starts off the surface along the normal: clear of the hit threshold and
+/// of the normal estimate's step, so the reflected ray does not hit its own start.
+double reflection_offset(const RenderSettings& render);
 
 /// A whole scene file after loading and validation.
 struct Scene {

@@ -16,7 +16,7 @@ constexpr int kMaxImageSide = 65536;
 constexpr int kMaxStepBudget = 1000000;
 
 // Keys every SDF node accepts besides its own parameters.
-#define CLMARCH_COMMON_NODE_KEYS "color", "translate", "rotate", "scale"
+#define CLMARCH_COMMON_NODE_KEYS "color", "metallic", "roughness", "reflectivity", "translate", "rotate", "scale", "step_factor"
 
 class SceneReader {
  public:
@@ -120,10 +120,87 @@ class SceneReader {
     return fog;
   }
 
+  glm::dvec3 unit_vector(const YAML::Node& node, const std::string& what) {
+    const glm::dvec3 v = yaml_.vec3(node, what);
+    if (glm::length(v) == 0.0) yaml_.fail(node, what + " must not be zero");
+    return glm::normalize(v);
+  }
+
+  Shadows read_shadows(const YAML::Node& node) {
+    Shadows shadows;
+    yaml_.expect_map(node, "shading.shadows", {"mode", "k", "min_t", "max_t", "max_steps"});
+    if (node["mode"]) shadows.mode = static_cast<ShadowMode>(yaml_.choice(node["mode"], "shading.shadows.mode", kShadowModeNames));
+    yaml_.optional_number(node, "k", "shading.shadows.k", shadows.k, Range::positive());
+    yaml_.optional_number(node, "min_t", "shading.shadows.min_t", shadows.min_t, Range::non_negative());
+    yaml_.optional_number(node, "max_t", "shading.shadows.max_t", shadows.max_t, Range::positive());
+    if (node["max_steps"]) shadows.max_steps = yaml_.integer(node["max_steps"], "shading.shadows.max_steps", Range::closed(1, 10000));
+    return shadows;
+  }
+
+  NormalOcclusion read_occlusion(const YAML::Node& node) {
+    NormalOcclusion ao;
+    yaml_.expect_map(node, "shading.ambient_occlusion", {"samples", "step", "power"});
+    if (node["samples"]) ao.samples = yaml_.integer(node["samples"], "shading.ambient_occlusion.samples", Range::closed(1, 64));
+    yaml_.optional_number(node, "step", "shading.ambient_occlusion.step", ao.step, Range::positive());
+    yaml_.optional_number(node, "power", "shading.ambient_occlusion.power", ao.power, Range::positive());
+    return ao;
+  }
+
+  Sky read_sky(const YAML::Node& node) {
+    Sky sky;
+    yaml_.expect_map(node, "shading.sky", {"horizon", "zenith"});
+    if (node["horizon"]) sky.horizon = yaml_.color(node["horizon"], "shading.sky.horizon");
+    if (node["zenith"]) sky.zenith = yaml_.color(node["zenith"], "shading.sky.zenith");
+    return sky;
+  }
+
+  Glow read_glow(const YAML::Node& node) {
+    Glow glow;
+    yaml_.expect_map(node, "shading.glow", {"color", "radius"});
+    if (node["color"]) glow.color = yaml_.color(node["color"], "shading.glow.color");
+    yaml_.optional_number(node, "radius", "shading.glow.radius", glow.radius, Range::positive());
+    return glow;
+  }
+
+  HeightFog read_height_fog(const YAML::Node& node) {
+    HeightFog fog;
+    const std::string w = "shading.height_fog";
+    yaml_.expect_map(node, w, {"density", "falloff", "color", "sun_color", "sun_direction", "sun_power"});
+    yaml_.optional_number(node, "density", w + ".density", fog.density, Range::non_negative());
+    yaml_.optional_number(node, "falloff", w + ".falloff", fog.falloff, Range::positive());
+    if (node["color"]) fog.color = yaml_.color(node["color"], w + ".color");
+    if (node["sun_color"]) fog.sun_color = yaml_.color(node["sun_color"], w + ".sun_color");
+    if (node["sun_direction"]) fog.sun_direction = unit_vector(node["sun_direction"], w + ".sun_direction");
+    yaml_.optional_number(node, "sun_power", w + ".sun_power", fog.sun_power, Range::positive());
+    return fog;
+  }
+
+  PlanetaryGlow read_planetary_glow(const YAML::Node& node) {
+    PlanetaryGlow glow;
+    const std::string w = "shading.planetary_glow";
+    yaml_.expect_map(node, w, {"color", "sharpness", "sun_direction"});
+    if (node["color"]) glow.color = yaml_.color(node["color"], w + ".color");
+    yaml_.optional_number(node, "sharpness", w + ".sharpness", glow.sharpness, Range::positive());
+    if (node["sun_direction"]) glow.sun_direction = unit_vector(node["sun_direction"], w + ".sun_direction");
+    return glow;
+  }
+
   Shading read_shading(const YAML::Node& node) {
     Shading shading;
-    yaml_.expect_map(node, "shading", {"model", "ambient", "diffuse", "specular", "shininess", "step_ao", "background", "fog", "view"});
+    yaml_.expect_map(node, "shading",
+                     {"model", "ambient", "diffuse", "specular", "shininess", "step_ao", "background", "fog", "shadows",
+                      "ambient_occlusion", "sky", "glow", "height_fog", "planetary_glow", "reflections", "tone_map",
+                      "gamma", "view"});
     if (node["fog"]) shading.fog = read_fog(node["fog"]);
+    if (node["shadows"]) shading.shadows = read_shadows(node["shadows"]);
+    if (node["ambient_occlusion"]) shading.ambient_occlusion = read_occlusion(node["ambient_occlusion"]);
+    if (node["sky"]) shading.sky = read_sky(node["sky"]);
+    if (node["glow"]) shading.glow = read_glow(node["glow"]);
+    if (node["height_fog"]) shading.height_fog = read_height_fog(node["height_fog"]);
+    if (node["planetary_glow"]) shading.planetary_glow = read_planetary_glow(node["planetary_glow"]);
+    if (node["reflections"]) shading.reflection_bounces = yaml_.integer(node["reflections"], "shading.reflections", Range::closed(0, 8));
+    if (node["tone_map"]) shading.tone_map = static_cast<ToneMap>(yaml_.choice(node["tone_map"], "shading.tone_map", kToneMapNames));
+    yaml_.optional_number(node, "gamma", "shading.gamma", shading.gamma, Range::closed(0.1, 10.0));
     if (node["model"]) shading.model = static_cast<ShadingModel>(yaml_.choice(node["model"], "shading.model", kShadingModelNames));
     if (node["ambient"]) shading.ambient = yaml_.color(node["ambient"], "shading.ambient");
     yaml_.optional_number(node, "diffuse", "shading.diffuse", shading.diffuse, Range::non_negative());
@@ -162,9 +239,15 @@ class SceneReader {
 
   void read_common(Node& node, const YAML::Node& params, const std::string& path) {
     if (params["color"]) node.color = yaml_.color(params["color"], path + ".color");
+    if (params["metallic"]) node.metallic = yaml_.number(params["metallic"], path + ".metallic", Range::closed(0.0, 1.0));
+    if (params["roughness"]) node.roughness = yaml_.number(params["roughness"], path + ".roughness", Range::closed(0.02, 1.0));
+    if (params["reflectivity"]) {
+      node.reflectivity = yaml_.number(params["reflectivity"], path + ".reflectivity", Range::closed(0.0, 1.0));
+    }
     yaml_.optional_vec3(params, "translate", path + ".translate", node.transform.translate);
     yaml_.optional_vec3(params, "rotate", path + ".rotate", node.transform.rotate_degrees);
     yaml_.optional_number(params, "scale", path + ".scale", node.transform.scale, Range::positive());
+    yaml_.optional_number(params, "step_factor", path + ".step_factor", node.step_factor, Range{0.0, 1.0, true, false});
   }
 
   void read_primitive(Node& node, const YAML::Node& params, const std::string& path) {
@@ -245,6 +328,38 @@ class SceneReader {
         yaml_.optional_number(params, "radius", key("radius"), c.radius, positive);
         yaml_.optional_number(params, "half_height", key("half_height"), c.half_height, positive);
         node.primitive = c;
+        break;
+      }
+      case NodeKind::Mandelbulb: {
+        yaml_.expect_map(params, path, {"center", "power", "iterations", "bailout", CLMARCH_COMMON_NODE_KEYS});
+        Mandelbulb m;
+        yaml_.optional_vec3(params, "center", key("center"), m.center);
+        yaml_.optional_number(params, "power", key("power"), m.power, Range::closed(2.0, 16.0));
+        if (params["iterations"]) m.iterations = yaml_.integer(params["iterations"], key("iterations"), Range::closed(1, 64));
+        // The upper end keeps bailout^power, the largest |z| the float iteration keeps, below 2^128.
+        yaml_.optional_number(params, "bailout", key("bailout"), m.bailout, Range{1.0, 64.0, true, false});
+        node.primitive = m;
+        break;
+      }
+      case NodeKind::Menger: {
+        yaml_.expect_map(params, path, {"center", "half_size", "iterations", CLMARCH_COMMON_NODE_KEYS});
+        Menger m;
+        yaml_.optional_vec3(params, "center", key("center"), m.center);
+        yaml_.optional_number(params, "half_size", key("half_size"), m.half_size, positive);
+        if (params["iterations"]) m.iterations = yaml_.integer(params["iterations"], key("iterations"), Range::closed(1, 8));
+        node.primitive = m;
+        break;
+      }
+      case NodeKind::Terrain: {
+        yaml_.expect_map(params, path, {"height", "amplitude", "frequency", "octaves", "noise", "seed", CLMARCH_COMMON_NODE_KEYS});
+        Terrain t;
+        yaml_.optional_number(params, "height", key("height"), t.height);
+        yaml_.optional_number(params, "amplitude", key("amplitude"), t.amplitude, Range::non_negative());
+        yaml_.optional_number(params, "frequency", key("frequency"), t.frequency, positive);
+        if (params["octaves"]) t.octaves = yaml_.integer(params["octaves"], key("octaves"), Range::closed(1, 16));
+        if (params["noise"]) t.noise = static_cast<TerrainNoise>(yaml_.choice(params["noise"], key("noise"), kTerrainNoiseNames));
+        if (params["seed"]) t.seed = static_cast<std::uint32_t>(yaml_.integer(params["seed"], key("seed"), Range::closed(0, 2147483647)));
+        node.primitive = t;
         break;
       }
       default:

@@ -67,6 +67,11 @@ double YamlReader::number(const YAML::Node& node, const std::string& what, Range
     fail(node, fmt::format("{} must be a number (got {})", what, describe_yaml(node)));
   }
   if (!std::isfinite(value)) fail(node, fmt::format("{} must be finite (got {})", what, node.Scalar()));
+  // The device computes in float: a larger value would become inf there, and as a literal of the
+  // generated program "inff", which OpenCL C cannot parse (found by fuzz/scene_fuzzer.cpp).
+  if (std::abs(value) > kMaxSceneNumber) {
+    fail(node, fmt::format("{} must be within +-{:g}, the float range (got {})", what, kMaxSceneNumber, node.Scalar()));
+  }
   if (!range.contains(value)) fail(node, fmt::format("{} must be {} (got {})", what, range.describe(), node.Scalar()));
   return value;
 }

@@ -14,6 +14,9 @@
 
 namespace clmarch {
 
+/// The largest magnitude of a number in a scene: the largest float, as the device computes in float.
+inline constexpr double kMaxSceneNumber = static_cast<double>(std::numeric_limits<float>::max());
+
 /// An allowed interval for a number; open or closed at each end.
 struct Range {
   double low = -std::numeric_limits<double>::infinity();

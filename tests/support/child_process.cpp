@@ -49,8 +49,19 @@ pid_t spawn(const std::vector<std::string>& args, const std::vector<std::string>
   std::vector<std::string> env_storage = merged_environment(environment);
   std::vector<char*> argv = make_argv(argv_storage);
   std::vector<char*> envp = make_argv(env_storage);
+  // Default dispositions for the signals the tests send, even when the test runner was started
+  // with them ignored (a background job of a script): clmarch keeps ignored signals ignored.
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  sigset_t defaults;
+  sigemptyset(&defaults);
+  sigaddset(&defaults, SIGINT);
+  sigaddset(&defaults, SIGTERM);
+  posix_spawnattr_setsigdefault(&attributes, &defaults);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGDEF);
   pid_t pid = -1;
-  const int error = posix_spawn(&pid, CLMARCH_BINARY, actions, nullptr, argv.data(), envp.data());
+  const int error = posix_spawn(&pid, CLMARCH_BINARY, actions, &attributes, argv.data(), envp.data());
+  posix_spawnattr_destroy(&attributes);
   if (error != 0) throw std::runtime_error(std::string("posix_spawn: ") + std::strerror(error));
   return pid;
 }

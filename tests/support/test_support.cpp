@@ -25,6 +25,8 @@ std::string read_text(const std::filesystem::path& path) {
   return text.str();
 }
 
+}  // namespace
+
 std::string shell_quote(const std::string& s) {
   std::string out = "'";
   for (char c : s) {
@@ -38,19 +40,24 @@ std::string shell_quote(const std::string& s) {
   return out;
 }
 
-}  // namespace
-
 Scene scene_from_yaml(const std::string& yaml) { return load_scene_text(yaml, "test.yaml"); }
 
 std::filesystem::path source_path(const std::string& relative) { return std::filesystem::path(CLMARCH_SOURCE_DIR) / relative; }
 
 CommandResult run_clmarch(const std::vector<std::string>& args, const std::vector<std::string>& environment) {
+  return run_clmarch_in_shell("", args, environment);
+}
+
+CommandResult run_clmarch_in_shell(const std::string& shell_prefix, const std::vector<std::string>& args,
+                                   const std::vector<std::string>& environment) {
   TempDir capture;
-  std::string command;
+  std::string command = shell_prefix;
   if (!environment.empty()) {
-    command = "env";
+    command.append("env");
     for (const std::string& setting : environment) command.append(" ").append(shell_quote(setting));
     command.append(" ");
+  } else if (!shell_prefix.empty()) {
+    command.append("exec ");
   }
   command.append(shell_quote(CLMARCH_BINARY));
   for (const std::string& a : args) command.append(" ").append(shell_quote(a));

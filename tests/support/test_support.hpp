@@ -25,6 +25,13 @@ struct CommandResult {
 /// environment holds extra NAME=VALUE settings for it.
 CommandResult run_clmarch(const std::vector<std::string>& args, const std::vector<std::string>& environment = {});
 
+/// Like run_clmarch, after shell_prefix (commands ending in "; ", e.g. "ulimit -f 8; ").
+CommandResult run_clmarch_in_shell(const std::string& shell_prefix, const std::vector<std::string>& args,
+                                   const std::vector<std::string>& environment = {});
+
+/// s in single quotes for /bin/sh.
+std::string shell_quote(const std::string& s);
+
 /// An image read with OpenImageIO: interleaved channels as float in [0, 1] for 8-bit files.
 struct Image {
   int width = 0;

@@ -1,0 +1,64 @@
+// Reference fractal primitives in double (formulas: docs/scene-format.md, "Fractals and terrain").
+#include "reference/reference_fractals.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace clmarch {
+namespace {
+
+// Keeps acos and log finite at the centre, where the orbit can sit at exactly 0.
+constexpr double kTinyRadius = 1e-30;
+
+// Distances above this are capped before they meet the enclosing ball: the escape-time estimate
+// grows like r log r / 2 far from the set and would overshoot there.
+constexpr double kEstimateCap = 1.0;
+
+// GLSL's floor-based mod (std::fmod truncates towards zero).
+double floor_mod(double x, double period) { return x - period * std::floor(x / period); }
+
+}  // namespace
+
+double mandelbulb_radius(double power) { return std::pow(2.0, 1.0 / (power - 1.0)); }
+
+double sd_mandelbulb(const glm::dvec3& p, const Mandelbulb& bulb) {
+  const double n = bulb.power;
+  const glm::dvec3 c = p - bulb.center;
+  glm::dvec3 z = c;
+  double dr = 1.0;
+  double r = glm::length(z);
+  // z -> z^n + c in spherical form (theta from the z axis, phi about it); dr = |dz/dc| grows as
+  // n r^(n-1) dr + 1. The orbit stops at the first |z| > bailout.
+  for (int i = 0; i < bulb.iterations && r <= bulb.bailout; ++i) {
+    const double theta = std::acos(std::clamp(z.z / std::max(r, kTinyRadius), -1.0, 1.0)) * n;
+    const double phi = std::atan2(z.y, z.x) * n;
+    const double r_n1 = std::pow(r, n - 1.0);
+    dr = r_n1 * n * dr + 1.0;
+    const double zr = r_n1 * r;
+    const double sin_theta = std::sin(theta);
+    z = zr * glm::dvec3(sin_theta * std::cos(phi), sin_theta * std::sin(phi), std::cos(theta)) + c;
+    r = glm::length(z);
+  }
+  r = std::max(r, kTinyRadius);
+  const double estimate = 0.5 * std::log(r) * r / dr;
+  return std::max(glm::length(c) - mandelbulb_radius(n), std::min(estimate, kEstimateCap));
+}
+
+double sd_menger(const glm::dvec3& p, const Menger& sponge) {
+  const glm::dvec3 q = (p - sponge.center) / sponge.half_size;
+  const glm::dvec3 b = glm::abs(q) - 1.0;
+  double d = glm::length(glm::max(b, 0.0)) + std::min(std::max(b.x, std::max(b.y, b.z)), 0.0);
+  double s = 1.0;
+  for (int i = 0; i < sponge.iterations; ++i) {
+    // The cell of this level, centred: a in [-1, 1); the cross of half width 1/3 of the cell is
+    // where at least two of |1 - 3|a|| exceed 1.
+    const glm::dvec3 a(floor_mod(q.x * s, 2.0) - 1.0, floor_mod(q.y * s, 2.0) - 1.0, floor_mod(q.z * s, 2.0) - 1.0);
+    s *= 3.0;
+    const glm::dvec3 r = glm::abs(1.0 - 3.0 * glm::abs(a));
+    const double cross = (std::min({std::max(r.x, r.y), std::max(r.y, r.z), std::max(r.z, r.x)}) - 1.0) / s;
+    d = std::max(d, cross);
+  }
+  return d * sponge.half_size;
+}
+
+}  // namespace clmarch

@@ -1,0 +1,24 @@
+// Reference distance estimators of the fractal primitives, in double: the Mandelbulb and Inigo
+// Quilez's Menger sponge. Written apart from kernels/fractals.cl; the two are compared in tests.
+#pragma once
+
+#include "scene/scene.hpp"
+
+#include <glm/glm.hpp>
+
+namespace clmarch {
+
+/// Radius of a ball about the centre that holds the whole power-n Mandelbulb: 2^(1/(n-1)).
+/// Outside it the orbit grows monotonically (|z^n + c| >= |z|^n - |c| > |z|), so nothing escapes less.
+double mandelbulb_radius(double power);
+
+/// The escape-time distance estimator 0.5 log(r) r / dr of the Mandelbulb (a bound near the set,
+/// not exactly 1-Lipschitz), capped at 1 and never below |p - c| - mandelbulb_radius: far away it
+/// is the distance to the enclosing ball.
+double sd_mandelbulb(const glm::dvec3& p, const Mandelbulb& bulb);
+
+/// Inigo Quilez's Menger sponge: the box intersected with iterations levels of crosses. A bound
+/// (1-Lipschitz; exact on faces and inside, short of the true distance over the tunnels).
+double sd_menger(const glm::dvec3& p, const Menger& sponge);
+
+}  // namespace clmarch

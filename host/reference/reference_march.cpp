@@ -1,0 +1,120 @@
+// March loops of the reference.
+#include "reference/reference_march.hpp"
+
+#include "reference/reference_sdf.hpp"
+#include "scene/tiling_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace clmarch {
+namespace {
+
+/// Folds a distance sample h at depth t into the closest approach and the penumbra; previous is
+/// the sample before it (the improved variant estimates the closest point between the two).
+void track_approach(MarchEnd& end, double h, double t, double previous, const MarchLimits& limits) {
+  end.closest = std::min(end.closest, h);
+  if (limits.soft_mode == 1) {
+    end.penumbra = std::min(end.penumbra, limits.soft_k * h / std::max(t, 1e-6));
+  } else if (limits.soft_mode == 2) {
+    const double y = h * h / (2.0 * previous);
+    const double d = std::sqrt(std::max(h * h - y * y, 0.0));
+    end.penumbra = std::min(end.penumbra, limits.soft_k * d / std::max(t - y, 1e-6));
+  }
+}
+
+MarchEnd march_plain(const Field& field, const glm::dvec3& origin, const glm::dvec3& direction, double t_start, double t_end,
+                     const MarchLimits& limits) {
+  MarchEnd end;
+  double t = t_start;
+  double previous = 1e20;
+  for (int i = 0; i < limits.max_steps; ++i) {
+    const double d = field(origin + t * direction);
+    ++end.steps;
+    track_approach(end, d, t, previous, limits);
+    previous = d;
+    if (d < limits.epsilon) {
+      end.hit = true;
+      break;
+    }
+    t += d;
+    if (t >= t_end) break;
+  }
+  end.depth = t;
+  end.local = origin + t * direction;
+  return end;
+}
+
+// The unit-cell traversal: inside the current cell the ray is entry + s * direction; when the
+// wall it heads for is no farther along the ray than the surface, it steps exactly onto that wall
+// and re-enters the neighbouring cell at the opposite wall (several axes at once at edges and
+// corners).
+MarchEnd march_cells(const Scene& scene, const glm::dvec3& origin, const glm::dvec3& direction, double t_start,
+                     double t_end, const MarchLimits& limits) {
+  const glm::dvec3 cell = scene.tiling->cell;
+  MarchEnd end;
+  glm::dvec3 entry = wrap_to_cell(origin + t_start * direction, cell);
+  double t_entry = t_start, s = 0.0;
+  double previous = 1e20;
+  for (int i = 0; i < limits.max_steps; ++i) {
+    const glm::dvec3 p = entry + s * direction;
+    const double d = reference_distance(scene.sdf, p);
+    glm::dvec3 wall_axis(std::numeric_limits<double>::infinity());
+    for (int a = 0; a < 3; ++a) {
+      if (direction[a] == 0.0) continue;
+      const double to_wall = direction[a] > 0.0 ? cell[a] - p[a] : -p[a];
+      wall_axis[a] = std::max(to_wall / direction[a], 0.0);
+    }
+    const double wall = std::min({wall_axis.x, wall_axis.y, wall_axis.z});
+    ++end.steps;
+    track_approach(end, d, t_entry + s, previous, limits);
+    previous = d;
+    if (d < limits.epsilon) {
+      end.hit = true;
+      break;
+    }
+    if (wall <= d) {
+      ++end.wall_steps;
+      const glm::dvec3 at_wall = p + wall * direction;
+      for (int a = 0; a < 3; ++a) {
+        entry[a] = wall_axis[a] == wall ? (direction[a] > 0.0 ? 0.0 : cell[a]) : std::clamp(at_wall[a], 0.0, cell[a]);
+      }
+      t_entry += s + wall;
+      s = 0.0;
+    } else {
+      s += d;
+    }
+    if (t_entry + s >= t_end) break;
+  }
+  end.depth = t_entry + s;
+  end.local = entry + s * direction;
+  return end;
+}
+
+}  // namespace
+
+glm::dvec3 wrap_to_cell(const glm::dvec3& p, const glm::dvec3& cell) { return p - cell * glm::floor(p / cell); }
+
+Field scene_field(const Scene& scene) {
+  if (scene.tiling && scene.tiling->method == TilingMethod::Mod) {
+    return [&scene](const glm::dvec3& p) { return reference_distance(scene.sdf, wrap_to_cell(p, scene.tiling->cell)); };
+  }
+  return [&scene](const glm::dvec3& p) { return reference_distance(scene.sdf, p); };
+}
+
+MarchEnd reference_march(const Scene& scene, const glm::dvec3& origin, const glm::dvec3& direction, double t_start,
+                         double t_end, const MarchLimits& limits) {
+  if (scene.tiling && scene.tiling->method == TilingMethod::Cells) {
+    return march_cells(scene, origin, direction, t_start, t_end, limits);
+  }
+  MarchEnd end = march_plain(scene_field(scene), origin, direction, t_start, t_end, limits);
+  if (scene.tiling) end.local = wrap_to_cell(end.local, scene.tiling->cell);
+  return end;
+}
+
+glm::dvec3 camera_origin_in_frame(const Scene& scene) {
+  if (scene.tiling && scene.tiling->method == TilingMethod::Cells) return offset_in_cell(scene.camera.position, scene.tiling->cell);
+  return scene.camera.position;
+}
+
+}  // namespace clmarch

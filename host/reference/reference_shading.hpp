@@ -1,0 +1,38 @@
+// The reference's lighting and atmosphere in double, by the formulas of docs/scene-format.md:
+// the shading models with shadows and occlusion, the sky and glows of misses, fog, tone mapping.
+#pragma once
+
+#include "scene/scene.hpp"
+
+#include <glm/glm.hpp>
+
+namespace clmarch {
+
+/// A surface point met by a ray.
+struct SurfacePoint {
+  /// In the frame of the tree (a cell's frame under tiling): for the field.
+  glm::dvec3 local{0.0};
+  /// In the world: for the lights.
+  glm::dvec3 world{0.0};
+  glm::dvec3 normal{0.0};
+  Material material;
+  /// Iterations of the march that found it (step-count occlusion).
+  int steps = 0;
+};
+
+/// Unit vector along v; a zero vector stays zero (as in the kernels) instead of becoming NaN.
+glm::dvec3 normalize_or_zero(const glm::dvec3& v);
+
+/// Direct light, ambient and occlusion at a surface point seen along the unit direction, clamped at 0.
+glm::dvec3 reference_shade(const Scene& scene, const SurfacePoint& surface, const glm::dvec3& direction);
+
+/// The color of a miss along the unit direction whose march came within closest of the surface.
+glm::dvec3 reference_miss_color(const Scene& scene, const glm::dvec3& direction, double closest);
+
+/// Fog over depth along the unit direction from the camera.
+glm::dvec3 reference_fog(const Scene& scene, const glm::dvec3& color, const glm::dvec3& direction, double depth);
+
+/// Tone mapping and display gamma.
+glm::dvec3 reference_tone_map(const Scene& scene, const glm::dvec3& color);
+
+}  // namespace clmarch

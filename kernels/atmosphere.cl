@@ -1,0 +1,70 @@
+/* What the camera sees besides lit surfaces: the sky of misses (BACKGROUND_COLOR, or a gradient
+ * from SKY_HORIZON to SKY_ZENITH by the ray's height), Crum's glow of misses from their closest
+ * approach (GLOW_COLOR, GLOW_RADIUS), a planetary glow at the horizon (PLANET_GLOW_*), fog on hits
+ * (Beer-Lambert FOG_*, Inigo Quilez's height fog HEIGHT_FOG_*), and the HDR tone mapping and gamma
+ * of the PBR course (TONE_MAP_REINHARD, DISPLAY_GAMMA). */
+
+SDF_INLINE vec3v sky_color(vec3v dir) {
+#if defined(SKY_ZENITH)
+  const vfloat up = clamp(dir.y, 0.0f, 1.0f);
+  vec3v sky = v3_mix(v3_from(SKY_HORIZON), v3_from(SKY_ZENITH), up);
+#else
+  vec3v sky = v3_from(BACKGROUND_COLOR);
+#endif
+#if defined(PLANET_GLOW_COLOR)
+  /* Scattering piles up where the view grazes the atmosphere (the horizon) and towards the sun. */
+  const float4 sun = PLANET_GLOW_SUN;
+  const vfloat towards_sun = fmax(dir.x * sun.x + dir.y * sun.y + dir.z * sun.z, 0.0f);
+  const vfloat sun_term = 1.0f + pow(towards_sun, (vfloat)(8.0f));
+  const vfloat glow = exp(-PLANET_GLOW_SHARPNESS * fabs(dir.y)) * sun_term;
+  sky = v3_add(sky, v3_scale(v3_from(PLANET_GLOW_COLOR), glow));
+#endif
+  return sky;
+}
+
+/* A miss: the sky, plus Crum's glow where the ray passed close to the surface. */
+SDF_INLINE vec3v miss_color(vec3v dir, vfloat closest) {
+  vec3v color = sky_color(dir);
+#if defined(GLOW_COLOR)
+  const vfloat near = clamp(1.0f - closest / GLOW_RADIUS, 0.0f, 1.0f);
+  color = v3_add(color, v3_scale(v3_from(GLOW_COLOR), near * near));
+#else
+  (void)closest;
+#endif
+  return color;
+}
+
+/* Fog over depth t along dir from a camera at height camera_y. */
+SDF_INLINE vec3v apply_fog(vec3v color, vec3v dir, vfloat t, float camera_y) {
+#if defined(FOG_DENSITY)
+  color = v3_mix(v3_from(FOG_COLOR), color, exp(-FOG_DENSITY * t));
+#endif
+#if defined(HEIGHT_FOG_DENSITY)
+  /* (a / b) exp(-y0 b) (1 - exp(-t dy b)) / dy, whose limit for a level ray is a exp(-y0 b) t. */
+  const float a = HEIGHT_FOG_DENSITY, b = HEIGHT_FOG_FALLOFF;
+  const vint level = MASK(fabs(dir.y) < 1e-5f);
+  const vfloat slanted = (a / b) * exp(-camera_y * b) * (1.0f - exp(-t * dir.y * b)) / select(dir.y, (vfloat)(1.0f), level);
+  const vfloat amount = clamp(select(slanted, a * exp(-camera_y * b) * t, level), 0.0f, 1.0f);
+  const float4 sun = HEIGHT_FOG_SUN_DIRECTION;
+  const vfloat sun_amount = fmax(dir.x * sun.x + dir.y * sun.y + dir.z * sun.z, 0.0f);
+  const vec3v fog = v3_mix(v3_from(HEIGHT_FOG_COLOR), v3_from(HEIGHT_FOG_SUN_COLOR), pow(sun_amount, (vfloat)(HEIGHT_FOG_SUN_POWER)));
+  color = v3_mix(color, fog, amount);
+#else
+  (void)camera_y;
+#endif
+  (void)dir;
+  (void)t;
+  return color;
+}
+
+/* HDR to display: Reinhard c / (c + 1), then c^(1 / gamma). */
+SDF_INLINE vec3v tone_map(vec3v color) {
+#if defined(TONE_MAP_REINHARD)
+  color = v3(color.x / (color.x + 1.0f), color.y / (color.y + 1.0f), color.z / (color.z + 1.0f));
+#endif
+#if defined(DISPLAY_GAMMA)
+  const vfloat inverse = (vfloat)(1.0f / DISPLAY_GAMMA);
+  color = v3(pow(color.x, inverse), pow(color.y, inverse), pow(color.z, inverse));
+#endif
+  return color;
+}

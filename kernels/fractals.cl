@@ -1,0 +1,61 @@
+/* Fractal primitives, compiled in only for scenes that use them: the Mandelbulb and Inigo Quilez's
+ * Menger sponge. Same conventions as primitives.cl (p first, local frame, float4 parameters);
+ * host/reference/reference_fractals.cpp is the independent double version. */
+
+/* Keeps acos and log finite at the centre, where the orbit can sit at exactly 0. */
+#define MANDELBULB_TINY_RADIUS 1e-30f
+/* Estimates are capped at 1 before meeting the enclosing ball: far from the set the escape-time
+ * estimate grows like r log r / 2 and would overshoot. */
+#define MANDELBULB_ESTIMATE_CAP 1.0f
+
+/* A bound near the set (the escape-time estimate 0.5 log(r) r / dr is not exactly 1-Lipschitz:
+ * use a step_factor for safety), and never below |p - c| - radius, the distance to a ball holding
+ * the whole set (radius = 2^(1/(power-1))), which it equals far away. Pole along z. Each lane
+ * iterates z -> z^power + c until |z| > bailout; lanes that escaped keep their z and dr while the
+ * others go on. */
+SDF_INLINE vfloat sd_mandelbulb(vec3v p, float4 center, float power, int iterations, float bailout) {
+  const float radius = pow(2.0f, 1.0f / (power - 1.0f));
+  const vec3v c = v3_sub(p, v3_from(center));
+  vec3v z = c;
+  vfloat dr = (vfloat)(1.0f);
+  vfloat r = v3_length(z);
+  vint active = MASK(r <= bailout);
+  for (int i = 0; i < iterations && LANE_ANY(active); ++i) {
+    vfloat theta = acos(clamp(z.z / fmax(r, MANDELBULB_TINY_RADIUS), -1.0f, 1.0f)) * power;
+    vfloat phi = atan2(z.y, z.x) * power;
+    vfloat r_n1 = pow(r, power - 1.0f);
+    vfloat next_dr = r_n1 * power * dr + 1.0f;
+    vfloat zr = r_n1 * r;
+    vfloat sin_theta = sin(theta);
+    vec3v next_z = v3_add(v3(zr * sin_theta * cos(phi), zr * sin_theta * sin(phi), zr * cos(theta)), c);
+    z = v3_select(z, next_z, active);
+    dr = select(dr, next_dr, active);
+    r = v3_length(z);
+    active &= MASK(r <= bailout);
+  }
+  r = fmax(r, MANDELBULB_TINY_RADIUS);
+  vfloat estimate = 0.5f * log(r) * r / dr;
+  return fmax(v3_length(c) - radius, fmin(estimate, MANDELBULB_ESTIMATE_CAP));
+}
+
+/* Floor-based mod, as GLSL's (OpenCL's fmod truncates towards zero). */
+SDF_INLINE vfloat menger_mod2(vfloat x) { return x - 2.0f * floor(x * 0.5f); }
+
+/* A bound, 1-Lipschitz: exact on the faces and inside, short of the true distance above the
+ * tunnels. The cube [-1, 1]^3 (scaled by half_size) intersected with iterations levels of crosses:
+ * in the cell of level i, centred as a in [-1, 1), the cross of half width 1/3 is where at least
+ * two of |1 - 3|a|| exceed 1. */
+SDF_INLINE vfloat sd_menger(vec3v p, float4 center, float half_size, int iterations) {
+  const vec3v q = v3_scale(v3_sub(p, v3_from(center)), (vfloat)(1.0f / half_size));
+  const vec3v b = v3_sub(v3_abs(q), v3_splat(1.0f));
+  vfloat d = v3_length(v3_max0(b)) + fmin(v3_max_component(b), 0.0f);
+  float s = 1.0f;
+  for (int i = 0; i < iterations; ++i) {
+    const vec3v a = v3(menger_mod2(q.x * s) - 1.0f, menger_mod2(q.y * s) - 1.0f, menger_mod2(q.z * s) - 1.0f);
+    s *= 3.0f;
+    const vec3v r = v3(fabs(1.0f - 3.0f * fabs(a.x)), fabs(1.0f - 3.0f * fabs(a.y)), fabs(1.0f - 3.0f * fabs(a.z)));
+    const vfloat cross = (fmin(fmax(r.x, r.y), fmin(fmax(r.y, r.z), fmax(r.z, r.x))) - 1.0f) / s;
+    d = fmax(d, cross);
+  }
+  return d * half_size;
+}

@@ -1,0 +1,84 @@
+// write_atomically: the target appears whole or not at all, whatever stops the write.
+#include "common/cancellation.hpp"
+#include "common/errors.hpp"
+#include "image/atomic_file.hpp"
+#include "support/test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+namespace clmarch {
+namespace {
+
+using testing::TempDir;
+
+std::string read(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+/// Resets the process-wide flag however the test ends.
+struct CancellationReset {
+  ~CancellationReset() { cancellation_requested().store(false); }
+};
+
+TEST(AtomicFile, WritesThroughATemporaryFileInTheSameFolder) {
+  TempDir dir;
+  std::vector<std::string> during;
+  write_atomically(dir / "out.txt", [&](const std::filesystem::path& temp) {
+    std::ofstream(temp) << "new";
+    during = dir.files();
+  });
+  ASSERT_EQ(during.size(), 1u);
+  EXPECT_TRUE(during[0].starts_with(".out.clmarch-") && during[0].ends_with(".txt")) << during[0];
+  EXPECT_EQ(dir.files(), std::vector<std::string>{"out.txt"});
+  EXPECT_EQ(read(dir / "out.txt"), "new");
+}
+
+TEST(AtomicFile, FailedWriteLeavesTheOldFileAndNoTemporary) {
+  TempDir dir;
+  std::ofstream(dir / "out.txt") << "old";
+  EXPECT_THROW(write_atomically(dir / "out.txt",
+                                [&](const std::filesystem::path& temp) {
+                                  std::ofstream(temp) << "half";
+                                  throw OutputError("disk full");
+                                }),
+               OutputError);
+  EXPECT_EQ(dir.files(), std::vector<std::string>{"out.txt"});
+  EXPECT_EQ(read(dir / "out.txt"), "old");
+}
+
+TEST(AtomicFile, CtrlCDuringTheWriteRenamesNothing) {
+  TempDir dir;
+  std::ofstream(dir / "out.txt") << "old";
+  const CancellationReset reset;
+  EXPECT_THROW(write_atomically(dir / "out.txt",
+                                [&](const std::filesystem::path& temp) {
+                                  std::ofstream(temp) << "complete, but the user asked to stop";
+                                  cancellation_requested().store(true);
+                                }),
+               Cancelled);
+  EXPECT_EQ(dir.files(), std::vector<std::string>{"out.txt"});
+  EXPECT_EQ(read(dir / "out.txt"), "old");
+}
+
+TEST(AtomicFile, OutputFolderMustTakeNewFiles) {
+  TempDir dir;
+  EXPECT_NO_THROW(check_output_folder(dir / "out.png", "-o"));
+  EXPECT_EQ(dir.files(), std::vector<std::string>{}) << "the probe file must be gone";
+  // /proc passes access(W_OK) for root, but nobody can create a file there.
+  try {
+    check_output_folder("/proc/out.png", "--output");
+    ADD_FAILURE() << "no error for /proc";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).find("--output /proc/out.png: "), 0u) << e.what();
+    EXPECT_NE(std::string(e.what()).find("/proc"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace clmarch

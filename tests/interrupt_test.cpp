@@ -1,0 +1,111 @@
+// Ctrl-C and SIGTERM through the real executable: the render stops at its next chunk or row,
+// nothing is written (no image, no temporary file), one line says so, and the exit code is
+// 128 + signal. These tests run serially (tests/CMakeLists.txt): they time how fast a render stops.
+#include "cli/interrupts.hpp"
+#include "common/cancellation.hpp"
+#include "common/errors.hpp"
+#include "common/pending_file.hpp"
+#include "support/child_process.hpp"
+
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <fstream>
+
+namespace clmarch {
+namespace {
+
+using namespace std::chrono_literals;
+using testing::ClmarchProcess;
+using testing::TempDir;
+
+// Rays that graze a plane: nearly every one marches until max_steps, so the cost of a render is
+// width x height x max_steps, whatever the device.
+constexpr const char* kGrazingScene = R"(
+camera: {position: [0, 0.01, 0], look_at: [0, 0.01, -1], fov: 1}
+render: {max_distance: 1.0e6}
+sdf: {plane: {normal: [0, 1, 0], offset: 0}}
+)";
+
+struct Interrupted {
+  int exit_code = -1;
+  double seconds_to_exit = 0.0;
+  std::string err;
+};
+
+/// Starts clmarch with args in dir, waits for ready_line on stderr, sends signal, waits for the exit.
+Interrupted interrupt(const std::vector<std::string>& args, const std::string& ready_line, int signal) {
+  ClmarchProcess process(args);
+  Interrupted result;
+  if (!process.wait_for_stderr(ready_line, 120s)) {
+    ADD_FAILURE() << "never printed '" << ready_line << "':\n" << process.err();
+    return result;
+  }
+  const auto sent = std::chrono::steady_clock::now();
+  process.send_signal(signal);
+  const std::optional<int> code = process.wait(30s);
+  result.seconds_to_exit = std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
+  result.err = process.err();
+  if (!code) {
+    ADD_FAILURE() << "still running 30 s after the signal:\n" << result.err;
+    return result;
+  }
+  result.exit_code = *code;
+  return result;
+}
+
+TEST(Interrupt, OpenClRenderStopsAtTheNextChunkAndWritesNothing) {
+  TempDir dir;
+  std::ofstream(dir / "scene.yaml") << kGrazingScene;
+  // 4096x6144 pixels are 6 chunks of 4 M pixels (the renderer's most per dispatch), ~0.5 s each on
+  // PoCL with 2 cores: an uninterrupted render runs 3 s more after the build, plus its writes.
+  const Interrupted r = interrupt({"--verbose", "render", (dir / "scene.yaml").string(), "--size", "4096x6144", "--set",
+                                   "render.max_steps=300", "-o", (dir / "out.png").string(), "--buffers",
+                                   (dir / "buffers.exr").string()},
+                                  "clmarch: build ", SIGINT);
+  EXPECT_EQ(r.exit_code, kExitInterrupted) << r.err;
+  EXPECT_TRUE(r.err.ends_with("\nclmarch: interrupted\n")) << r.err;
+  EXPECT_EQ(r.err.find("wrote"), std::string::npos) << r.err;
+  EXPECT_LT(r.seconds_to_exit, 2.0) << "the signal came before the first chunk; one chunk takes ~0.5 s";
+  EXPECT_EQ(dir.files(), std::vector<std::string>{"scene.yaml"}) << "no image, no buffers, no temporary file";
+}
+
+TEST(Interrupt, ReferenceRenderStopsWithinARow) {
+  TempDir dir;
+  std::ofstream(dir / "scene.yaml") << kGrazingScene;
+  // Half a minute of work on 2 cores: rows of 256 pixels of up to 1e5 steps each (~0.3 s a row).
+  const std::vector<std::string> args = {"--verbose", "render", (dir / "scene.yaml").string(), "--backend", "reference",
+                                         "--size", "256x256", "--set", "render.max_steps=100000", "-o",
+                                         (dir / "out.png").string()};
+  const Interrupted r = interrupt(args, "rendering on the CPU reference", SIGINT);
+  EXPECT_EQ(r.exit_code, 130) << r.err;
+  EXPECT_TRUE(r.err.ends_with("\nclmarch: interrupted\n")) << r.err;
+  EXPECT_LT(r.seconds_to_exit, 3.0) << "rows take ~0.3 s";
+  EXPECT_EQ(dir.files(), std::vector<std::string>{"scene.yaml"});
+
+  const Interrupted term = interrupt(args, "rendering on the CPU reference", SIGTERM);
+  EXPECT_EQ(term.exit_code, 143) << "128 + SIGTERM\n" << term.err;
+  EXPECT_TRUE(term.err.ends_with("\nclmarch: interrupted\n")) << term.err;
+  EXPECT_EQ(dir.files(), std::vector<std::string>{"scene.yaml"});
+}
+
+TEST(Interrupt, SecondSignalExitsAtOnceAndRemovesTheFileBeingWritten) {
+  TempDir dir;
+  const std::filesystem::path temp = dir / ".out.clmarch-1.png";
+  std::ofstream(temp) << "half an image";
+  EXPECT_EXIT(
+      {
+        install_interrupt_handlers();
+        const PendingFile pending(temp);
+        std::raise(SIGINT);
+        // The first signal only asks to stop.
+        if (!cancellation_requested().load()) std::_Exit(1);
+        std::raise(SIGINT);
+        std::_Exit(2);
+      },
+      ::testing::ExitedWithCode(130), "");
+  EXPECT_FALSE(std::filesystem::exists(temp));
+}
+
+}  // namespace
+}  // namespace clmarch

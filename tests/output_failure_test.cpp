@@ -1,0 +1,41 @@
+// Output that cannot be written: refused before rendering when the folder takes no files, and
+// when the write itself fails after the render (here: a file size limit, which binds root too),
+// exit code 4 and no partial file.
+#include "common/errors.hpp"
+#include "support/test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+namespace clmarch {
+namespace {
+
+using testing::run_clmarch;
+using testing::run_clmarch_in_shell;
+using testing::source_path;
+using testing::TempDir;
+
+TEST(OutputFailure, FolderThatTakesNoFilesIsRefusedBeforeRendering) {
+  const auto result = run_clmarch({"render", source_path("scenes/torus.yaml").string(), "--size", "16x9", "-o",
+                                   "/proc/clmarch-test.png"});
+  EXPECT_EQ(result.exit_code, kExitBadInput) << result.err;
+  EXPECT_EQ(result.err.find("--output /proc/clmarch-test.png: "), 0u) << result.err;
+  EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+}
+
+TEST(OutputFailure, WriteFailingHalfwayLeavesNoPartialFile) {
+  TempDir dir;
+  // 8 blocks of 512 bytes: the shaded 256x256 float EXR (768 KB before compression) fails well
+  // into its pixel data. SIGXFSZ is ignored so that the write returns EFBIG instead of killing.
+  const auto result = run_clmarch_in_shell("trap '' XFSZ; ulimit -f 8; ",
+                                           {"render", source_path("scenes/torus.yaml").string(), "--backend", "reference",
+                                            "--size", "256x256", "-o", (dir / "out.exr").string()});
+  EXPECT_EQ(result.exit_code, kExitOutputFailed) << result.err;
+  EXPECT_EQ(result.err.find((dir / "out.exr").string() + ": cannot write: "), 0u) << result.err;
+  EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+  EXPECT_EQ(dir.files(), std::vector<std::string>{}) << "the temporary file must be gone";
+}
+
+}  // namespace
+}  // namespace clmarch

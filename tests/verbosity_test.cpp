@@ -1,0 +1,103 @@
+// --quiet, --verbose and the progress line: what a render says on stderr, and when.
+#include "cl/devices.hpp"
+#include "common/errors.hpp"
+#include "support/child_process.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+namespace clmarch {
+namespace {
+
+using testing::run_clmarch;
+using testing::run_clmarch_on_terminal;
+using testing::TempDir;
+
+const std::string kScene = "sdf: {sphere: {radius: 1}}\nrender: {width: 16, height: 8}\n";
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+TEST(Verbosity, NormalSaysWhatItWrote) {
+  TempDir dir;
+  std::ofstream(dir / "s.yaml") << kScene;
+  const auto result = run_clmarch({"render", (dir / "s.yaml").string(), "-o", (dir / "o.png").string()});
+  ASSERT_EQ(result.exit_code, kExitOk) << result.err;
+  EXPECT_EQ(result.err, "clmarch: wrote " + (dir / "o.png").string() + "\n");
+}
+
+TEST(Verbosity, QuietSaysNothingBeforeOrAfterTheCommand) {
+  TempDir dir;
+  std::ofstream(dir / "s.yaml") << kScene;
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"--quiet", "render", (dir / "s.yaml").string(), "-o", (dir / "a.png").string()},
+        {"render", (dir / "s.yaml").string(), "-q", "-o", (dir / "b.png").string(), "--stats"}}) {
+    const auto result = run_clmarch(args);
+    ASSERT_EQ(result.exit_code, kExitOk) << result.err;
+    EXPECT_EQ(result.err, "");
+  }
+  EXPECT_EQ(dir.files(), (std::vector<std::string>{"a.png", "b.png", "s.yaml"}));
+  // Errors still speak.
+  const auto failed = run_clmarch({"--quiet", "render", (dir / "none.yaml").string()});
+  EXPECT_EQ(failed.exit_code, kExitBadInput);
+  EXPECT_TRUE(contains(failed.err, "cannot read")) << failed.err;
+}
+
+TEST(Verbosity, QuietAndVerboseExcludeEachOther) {
+  const auto result = run_clmarch({"--quiet", "--verbose", "devices"});
+  EXPECT_EQ(result.exit_code, kExitBadInput);
+  EXPECT_TRUE(contains(result.err, "--quiet excludes --verbose")) << result.err;
+}
+
+TEST(Verbosity, VerboseNamesDeviceBuildLanesLocalSizeAndCache) {
+  TempDir dir;
+  TempDir cache;
+  std::ofstream(dir / "s.yaml") << kScene;
+  const DeviceEntry device = select_device(std::nullopt);
+  const std::vector<std::string> args = {"--verbose", "render", (dir / "s.yaml").string(), "--lanes", "4",
+                                         "-o", (dir / "o.png").string()};
+  const std::vector<std::string> environment = {"POCL_CACHE_DIR=" + cache.path().string()};
+  const auto first = run_clmarch(args, environment);
+  ASSERT_EQ(first.exit_code, kExitOk) << first.err;
+  EXPECT_TRUE(contains(first.err, "clmarch: device " + device.label() + ", CPU, build options '-cl-std=CL1.2'\n")) << first.err;
+  EXPECT_TRUE(contains(first.err, "clmarch: lanes 4 (pixels per work-item), local size " +
+                                      std::to_string(default_local_size(device)) + ", 1 chunk, kernel "))
+      << first.err;
+  EXPECT_TRUE(contains(first.err, "clmarch: wrote ")) << first.err;
+  if (device.platform_name != "Portable Computing Language") GTEST_SKIP() << "the cache is only known for PoCL";
+  // An empty cache folder: the first build compiles, the second finds it.
+  EXPECT_TRUE(contains(first.err, "driver cache miss (" + cache.path().string() + ")")) << first.err;
+  const auto second = run_clmarch(args, environment);
+  ASSERT_EQ(second.exit_code, kExitOk) << second.err;
+  EXPECT_TRUE(contains(second.err, "driver cache hit (" + cache.path().string() + ")")) << second.err;
+  const auto off = run_clmarch(args, {"POCL_CACHE_DIR=" + cache.path().string(), "POCL_KERNEL_CACHE=0"});
+  EXPECT_TRUE(contains(off.err, "driver cache off")) << off.err;
+}
+
+TEST(Verbosity, ProgressOnlyOnATerminalAndNotWhenQuiet) {
+  TempDir dir;
+  // Grazing rays that march to max_steps: ~1.3 s of reference rows alone, more beside the piped
+  // run; the line appears after 1 s.
+  std::ofstream(dir / "s.yaml") << "camera: {position: [0, 0.01, 0], look_at: [0, 0.01, -1], fov: 1}\n"
+                                   "render: {width: 256, height: 256, max_steps: 1000, max_distance: 1.0e6}\n"
+                                   "sdf: {plane: {normal: [0, 1, 0]}}\n";
+  const auto args = [&](const std::string& output, bool quiet) {
+    std::vector<std::string> a = {"render", (dir / "s.yaml").string(), "--backend", "reference", "-o", (dir / output).string()};
+    if (quiet) a.push_back("--quiet");
+    return a;
+  };
+  // Not a terminal: no progress, only the result. It runs beside the terminal run to save time.
+  testing::ClmarchProcess piped(args("piped.png", false));
+  const auto shown = run_clmarch_on_terminal(args("shown.png", false));
+  ASSERT_EQ(shown.exit_code, kExitOk) << shown.err;
+  EXPECT_TRUE(contains(shown.err, "\r\033[Kreference rows: ")) << shown.err;
+  EXPECT_TRUE(contains(shown.err, "clmarch: wrote")) << shown.err;
+  ASSERT_EQ(piped.wait(std::chrono::seconds(60)), kExitOk) << piped.err();
+  EXPECT_EQ(piped.err(), "clmarch: wrote " + (dir / "piped.png").string() + "\n");
+  const auto quiet = run_clmarch_on_terminal(args("quiet.png", true));
+  ASSERT_EQ(quiet.exit_code, kExitOk) << quiet.err;
+  EXPECT_EQ(quiet.err, "");
+}
+
+}  // namespace
+}  // namespace clmarch
