@@ -9,7 +9,7 @@ packages=(
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo
   libglm-dev libopenimageio-dev openimageio-tools
   libyaml-cpp-dev libcli11-dev libfmt-dev nlohmann-json3-dev libtbb-dev
-  libgtest-dev libbenchmark-dev
+  libgtest-dev libbenchmark-dev libmuparser-dev
   clang libclang-rt-14-dev
 )
 

@@ -98,6 +98,20 @@ TEST(SceneLoader, RejectsBadScenes) {
   EXPECT_NE(error_of("sdf: {sphere: {color: [1, -1, 0]}}\n").find("must be >= 0"), std::string::npos);
 }
 
+TEST(SceneLoader, NumbersMayBeExpressionsOfTime) {
+  const std::string yaml = "sdf: {sphere: {center: [cos(t), sin(t), 0], radius: \"1 + 0.5 * sin(pi * t)\"}}\n";
+  const Scene at_zero = load_scene_text(yaml, "s.yaml", {}, 0.0);
+  EXPECT_EQ(std::get<Sphere>(at_zero.sdf.primitive).center, glm::dvec3(1, 0, 0));
+  EXPECT_DOUBLE_EQ(std::get<Sphere>(at_zero.sdf.primitive).radius, 1.0);
+  const Scene at_half = load_scene_text(yaml, "s.yaml", {}, 0.5);
+  EXPECT_NEAR(std::get<Sphere>(at_half.sdf.primitive).center.y, std::sin(0.5), 1e-15);
+  EXPECT_DOUBLE_EQ(std::get<Sphere>(at_half.sdf.primitive).radius, 1.5);
+  EXPECT_EQ(at_half.time, 0.5);
+  // Ranges apply to the value at that time, and a bad expression names itself.
+  EXPECT_NE(error_of("sdf: {sphere: {radius: \"sin(t) - 1\"}}\n").find("radius must be > 0 (got sin(t) - 1)"), std::string::npos);
+  EXPECT_NE(error_of("sdf: {sphere: {radius: \"cos(\"}}\n").find("expression of the time t"), std::string::npos);
+}
+
 TEST(SceneLoader, LimitsTreeDepth) {
   std::string deep = "sdf: ";
   for (int i = 0; i < kMaxTreeDepth; ++i) deep += "{union: [";

@@ -22,6 +22,8 @@ void add_scene_options(CLI::App& command, SceneOptions& options) {
   command.add_option("--lanes", options.lanes,
                      "Pixels each work-item marches as one vector (default: 16 on CPUs, 1 on GPUs; e.g. --lanes 1)")
       ->check(CLI::IsMember({1, 4, 8, 16}));
+  command.add_option("--time", options.time, "Time t in seconds for expressions in the scene, e.g. center: [cos(t), sin(t), 0]")
+      ->check(CLI::Number);
 }
 
 std::pair<int, int> parse_size(const std::string& text) {
@@ -39,12 +41,12 @@ std::pair<int, int> parse_size(const std::string& text) {
   return {width, height};
 }
 
-Scene load_scene_with_options(const SceneOptions& options) {
+Scene load_scene_with_options(const SceneOptions& options, std::optional<double> time) {
   std::vector<SceneOverride> overrides;
   for (const std::string& set : options.sets) overrides.push_back(parse_override(set));
   std::optional<std::pair<int, int>> size;
   if (!options.size.empty()) size = parse_size(options.size);
-  Scene scene = load_scene_file(options.scene_path, overrides);
+  Scene scene = load_scene_file(options.scene_path, overrides, time.value_or(options.time));
   if (size) {
     scene.render.width = size->first;
     scene.render.height = size->second;

@@ -19,13 +19,15 @@ struct SceneOptions {
   std::vector<std::string> sets;
   std::optional<int> device;
   std::optional<int> lanes;
+  /// The time t of expressions in the scene, in seconds (--time).
+  double time = 0.0;
 };
 
 /// Registers the shared options on a subcommand.
 void add_scene_options(CLI::App& command, SceneOptions& options);
 
-/// Loads the scene with --set applied, then --size. Throws InputError.
-Scene load_scene_with_options(const SceneOptions& options);
+/// Loads the scene with --set applied, then --size, at time (default: --time). Throws InputError.
+Scene load_scene_with_options(const SceneOptions& options, std::optional<double> time = std::nullopt);
 
 /// The OpenCL settings the options ask for.
 OpenClOptions opencl_options(const SceneOptions& options);

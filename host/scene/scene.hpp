@@ -285,6 +285,8 @@ struct Scene {
   Shading shading;
   /// Absent: the scene is not repeated.
   std::optional<Tiling> tiling;
+  /// The time t (seconds) at which expressions in the file were evaluated.
+  double time = 0.0;
 };
 
 }  // namespace clmarch

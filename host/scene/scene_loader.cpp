@@ -20,7 +20,7 @@ constexpr int kMaxStepBudget = 1000000;
 
 class SceneReader {
  public:
-  explicit SceneReader(const std::string& source_name) : yaml_(source_name) {}
+  SceneReader(const std::string& source_name, double time) : yaml_(source_name, time) {}
 
   Scene read(const YAML::Node& root, const std::string& source_name) {
     Scene scene;
@@ -501,7 +501,8 @@ SceneOverride parse_override(const std::string& option_text) {
   return {option_text.substr(0, equals), option_text.substr(equals + 1)};
 }
 
-Scene load_scene_text(const std::string& text, const std::string& source_name, const std::vector<SceneOverride>& overrides) {
+Scene load_scene_text(const std::string& text, const std::string& source_name, const std::vector<SceneOverride>& overrides,
+                      double time) {
   YAML::Node root;
   try {
     root = YAML::Load(text);
@@ -513,15 +514,17 @@ Scene load_scene_text(const std::string& text, const std::string& source_name, c
     root = YAML::Node(YAML::NodeType::Map);
   }
   for (const SceneOverride& o : overrides) apply_override(root, o);
-  return SceneReader(source_name).read(root, source_name);
+  Scene scene = SceneReader(source_name, time).read(root, source_name);
+  scene.time = time;
+  return scene;
 }
 
-Scene load_scene_file(const std::string& path, const std::vector<SceneOverride>& overrides) {
+Scene load_scene_file(const std::string& path, const std::vector<SceneOverride>& overrides, double time) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(fmt::format("{}: cannot read the scene file: {}", path, std::strerror(errno)));
   std::stringstream text;
   text << in.rdbuf();
-  return load_scene_text(text.str(), path, overrides);
+  return load_scene_text(text.str(), path, overrides, time);
 }
 
 }  // namespace clmarch

@@ -20,12 +20,13 @@ struct SceneOverride {
 /// Parses "key.path=value" as given to --set; throws InputError naming the option.
 SceneOverride parse_override(const std::string& option_text);
 
-/// Loads and validates a scene file, applying the overrides first.
-Scene load_scene_file(const std::string& path, const std::vector<SceneOverride>& overrides = {});
+/// Loads and validates a scene file, applying the overrides first; expressions of t in numbers
+/// are evaluated at time (seconds).
+Scene load_scene_file(const std::string& path, const std::vector<SceneOverride>& overrides = {}, double time = 0.0);
 
 /// Loads and validates scene text; source_name labels messages.
 Scene load_scene_text(const std::string& text, const std::string& source_name,
-                      const std::vector<SceneOverride>& overrides = {});
+                      const std::vector<SceneOverride>& overrides = {}, double time = 0.0);
 
 /// Most pixels in one image: pixel indices are 32-bit on the device.
 inline constexpr long long kMaxPixels = 2147483647LL;

@@ -4,6 +4,7 @@
 #include "common/errors.hpp"
 
 #include <fmt/format.h>
+#include <muParser.h>
 
 #include <cmath>
 #include <set>
@@ -63,8 +64,18 @@ void YamlReader::expect_map(const YAML::Node& node, const std::string& what,
 
 double YamlReader::number(const YAML::Node& node, const std::string& what, Range range) const {
   double value = 0.0;
-  if (!node.IsScalar() || !YAML::convert<double>::decode(node, value)) {
-    fail(node, fmt::format("{} must be a number (got {})", what, describe_yaml(node)));
+  if (!node.IsScalar()) fail(node, fmt::format("{} must be a number (got {})", what, describe_yaml(node)));
+  if (!YAML::convert<double>::decode(node, value)) {
+    try {
+      mu::Parser parser;
+      double t = time_;
+      parser.DefineVar("t", &t);
+      parser.DefineConst("pi", M_PI);
+      parser.SetExpr(node.Scalar());
+      value = parser.Eval();
+    } catch (const mu::Parser::exception_type& e) {
+      fail(node, fmt::format("{} must be a number or an expression of the time t (got '{}': {})", what, node.Scalar(), e.GetMsg()));
+    }
   }
   if (!std::isfinite(value)) fail(node, fmt::format("{} must be finite (got {})", what, node.Scalar()));
   // The device computes in float: a larger value would become inf there, and as a literal of the

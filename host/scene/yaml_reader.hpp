@@ -36,7 +36,8 @@ struct Range {
 
 class YamlReader {
  public:
-  explicit YamlReader(std::string source_name) : source_(std::move(source_name)) {}
+  /// time is the value of t in expressions (animation).
+  YamlReader(std::string source_name, double time) : source_(std::move(source_name)), time_(time) {}
 
   /// "file:line:col" of a node, or "file (--set)" for values that came from an override.
   std::string where(const YAML::Node& node) const;
@@ -45,6 +46,8 @@ class YamlReader {
   /// Fails unless node is a map whose keys are all in allowed and none repeats.
   void expect_map(const YAML::Node& node, const std::string& what, std::initializer_list<std::string_view> allowed) const;
 
+  /// A number, or an expression of the time t such as "cos(t)" or "0.5 + 0.2 * sin(2 * pi * t)"
+  /// (muparser syntax), evaluated at the scene's time.
   double number(const YAML::Node& node, const std::string& what, Range range = Range::any()) const;
   int integer(const YAML::Node& node, const std::string& what, Range range) const;
   std::string text(const YAML::Node& node, const std::string& what) const;
@@ -68,6 +71,7 @@ class YamlReader {
  private:
   int choice_of(const YAML::Node& node, const std::string& what, const char* const* names, std::size_t count) const;
   std::string source_;
+  double time_;
 };
 
 /// How a YAML value looks in a message: its text for scalars, else "a list" or "a map".

@@ -1,0 +1,121 @@
+// Shading against closed forms, on both backends: Lambert on a plane, Fresnel at normal incidence,
+// Beer-Lambert fog at a known depth, shadows that must leave an unoccluded point fully lit and an
+// occluded one dark, tone mapping, the sky gradient.
+#include "reference/reference_renderer.hpp"
+#include "render/opencl_renderer.hpp"
+#include "scene/camera_model.hpp"
+#include "support/test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace clmarch {
+namespace {
+
+// Colors pass through float once on the device; the centre ray of these scenes is exact.
+constexpr double kColorTolerance = 2e-5;
+
+/// The colour at the centre pixel of a 1x1 render (its ray is the camera's forward axis), from
+/// the OpenCL renderer and from the reference.
+struct CentreColor {
+  glm::dvec3 opencl;
+  glm::dvec3 reference;
+};
+
+CentreColor centre_color(const std::string& yaml) {
+  const Scene scene = testing::scene_from_yaml(yaml + "render: {width: 1, height: 1, max_steps: 500, epsilon: 1.0e-6}\n");
+  const FrameBuffers b = render_opencl(scene, {}).buffers;
+  const CameraBasis basis = camera_basis(scene.camera, 1, 1);
+  const RayResult r = reference_trace(scene, basis.origin, pixel_ray_direction(basis, 0, 0));
+  return {{b.at(Channel::R, 0, 0), b.at(Channel::G, 0, 0), b.at(Channel::B, 0, 0)}, r.color};
+}
+
+void expect_color(const CentreColor& c, const glm::dvec3& expected, double tolerance = kColorTolerance) {
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(c.opencl[k], expected[k], tolerance) << "OpenCL channel " << k;
+    EXPECT_NEAR(c.reference[k], expected[k], tolerance) << "reference channel " << k;
+  }
+}
+
+// Looking straight down at the plane y = 0 from height 2.
+const std::string kPlaneBelow =
+    "camera: {position: [0, 2, 0], look_at: [0, 0, 0], up: [0, 0, -1]}\n"
+    "sdf: {plane: {normal: [0, 1, 0], offset: 0, color: [0.8, 0.6, 0.4]}}\n";
+
+TEST(Shading, LambertOfAPlaneIsAlbedoTimesCosine) {
+  // Light 60 degrees from the normal: n.l = 0.5.
+  const CentreColor c = centre_color(kPlaneBelow +
+                                     "lights: [{directional: {direction: [0.8660254037844386, 0.5, 0], intensity: 2}}]\n"
+                                     "shading: {model: lambert, ambient: 0.1, diffuse: 0.9}\n");
+  const glm::dvec3 albedo(0.8, 0.6, 0.4);
+  expect_color(c, albedo * (0.1 + 0.9 * 2.0 * 0.5));
+}
+
+TEST(Shading, FresnelAtNormalIncidenceIsF0) {
+  // Light and view along the normal: h = n, so Fresnel-Schlick gives F0 = mix(0.04, albedo,
+  // metallic), GGX gives 1 / (pi a^2) with a = roughness^2, and the Smith term is 1.
+  const double roughness = 0.5, metallic = 0.25;
+  const glm::dvec3 albedo(0.8, 0.6, 0.4);
+  const CentreColor c = centre_color(
+      "camera: {position: [0, 2, 0], look_at: [0, 0, 0], up: [0, 0, -1]}\n"
+      "sdf: {plane: {normal: [0, 1, 0], offset: 0, color: [0.8, 0.6, 0.4], roughness: 0.5, metallic: 0.25}}\n"
+      "lights: [{directional: {direction: [0, 1, 0], intensity: 1}}]\n"
+      "shading: {model: pbr, ambient: 0}\n");
+  const glm::dvec3 f0 = glm::dvec3(0.04) + (albedo - glm::dvec3(0.04)) * metallic;
+  const double a = roughness * roughness;
+  const double distribution = 1.0 / (M_PI * a * a);
+  const double specular = distribution / (4.0 + 1e-4);
+  const glm::dvec3 expected = (1.0 - f0) * (1.0 - metallic) * albedo / M_PI + f0 * specular;
+  expect_color(c, expected, 1e-4);
+}
+
+TEST(Shading, BeerLambertFogAtAKnownDepth) {
+  // Ambient light only: the surface color is the albedo; at depth 2 the fog keeps exp(-2 d).
+  const double density = 0.3;
+  const CentreColor c = centre_color(kPlaneBelow + "shading: {ambient: 1, fog: {color: [0.2, 0.3, 0.9], density: 0.3}}\n");
+  const glm::dvec3 fog(0.2, 0.3, 0.9), albedo(0.8, 0.6, 0.4);
+  expect_color(c, fog + (albedo - fog) * std::exp(-density * 2.0), 1e-4);
+}
+
+TEST(Shading, ShadowsLeaveAnUnoccludedPointFullyLit) {
+  const std::string lit = kPlaneBelow + "lights: [{point: {position: [1, 3, 0.5]}}]\nshading: {ambient: 0.1";
+  const CentreColor plain = centre_color(lit + "}\n");
+  for (const char* mode : {"hard", "soft", "soft_improved"}) {
+    const CentreColor shadowed = centre_color(lit + ", shadows: {mode: " + mode + "}}\n");
+    expect_color(shadowed, plain.reference);
+    EXPECT_GT(plain.reference.x, 0.3) << "the light must reach the point";
+  }
+}
+
+TEST(Shading, ShadowsDarkenAnOccludedPoint) {
+  // A sphere between the light and the point: only the ambient term remains.
+  const std::string scene =
+      "camera: {position: [0, 2, 0], look_at: [0, 0, 0], up: [0, 0, -1]}\n"
+      "sdf: {union: [{plane: {normal: [0, 1, 0], offset: 0, color: [0.8, 0.6, 0.4]}},"
+      " {sphere: {center: [1.5, 1.5, 0], radius: 0.5}}]}\n"
+      "lights: [{point: {position: [3, 3, 0]}}]\n";
+  for (const char* mode : {"hard", "soft", "soft_improved"}) {
+    const CentreColor c = centre_color(scene + "shading: {ambient: 0.1, shadows: {mode: " + mode + "}}\n");
+    expect_color(c, glm::dvec3(0.8, 0.6, 0.4) * 0.1);
+  }
+}
+
+TEST(Shading, ReinhardAndGamma) {
+  // Ambient 3 on albedo 1: c = 3, Reinhard 3 / 4, then gamma 2.
+  const CentreColor c = centre_color(
+      "camera: {position: [0, 2, 0], look_at: [0, 0, 0], up: [0, 0, -1]}\n"
+      "sdf: {plane: {normal: [0, 1, 0], offset: 0}}\nshading: {ambient: 3, tone_map: reinhard, gamma: 2}\n");
+  expect_color(c, glm::dvec3(std::sqrt(0.75)));
+}
+
+TEST(Shading, SkyGradientOfMisses) {
+  // Looking straight up at nothing: the zenith color.
+  const CentreColor c = centre_color(
+      "camera: {position: [0, 2, 0], look_at: [0, 5, 0], up: [0, 0, -1]}\n"
+      "sdf: {sphere: {center: [0, -10, 0]}}\nshading: {sky: {horizon: [1, 1, 1], zenith: [0.1, 0.2, 0.6]}}\n");
+  expect_color(c, glm::dvec3(0.1, 0.2, 0.6));
+}
+
+}  // namespace
+}  // namespace clmarch
