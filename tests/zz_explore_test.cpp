@@ -89,9 +89,30 @@ TEST(Explore, KernelVsReference) {
         double e = std::abs(r.distance[i] - ref);
         worst = std::max(worst, e);
         worst_rel = std::max(worst_rel, e / std::max(std::abs(ref), 1e-3));
+        if (e > 0.01 && lanes == 1) std::printf("  at %g %g %g kernel %g ref %g\n", pts[i].x, pts[i].y, pts[i].z, r.distance[i], ref);
       }
       std::printf("%s lanes %d worst abs %g rel %g\n", y + 7, lanes, worst, worst_rel);
     }
+  }
+}
+}
+namespace clmarch {
+TEST(Explore, P16) {
+  for (int it : {1, 2, 3, 4, 5, 8}) {
+    Scene s = testing::scene_from_yaml("sdf:\n  mandelbulb: {power: 16, bailout: 64, iterations: " + std::to_string(it) + "}\n");
+    std::vector<glm::dvec3> pts = {{0.873905, 0.912428, 0.268898}};
+    OpenClOptions o; o.lanes = 1;
+    auto r = eval_points_opencl(s, pts, o);
+    Mandelbulb m = std::get<Mandelbulb>(s.sdf.primitive);
+    // float emulation
+    glm::vec3 c(pts[0]); glm::vec3 z = c; float dr = 1; float rr = glm::length(z);
+    for (int i = 0; i < it && rr <= 64; ++i) {
+      float th = std::acos(z.z / rr) * 16.f, ph = std::atan2(z.y, z.x) * 16.f;
+      float rn = std::pow(rr, 15.f); dr = rn * 16.f * dr + 1.f; float zr = rn * rr;
+      z = zr * glm::vec3(std::sin(th)*std::cos(ph), std::sin(th)*std::sin(ph), std::cos(th)) + c; rr = glm::length(z);
+      std::printf("   it %d r %g dr %g\n", i, rr, dr);
+    }
+    std::printf("it %d kernel %g ref %g float est %g\n", it, r.distance[0], reference_distance(s.sdf, pts[0]), 0.5f*std::log(rr)*rr/dr);
   }
 }
 }
