@@ -1,6 +1,10 @@
 #!/usr/bin/env bash
-# Regenerates the golden images in tests/golden/ from the current build, on purpose. Look at
-# every image before committing them: the tests trust these files.
+# Regenerates the golden images in tests/golden/ (96x54, one per scene in scenes/) from the current
+# build, on purpose. Look at every image before committing them: the tests trust these files.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-build/clmarch render scenes/torus.yaml --size 96x54 --lanes 1 -o tests/golden/torus.png
+for scene in scenes/*.yaml; do
+  name=$(basename "$scene" .yaml)
+  build/clmarch render "$scene" --size 96x54 --lanes 1 --quiet -o "tests/golden/$name.png"
+done
+echo "update-golden.sh: wrote tests/golden/*.png; look at them before committing" >&2

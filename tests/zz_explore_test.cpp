@@ -68,7 +68,7 @@ TEST(Explore, MandelbulbBound) {
 TEST(Explore, KernelVsReference) {
   const char* yamls[] = {
     "sdf:\n  mandelbulb: {}\n", "sdf:\n  mandelbulb: {power: 3, iterations: 20, bailout: 4}\n",
-    "sdf:\n  mandelbulb: {power: 16, iterations: 64, bailout: 64}\n",
+    "sdf:\n  mandelbulb: {power: 16, iterations: 64, bailout: 13}\n",
     "sdf:\n  menger: {iterations: 8}\n", "sdf:\n  menger: {iterations: 3, half_size: 3}\n",
     "sdf:\n  terrain: {}\n", "sdf:\n  terrain: {noise: perlin, octaves: 16}\n", "sdf:\n  terrain: {noise: derivative, octaves: 16}\n",
     "sdf:\n  terrain: {noise: value, octaves: 16, seed: 12345}\n",

@@ -6,7 +6,9 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 namespace clmarch {
@@ -336,8 +338,14 @@ class SceneReader {
         yaml_.optional_vec3(params, "center", key("center"), m.center);
         yaml_.optional_number(params, "power", key("power"), m.power, Range::closed(2.0, 16.0));
         if (params["iterations"]) m.iterations = yaml_.integer(params["iterations"], key("iterations"), Range::closed(1, 64));
-        // The upper end keeps bailout^power, the largest |z| the float iteration keeps, below 2^128.
-        yaml_.optional_number(params, "bailout", key("bailout"), m.bailout, Range{1.0, 64.0, true, false});
+        yaml_.optional_number(params, "bailout", key("bailout"), m.bailout, Range{1.0, std::numeric_limits<double>::infinity(), true, false});
+        // An escaping orbit reaches |z| ~ bailout^power; the kernel squares it in float (max ~3e38).
+        const double largest_bailout = std::pow(10.0, 18.0 / m.power);
+        if (m.bailout > largest_bailout) {
+          yaml_.fail(params["bailout"] ? params["bailout"] : params,
+                     fmt::format("{} must be at most 10^(18/power) = {:.3g} for power {} so that |z|^2 stays finite in "
+                                 "float (got {})", key("bailout"), largest_bailout, m.power, m.bailout));
+        }
         node.primitive = m;
         break;
       }

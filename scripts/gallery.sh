@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Renders every scene in scenes/ at 320x180 into docs/images/gallery/ and writes docs/gallery.md
+# with each scene's description and render time.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+mkdir -p docs/images/gallery
+{
+  echo "# Gallery"
+  echo
+  echo "Every scene in \`scenes/\`, rendered by \`scripts/gallery.sh\` with the OpenCL path on PoCL"
+  echo "(320×180; kernel time from \`--stats\`, on a 2-core machine)."
+  echo
+  for scene in scenes/*.yaml; do
+    name=$(basename "$scene" .yaml)
+    description=$(sed -n 's/^description: *//p' "$scene")
+    stats=$(build/clmarch render "$scene" --size 320x180 --quiet --stats -o "docs/images/gallery/$name.png")
+    kernel_ms=$(printf '%s' "$stats" | sed -n 's/.*"kernel_ms":\([0-9.]*\).*/\1/p')
+    echo "## $name"
+    echo
+    echo "$description. \`scenes/$name.yaml\`, kernel $(printf '%.1f' "$kernel_ms") ms."
+    echo
+    echo "![$name](images/gallery/$name.png)"
+    echo
+  done
+} > docs/gallery.md
+echo "gallery.sh: wrote docs/gallery.md" >&2
