@@ -52,7 +52,9 @@ void build_on_device(const Scene& scene) {
   static const DeviceEntry device = select_device(std::nullopt);
   const std::string source = generate_kernel_source(scene, {KernelPurpose::Shaded, default_lanes(device)});
   try {
-    build_device_program(device, source);
+    const DeviceProgram program = build_device_program(device, source);
+    std::fprintf(stderr, "clmarch fuzz: an accepted scene built on %s in %.0f ms\n", device.label().c_str(),
+                 program.build_ms);
   } catch (const DeviceError& e) {
     bug(std::string("an accepted scene does not build:\n") + e.what());
   }

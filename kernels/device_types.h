@@ -48,7 +48,8 @@ typedef struct MarchParams {
   CLMARCH_FLOAT max_distance;
   CLMARCH_FLOAT normal_epsilon;
   CLMARCH_FLOAT camera_height; /* world y of the camera, for height fog */
-  CLMARCH_INT padding[2];
+  CLMARCH_FLOAT over_relaxation; /* camera rays' omega in [1, 2); 1 = plain sphere tracing */
+  CLMARCH_FLOAT hit_cone_slope;  /* camera rays hit below max(epsilon, hit_cone_slope * t); 0 = fixed */
 } MarchParams;
 
 #ifndef __OPENCL_VERSION__

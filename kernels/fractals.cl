@@ -41,8 +41,8 @@ SDF_INLINE vfloat sd_mandelbulb(vec3v p, float4 center, float power, int iterati
 /* Floor-based mod, as GLSL's (OpenCL's fmod truncates towards zero). */
 SDF_INLINE vfloat menger_mod2(vfloat x) { return x - 2.0f * floor(x * 0.5f); }
 
-/* A bound, 1-Lipschitz: exact on the faces and inside, short of the true distance above the
- * tunnels. The cube [-1, 1]^3 (scaled by half_size) intersected with iterations levels of crosses:
+/* A bound, 1-Lipschitz: exact where one flat wall is nearest, short of the true distance near the
+ * edges of the holes (the median of r stands for a Euclidean length there). The cube [-1, 1]^3 (scaled by half_size) intersected with iterations levels of crosses:
  * in the cell of level i, centred as a in [-1, 1), the cross of half width 1/3 is where at least
  * two of |1 - 3|a|| exceed 1. */
 SDF_INLINE vfloat sd_menger(vec3v p, float4 center, float half_size, int iterations) {

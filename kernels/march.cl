@@ -21,7 +21,9 @@ SDF_INLINE Hit surface_at(const MarchResult* m, vec3v relative_origin, vec3v dir
 /* Adds the mirror bounces of the PBR course: each bounce's color weighted by the product of the
  * reflectivities met so far; a bounce that misses shows the sky. */
 SDF_INLINE vec3v add_reflections(vec3v color, Hit hit, vec3v dir, vint live, const MarchParams* params, __constant float4* lights) {
-  MarchLimits limits = {params->max_steps, params->epsilon, 0, 0.0f};
+  /* Mirror rays march plainly with the fixed epsilon: the pixel cone is the camera's, and their t
+   * starts again at the mirror. */
+  MarchLimits limits = {params->max_steps, params->epsilon, 0, 0.0f, 1.0f, 0.0f};
   vfloat weight = (vfloat)(1.0f);
   vint active = live;
   for (int bounce = 0; bounce < REFLECTION_BOUNCES; ++bounce) {
@@ -60,7 +62,7 @@ __kernel void march(const MarchParams params, __global float* out, __constant fl
 #else
   const vec3v origin = v3_from(params.origin);
 #endif
-  const MarchLimits limits = {params.max_steps, params.epsilon, 0, 0.0f};
+  const MarchLimits limits = {params.max_steps, params.epsilon, 0, 0.0f, params.over_relaxation, params.hit_cone_slope};
   const MarchResult m = MARCH(origin, dir, live, (vfloat)(0.0f), (vfloat)(params.max_distance), limits);
 
   const int stride = params.plane_stride;

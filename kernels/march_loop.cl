@@ -15,13 +15,25 @@ typedef struct {
   vfloat penumbra;   /* soft shadows: light reaching the start point, 1 when unoccluded */
 } MarchResult;
 
-/* Limits of one march; soft_mode and soft_k only matter for shadow rays. */
+/* Limits of one march; soft_mode and soft_k only matter for shadow rays. Camera rays set the last
+ * two; an initialiser that leaves them out gives 0 (plain sphere tracing, the fixed epsilon), which
+ * is what shadow and mirror rays use. */
 typedef struct {
   int max_steps;
   float epsilon;
   int soft_mode; /* 0: none, 1: classic penumbra, 2: improved */
   float soft_k;
+  float over_relaxation; /* Keinert et al.'s omega; steps of omega * d while it is > 1 */
+  float hit_cone_slope;  /* a lane arrives below max(epsilon, hit_cone_slope * t) */
 } MarchLimits;
+
+/* The distance below which a lane at depth t has arrived: epsilon, or the pixel cone's radius. */
+SDF_INLINE vfloat hit_threshold(const MarchLimits* limits, vfloat t) {
+  return limits->hit_cone_slope > 0.0f ? fmax(limits->hit_cone_slope * t, limits->epsilon) : (vfloat)(limits->epsilon);
+}
+
+/* Lanes that march over-relaxed from the start: all or none (masks are -1, also for LANES 1). */
+SDF_INLINE vint relaxation_mask(const MarchLimits* limits) { return (vint)(limits->over_relaxation > 1.0f ? -1 : 0); }
 
 SDF_INLINE MarchResult march_result_init(vfloat t_start) {
   MarchResult m;
@@ -47,21 +59,41 @@ SDF_INLINE void track_approach(MarchResult* m, vfloat h, vfloat previous, vint a
   }
 }
 
-/* Marches origin + t * dir for t from t_start; lanes stop at t_end (a miss). */
+/* Marches origin + t * dir for t from t_start; lanes stop at t_end (a miss).
+ * Over-relaxation (Keinert et al. 2014, with the safe fall-back): a relaxing lane steps omega * d.
+ * The unbounding spheres at the previous sample (radius d_prev) and at this one (radius d) cover
+ * the segment between them unless t - d > t_prev + d_prev = safe, the point plain sphere tracing
+ * would have reached; then the surface may have been crossed, so the sample is discarded (no hit
+ * test: d may be negative inside the solid), the lane goes back to safe and marches plainly from
+ * there. The test uses the signed d, so a step into the solid always falls back. */
 SDF_INLINE MarchResult march_plain(vec3v origin, vec3v dir, vint live, vfloat t_start, vfloat t_end, MarchLimits limits) {
   MarchResult m = march_result_init(t_start);
   vint active = live;
+  vint relaxing = relaxation_mask(&limits);
+  vfloat safe = (vfloat)(INFINITY); /* nothing to undo before the first step */
   vfloat previous = (vfloat)(1e20f);
   for (int step = 0; step < limits.max_steps && LANE_ANY(active); ++step) {
     const vfloat d = field(v3_add(origin, v3_scale(dir, m.t)));
     m.steps += select((vfloat)(0.0f), (vfloat)(1.0f), active);
     track_approach(&m, d, previous, active, &limits);
     previous = d;
-    const vint arrived = active & MASK(d < limits.epsilon);
+    /* Branches on whole packets keep plain sphere tracing (the default) as cheap as before. */
+    vint undo = (vint)(0);
+    if (LANE_ANY(relaxing)) {
+      undo = relaxing & MASK(d < m.t - safe);
+      relaxing &= ~undo;
+    }
+    const vint arrived = active & ~undo & MASK(d < hit_threshold(&limits, m.t));
     m.hit |= arrived;
     active &= ~arrived;
-    m.t = select(m.t, m.t + d, active);
+    vfloat next = m.t + d;
+    if (LANE_ANY(relaxing | undo)) {
+      next = select(select(next, m.t + d * limits.over_relaxation, relaxing), safe, undo);
+      safe = m.t + d;
+    }
+    m.t = select(m.t, next, active);
     active &= MASK(m.t < t_end);
+    relaxing &= active;
   }
   m.local_point = v3_add(origin, v3_scale(dir, m.t));
 #if defined(TILING_MOD)

@@ -28,7 +28,7 @@ typedef uint16 vuint;
 /* 32 mixed bits of the lattice point (ix, iz): spatial-hash primes, then Chris Wellons'
  * lowbias32 finaliser. */
 SDF_INLINE vuint noise_hash(vuint ix, vuint iz, uint seed) {
-  vuint h = (ix * 0x8da6b343u) ^ (iz * 0xd8163841u) ^ (vuint)(seed * 0xcb1ab31fu);
+  vuint h = (ix * 0x8da6b343u) ^ (iz * 0xd8163841u) ^ (vuint)((seed + 0x9e3779b9u) * 0xcb1ab31fu);
   h ^= h >> 16;
   h *= 0x7feb352du;
   h ^= h >> 15;

@@ -29,6 +29,10 @@ SDF_INLINE MarchResult march_cells(vec3v origin, vec3v dir, vint live, vfloat t_
   vfloat t_entry = t_start;
   vfloat s = (vfloat)(0.0f);
   vint active = live;
+  /* Over-relaxation as in march_plain, in the cell's coordinate s; a relaxed step ends at the wall
+   * at the latest, and a wall step (exact) leaves nothing to undo. */
+  vint relaxing = relaxation_mask(&limits);
+  vfloat safe = (vfloat)(INFINITY);
   vfloat previous = (vfloat)(1e20f);
   for (int step = 0; step < limits.max_steps && LANE_ANY(active); ++step) {
     const vec3v p = v3_add(entry, v3_scale(dir, s));
@@ -41,12 +45,22 @@ SDF_INLINE MarchResult march_cells(vec3v origin, vec3v dir, vint live, vfloat t_
     m.t = t_entry + s;
     track_approach(&m, d, previous, active, &limits);
     previous = d;
-    const vint arrived = active & MASK(d < limits.epsilon);
+    vint undo = (vint)(0);
+    if (LANE_ANY(relaxing)) {
+      undo = relaxing & MASK(d < s - safe);
+      relaxing &= ~undo;
+    }
+    const vint arrived = active & ~undo & MASK(d < hit_threshold(&limits, m.t));
     m.hit |= arrived;
     active &= ~arrived;
-    const vint to_wall = active & MASK(wall <= d);
+    const vint to_wall = active & ~undo & MASK(wall <= d);
     m.wall_steps += select((vfloat)(0.0f), (vfloat)(1.0f), to_wall);
-    s = select(s, s + d, active & ~to_wall);
+    vfloat next = s + d;
+    if (LANE_ANY(relaxing | undo)) {
+      next = select(select(next, s + fmin(d * limits.over_relaxation, wall), relaxing), safe, undo);
+      safe = select(s + d, (vfloat)(INFINITY), to_wall);
+    }
+    s = select(s, next, active & ~to_wall);
     const vec3v at_wall = v3_add(p, v3_scale(dir, wall));
     const vec3v next_entry = v3(enter_next_cell(at_wall.x, dir.x, MASK(wall_x == wall), cell.x),
                                 enter_next_cell(at_wall.y, dir.y, MASK(wall_y == wall), cell.y),
@@ -55,6 +69,7 @@ SDF_INLINE MarchResult march_cells(vec3v origin, vec3v dir, vint live, vfloat t_
     t_entry = select(t_entry, t_entry + s + wall, to_wall);
     s = select(s, (vfloat)(0.0f), to_wall);
     active &= MASK(t_entry + s < t_end);
+    relaxing &= active;
   }
   m.t = t_entry + s;
   m.local_point = v3_add(entry, v3_scale(dir, s));

@@ -8,8 +8,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
-cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
-  -DCLMARCH_FUZZ=ON -DCLMARCH_BUILD_TESTS=OFF >/dev/null
+cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" \
+  -DCMAKE_CXX_COMPILER=clang++ -DCLMARCH_FUZZ=ON -DCLMARCH_BUILD_TESTS=OFF >/dev/null
 cmake --build build-fuzz --target clmarch_fuzz_scene
 mkdir -p build-fuzz/corpus build-fuzz/artifacts
 # The first folder receives new inputs; scenes/ and the regression inputs only seed it.
@@ -33,4 +33,5 @@ if [ ${#inputs[@]} -gt 0 ]; then
     echo "fuzz.sh: an accepted scene failed to build; the input is named above" >&2
     exit 1
   }
+  echo "fuzz.sh: $(grep -c 'an accepted scene built' build-fuzz/builds.log) accepted corpus scenes built on the device" >&2
 fi

@@ -20,8 +20,11 @@ step "build" scripts/build.sh
 step "tests" ctest --test-dir build --output-on-failure -j "$jobs"
 [ "${CLMARCH_QUICK:-0}" = 1 ] && exit 0
 
+# -O1 -g1: a third of the compile time of -O2 -g under the sanitizers, with file:line in reports;
+# Debug keeps assertions on.
 sanitize_build() {
-  cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCLMARCH_SANITIZE=ON >/dev/null
+  cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" \
+    -DCLMARCH_SANITIZE=ON >/dev/null
   cmake --build build-sanitize
 }
 step "sanitizer build" sanitize_build

@@ -44,7 +44,7 @@ const std::vector<BadInputCase>& bad_input_cases() {
       {"negative_radius", "sdf:\n  sphere: {radius: -1}\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
        {"DIR/scene.yaml:2:20:", "sdf.sphere.radius must be > 0 (got -1)"}},
       {"wrong_value_type", kValidScene + "camera: {fov: wide}\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
-       {"DIR/scene.yaml:3:15:", "camera.fov must be a number (got 'wide')"}},
+       {"DIR/scene.yaml:3:15:", "camera.fov must be a number", "'wide'"}},
       {"zero_size_in_file", "sdf: {sphere: {radius: 1}}\nrender: {width: 0}\n",
        {"render", "DIR/scene.yaml", "-o", "DIR/out.png"}, {"DIR/scene.yaml:2:17:", "render.width must be in [1, 65536] (got 0)"}},
       {"zero_size_option", kValidScene, {"render", "DIR/scene.yaml", "--size", "0x10", "-o", "DIR/out.png"}, {"--size 0x10"}},

@@ -64,5 +64,7 @@ TEST(Help, RenderExplainsEveryOptionWithAnExample) { expect_every_option_in_an_e
 
 TEST(Help, CheckExplainsEveryOptionWithAnExample) { expect_every_option_in_an_example({"check", "--help"}, 6); }
 
+TEST(Help, BenchExplainsEveryOptionWithAnExample) { expect_every_option_in_an_example({"bench", "--help"}, 8); }
+
 }  // namespace
 }  // namespace clmarch

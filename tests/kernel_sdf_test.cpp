@@ -84,6 +84,25 @@ const std::vector<SdfCase>& sdf_cases() {
         {{0.5, 0.5, 0.5}, (std::sqrt(0.75) - 1.0 + 0.1 * std::pow(std::sin(1.0), 3)) / (1.0 + 0.2 * kSqrt3)}}},
       {"transformed_operator", "union: {translate: [0, 5, 0], scale: 3, children: [{sphere: {radius: 1}}]}",
        {{{0, 5, 0}, -3.0}, {{0, 10, 0}, 2.0}}},
+      // Far from the set the estimate is the distance to the ball of radius 2^(1/(power-1)) that
+      // holds it: |(6, 8, 0)| = 10 from the centre.
+      {"mandelbulb", "mandelbulb: {center: [1, 2, 3]}",
+       {{{1, 2, 13}, 10.0 - std::pow(2.0, 1.0 / 7.0)}, {{7, 10, 3}, 10.0 - std::pow(2.0, 1.0 / 7.0)}}},
+      {"mandelbulb_power_2", "mandelbulb: {power: 2}", {{{0, 0, -10}, 8.0}, {{0, 6, 8}, 8.0}}},
+      // One level: the cube [-1, 1]^3 with a cross of half width 1/3 cut out. Where one flat wall is
+      // nearest the formula is exact; near the edges of the holes it is a bound (at (0.5, 0.5, 0.5),
+      // the centre and beyond a tunnel's mouth the true distances are -sqrt(2)/6, sqrt(2)/3 and
+      // sqrt(1 + 2/9)).
+      {"menger", "menger: {iterations: 1}",
+       {{{0.9, 0.9, 0.9}, -0.1}, {{0.5, 0.5, 0.5}, -1.0 / 6.0}, {{0.5, 0.5, 2}, 1.0}, {{0.3, 0, 0.5}, 1.0 / 30.0},
+        {{0, 0, 0}, 1.0 / 3.0}, {{2, 0, 0}, 1.0}}},
+      {"menger_scaled", "menger: {center: [0, 0, 5], half_size: 2, iterations: 3}", {{{1, 1, 9}, 2.0}, {{0, -6, 5}, 4.0}}},
+      // Without amplitude the terrain is the flat ground y = height, times the step factor.
+      {"terrain", "terrain: {height: 0.5, amplitude: 0, step_factor: 0.5}", {{{3, 10, -7}, 4.75}, {{100, -2, 50}, -1.25}}},
+      {"terrain_derivative", "terrain: {height: -1, amplitude: 0, noise: derivative}", {{{-3, 2, 7}, 3.0}}},
+      {"step_factor", "sphere: {radius: 1, scale: 2, step_factor: 0.25}", {{{0, 6, 0}, 1.0}, {{0, 0, 0}, -0.5}}},
+      {"step_factor_operator", "union: {step_factor: 0.5, children: [{sphere: {radius: 1}}, {box: {center: [3, 0, 0]}}]}",
+       {{{0, 3, 0}, 1.0}, {{5, 0, 0}, 0.75}}},
   };
   return cases;
 }

@@ -73,6 +73,7 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
   r.pixels = w * h;
   const CameraBasis basis = camera_basis(scene.camera, w, h);
   const double eps = scene.render.epsilon;
+  const double cone_slope = hit_cone_slope(scene.render, scene.camera);
   const double normal_h = scene.render.normal_epsilon;
   const double origin_size = glm::length(basis.origin);
   const double color_slope = color_per_radian(scene);
@@ -112,8 +113,10 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
       const glm::dvec3 n_ref = normal_at(reference, i, j);
       const double cosine = std::max(std::abs(glm::dot(dir, n_ref)), kGrazingCosine);
       const double rounding = kRoundingSteps * kUnitRoundoff * (origin_size + t_ref);
-      // Both marches stop within epsilon / cos short of the surface.
-      const double depth_tolerance = eps / cosine + rounding;
+      // Both marches stop within threshold / cos short of the surface; the threshold is epsilon, or
+      // the pixel cone's radius at that depth.
+      const double threshold = std::max(eps, cone_slope * t_ref);
+      const double depth_tolerance = threshold / cosine + rounding;
       depth_abs.push_back(dt);
       depth_rel.push_back(dt / std::max(t_ref, 1e-30));
       depth_eps.push_back(dt / eps);

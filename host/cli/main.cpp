@@ -1,5 +1,6 @@
 // clmarch: the command-line entry point. Parses the command, installs the Ctrl-C handlers and
 // hands errors to run_reporting_errors, which maps them to exit codes.
+#include "cli/bench_command.hpp"
 #include "cli/check_command.hpp"
 #include "cli/devices_command.hpp"
 #include "cli/error_report.hpp"
@@ -32,15 +33,18 @@ int main(int argc, char** argv) {
       "  clmarch --verbose render scenes/torus.yaml        # device, build and dispatch details on stderr\n"
       "  clmarch render scenes/torus.yaml --quiet -o t.png # silent unless it fails\n"
       "  clmarch check scenes/torus.yaml --size 160x90     # OpenCL against the CPU reference\n"
+      "  clmarch bench scenes/torus.yaml --size 1280x720   # kernel times against the device's ceiling\n"
       "  clmarch devices                                   # the indices --device takes\n"
       "Exit codes: 0 success, 1 check failed, 2 bad input, 3 OpenCL/device fault, 4 output not written,\n"
       "70 internal error, 130 interrupted (Ctrl-C; 143 for SIGTERM). See docs/cli.md.\n"
-      "Help on a command: clmarch render --help, clmarch check --help.");
+      "Help on a command: clmarch render --help, clmarch check --help, clmarch bench --help.");
   RenderCommandOptions render_options;
   CLI::App* render = add_render_command(app, render_options);
   CheckCommandOptions check_options;
   CLI::App* check = add_check_command(app, check_options);
   CLI::App* devices = add_devices_command(app);
+  BenchCommandOptions bench_options;
+  CLI::App* bench = add_bench_command(app, bench_options);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -56,6 +60,7 @@ int main(int argc, char** argv) {
     if (render->parsed()) return run_render_command(render_options);
     if (check->parsed()) return run_check_command(check_options);
     if (devices->parsed()) return run_devices_command();
+    if (bench->parsed()) return run_bench_command(bench_options);
     return static_cast<int>(kExitOk);
   });
 }

@@ -44,6 +44,7 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& options) {
       "  clmarch render scenes/torus.yaml --backend reference -o ref.png   # CPU, double precision\n"
       "  clmarch render scenes/torus.yaml --device 0 --lanes 1     # one pixel per work-item\n"
       "  clmarch render scenes/torus.yaml --dump-kernel torus.cl   # the OpenCL C that is built\n"
+      "  clmarch render scenes/moving_shapes.yaml --time 1.5       # t = 1.5 in the scene's expressions\n"
       "  clmarch render scenes/torus.yaml --quiet                  # nothing on stderr unless it fails\n"
       "  clmarch render scenes/torus.yaml --verbose                # device, build, cache, lanes, local size\n"
       "Ctrl-C stops the render and writes nothing (exit code 130). Options: docs/cli.md.");

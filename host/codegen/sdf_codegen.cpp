@@ -118,7 +118,7 @@ class SdfEmitter {
   }
 
   Value emit_primitive(const Node& node, const std::string& p, const Material& color) {
-    Value value{fresh("d"), ""};
+    Value value{fresh("d"), "", ""};
     line(fmt::format("vfloat {} = {};  /* {} */", value.distance, primitive_call(node.primitive, p),
                      node_kind_name(node.kind)));
     if (with_color_) {

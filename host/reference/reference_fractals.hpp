@@ -18,7 +18,8 @@ double mandelbulb_radius(double power);
 double sd_mandelbulb(const glm::dvec3& p, const Mandelbulb& bulb);
 
 /// Inigo Quilez's Menger sponge: the box intersected with iterations levels of crosses. A bound
-/// (1-Lipschitz; exact on faces and inside, short of the true distance over the tunnels).
+/// (1-Lipschitz; exact where one flat wall is nearest, short of the true distance near the
+/// edges of the holes).
 double sd_menger(const glm::dvec3& p, const Menger& sponge);
 
 }  // namespace clmarch

@@ -23,21 +23,36 @@ void track_approach(MarchEnd& end, double h, double t, double previous, const Ma
   }
 }
 
+double hit_threshold(const MarchLimits& limits, double t) { return std::max(limits.hit_cone_slope * t, limits.epsilon); }
+
+// Over-relaxation (Keinert et al. 2014, "Enhanced Sphere Tracing", with the safe fall-back): steps
+// are omega * d while the unbounding spheres of consecutive samples overlap, i.e. while
+// t - d <= safe = t_prev + d_prev (where plain sphere tracing would be). A sample that fails this
+// may lie past the surface: it is discarded without a hit test, t goes back to safe and the ray
+// marches plainly from there (omega = 1 for the rest of the ray).
 MarchEnd march_plain(const Field& field, const glm::dvec3& origin, const glm::dvec3& direction, double t_start, double t_end,
                      const MarchLimits& limits) {
   MarchEnd end;
   double t = t_start;
   double previous = 1e20;
+  bool relaxing = limits.over_relaxation > 1.0;
+  double safe = std::numeric_limits<double>::infinity();
   for (int i = 0; i < limits.max_steps; ++i) {
     const double d = field(origin + t * direction);
     ++end.steps;
     track_approach(end, d, t, previous, limits);
     previous = d;
-    if (d < limits.epsilon) {
-      end.hit = true;
-      break;
+    if (relaxing && d < t - safe) {
+      relaxing = false;
+      t = safe;
+    } else {
+      if (d < hit_threshold(limits, t)) {
+        end.hit = true;
+        break;
+      }
+      safe = t + d;
+      t += relaxing ? limits.over_relaxation * d : d;
     }
-    t += d;
     if (t >= t_end) break;
   }
   end.depth = t;
@@ -56,6 +71,10 @@ MarchEnd march_cells(const Scene& scene, const glm::dvec3& origin, const glm::dv
   glm::dvec3 entry = wrap_to_cell(origin + t_start * direction, cell);
   double t_entry = t_start, s = 0.0;
   double previous = 1e20;
+  // Over-relaxation as in march_plain, in the cell's coordinate s: a relaxed step ends at the wall
+  // at the latest, and a wall step (exact) leaves nothing to undo.
+  bool relaxing = limits.over_relaxation > 1.0;
+  double safe = std::numeric_limits<double>::infinity();
   for (int i = 0; i < limits.max_steps; ++i) {
     const glm::dvec3 p = entry + s * direction;
     const double d = reference_distance(scene.sdf, p);
@@ -69,11 +88,13 @@ MarchEnd march_cells(const Scene& scene, const glm::dvec3& origin, const glm::dv
     ++end.steps;
     track_approach(end, d, t_entry + s, previous, limits);
     previous = d;
-    if (d < limits.epsilon) {
+    if (relaxing && d < s - safe) {
+      relaxing = false;
+      s = safe;
+    } else if (d < hit_threshold(limits, t_entry + s)) {
       end.hit = true;
       break;
-    }
-    if (wall <= d) {
+    } else if (wall <= d) {
       ++end.wall_steps;
       const glm::dvec3 at_wall = p + wall * direction;
       for (int a = 0; a < 3; ++a) {
@@ -81,8 +102,10 @@ MarchEnd march_cells(const Scene& scene, const glm::dvec3& origin, const glm::dv
       }
       t_entry += s + wall;
       s = 0.0;
+      safe = std::numeric_limits<double>::infinity();
     } else {
-      s += d;
+      safe = s + d;
+      s += relaxing ? std::min(limits.over_relaxation * d, wall) : d;
     }
     if (t_entry + s >= t_end) break;
   }
@@ -92,6 +115,15 @@ MarchEnd march_cells(const Scene& scene, const glm::dvec3& origin, const glm::dv
 }
 
 }  // namespace
+
+MarchLimits camera_march_limits(const Scene& scene) {
+  MarchLimits limits;
+  limits.max_steps = scene.render.max_steps;
+  limits.epsilon = scene.render.epsilon;
+  limits.over_relaxation = scene.render.over_relaxation;
+  limits.hit_cone_slope = hit_cone_slope(scene.render, scene.camera);
+  return limits;
+}
 
 glm::dvec3 wrap_to_cell(const glm::dvec3& p, const glm::dvec3& cell) { return p - cell * glm::floor(p / cell); }
 

@@ -27,7 +27,14 @@ struct MarchLimits {
   /// Shadow rays: 0 no penumbra, 1 Inigo Quilez's min(k h / t), 2 his improved variant.
   int soft_mode = 0;
   double soft_k = 0.0;
+  /// Keinert et al.'s omega: steps of omega * d, with the safe fall-back; 1 = plain (camera rays only).
+  double over_relaxation = 1.0;
+  /// A ray at depth t arrives below max(epsilon, hit_cone_slope * t) (camera rays only).
+  double hit_cone_slope = 0.0;
 };
+
+/// The limits of camera rays: the render settings' budget, threshold and over-relaxation.
+MarchLimits camera_march_limits(const Scene& scene);
 
 /// Where a march ended.
 struct MarchEnd {

@@ -63,7 +63,7 @@ std::int32_t noise_lattice(double x) {
 std::uint32_t noise_hash(std::uint32_t ix, std::uint32_t iz, std::uint32_t seed) {
   // Spatial-hash primes on each coordinate, then Chris Wellons' lowbias32 finaliser. All uint32:
   // products and shifts wrap exactly as OpenCL's uint does.
-  std::uint32_t h = (ix * 0x8da6b343u) ^ (iz * 0xd8163841u) ^ (seed * 0xcb1ab31fu);
+  std::uint32_t h = (ix * 0x8da6b343u) ^ (iz * 0xd8163841u) ^ ((seed + 0x9e3779b9u) * 0xcb1ab31fu);
   h ^= h >> 16;
   h *= 0x7feb352du;
   h ^= h >> 15;

@@ -50,6 +50,7 @@ SurfacePoint surface_at(const Scene& scene, const MarchEnd& end, const glm::dvec
 // The PBR course's mirror bounces: each bounce's color weighted by the product of the
 // reflectivities met so far; a bounce that misses shows the sky.
 glm::dvec3 add_reflections(const Scene& scene, glm::dvec3 color, SurfacePoint hit, glm::dvec3 direction) {
+  // Mirror rays march plainly with the fixed epsilon: the pixel cone is the camera's.
   const MarchLimits limits{scene.render.max_steps, scene.render.epsilon, 0, 0.0};
   const double offset = reflection_offset(scene.render);
   double weight = 1.0;
@@ -77,7 +78,7 @@ glm::dvec3 reference_normal(const Node& root, const glm::dvec3& p, NormalMethod 
 }
 
 RayResult reference_trace(const Scene& scene, const glm::dvec3& origin, const glm::dvec3& direction) {
-  const MarchLimits limits{scene.render.max_steps, scene.render.epsilon, 0, 0.0};
+  const MarchLimits limits = camera_march_limits(scene);
   // Under the cells tiling the march runs in the camera's cell; origin is the world position.
   const bool cells = scene.tiling && scene.tiling->method == TilingMethod::Cells;
   const glm::dvec3 frame_origin = cells ? origin - scene.camera.position + camera_origin_in_frame(scene) : origin;

@@ -116,6 +116,8 @@ RenderResult render_opencl(const Scene& scene, const OpenClOptions& options) {
   params.normal_epsilon = static_cast<float>(scene.render.normal_epsilon);
   if (scene.tiling) params.origin_in_cell = to_cl(offset_in_cell(scene.camera.position, scene.tiling->cell));
   params.camera_height = static_cast<float>(scene.camera.position.y);
+  params.over_relaxation = static_cast<float>(scene.render.over_relaxation);
+  params.hit_cone_slope = static_cast<float>(hit_cone_slope(scene.render, scene.camera));
   const std::vector<cl_float4> lights = light_data(scene);
 
   RenderResult result;

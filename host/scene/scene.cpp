@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace clmarch {
 
@@ -44,6 +45,12 @@ double displacement_lipschitz(const Node& displace) {
 
 double reflection_offset(const RenderSettings& render) {
   return 10.0 * std::max(render.epsilon, render.normal_epsilon);
+}
+
+double hit_cone_slope(const RenderSettings& render, const Camera& camera) {
+  if (render.hit_threshold != HitThreshold::PixelCone) return 0.0;
+  const double half_fov = camera.fov_degrees * std::numbers::pi / 360.0;
+  return render.cone_factor * 2.0 * std::tan(half_fov) / render.height;
 }
 
 bool Transform::is_identity() const {

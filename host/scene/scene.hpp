@@ -131,6 +131,11 @@ struct Camera {
 enum class NormalMethod { Central, Tetrahedral };
 inline constexpr const char* kNormalMethodNames[] = {"central", "tetrahedral"};
 
+/// When a ray counts as arrived: below epsilon, or below a threshold that grows with depth so it
+/// stays a fixed share of a pixel's footprint (the pixel cone).
+enum class HitThreshold { Fixed, PixelCone };
+inline constexpr const char* kHitThresholdNames[] = {"fixed", "pixel_cone"};
+
 /// Settings of the march itself.
 struct RenderSettings {
   int width = 640;
@@ -142,6 +147,11 @@ struct RenderSettings {
   NormalMethod normal_method = NormalMethod::Central;
   /// Finite-difference step of the normal estimate.
   double normal_epsilon = 1e-3;
+  /// Keinert et al.'s over-relaxation factor omega of camera rays, in [1, 2); 1 = plain sphere tracing.
+  double over_relaxation = 1.0;
+  HitThreshold hit_threshold = HitThreshold::Fixed;
+  /// pixel_cone: the threshold is max(epsilon, cone_factor * t * pixel angle).
+  double cone_factor = 1.0;
 };
 
 enum class LightKind { Point, Directional };
@@ -273,6 +283,10 @@ struct Tiling {
 /// How far a mirror bounce starts off the surface along the normal: clear of the hit threshold and
 /// of the normal estimate's step, so the reflected ray does not hit its own start.
 double reflection_offset(const RenderSettings& render);
+
+/// Growth of the camera rays' hit threshold per unit of depth: cone_factor * 2 tan(fov / 2) / height
+/// (the angle one pixel subtends at the image centre) with the pixel cone, 0 with the fixed threshold.
+double hit_cone_slope(const RenderSettings& render, const Camera& camera);
 
 /// A whole scene file after loading and validation.
 struct Scene {

@@ -57,7 +57,8 @@ class SceneReader {
 
   RenderSettings read_render(const YAML::Node& node) {
     RenderSettings render;
-    yaml_.expect_map(node, "render", {"width", "height", "max_steps", "epsilon", "max_distance", "normal_method", "normal_epsilon"});
+    yaml_.expect_map(node, "render", {"width", "height", "max_steps", "epsilon", "max_distance", "normal_method", "normal_epsilon",
+                                      "over_relaxation", "hit_threshold", "cone_factor"});
     const Range side = Range::closed(1, kMaxImageSide);
     if (node["width"]) render.width = yaml_.integer(node["width"], "render.width", side);
     if (node["height"]) render.height = yaml_.integer(node["height"], "render.height", side);
@@ -68,10 +69,25 @@ class SceneReader {
       render.normal_method = static_cast<NormalMethod>(yaml_.choice(node["normal_method"], "render.normal_method", kNormalMethodNames));
     }
     yaml_.optional_number(node, "normal_epsilon", "render.normal_epsilon", render.normal_epsilon, Range::positive());
+    read_march_acceleration(node, render);
     if (!image_size_fits(render.width, render.height)) {
       yaml_.fail(node, fmt::format("render.width x render.height = {} x {} exceeds {} pixels", render.width, render.height, kMaxPixels));
     }
     return render;
+  }
+
+  /// over_relaxation, hit_threshold and cone_factor; cone_factor without the pixel cone is unused,
+  /// so an error like an unknown key.
+  void read_march_acceleration(const YAML::Node& node, RenderSettings& render) {
+    const Range below_two{1.0, 2.0, false, true};
+    yaml_.optional_number(node, "over_relaxation", "render.over_relaxation", render.over_relaxation, below_two);
+    if (node["hit_threshold"]) {
+      render.hit_threshold = static_cast<HitThreshold>(yaml_.choice(node["hit_threshold"], "render.hit_threshold", kHitThresholdNames));
+    }
+    yaml_.optional_number(node, "cone_factor", "render.cone_factor", render.cone_factor, Range::positive());
+    if (node["cone_factor"] && render.hit_threshold != HitThreshold::PixelCone) {
+      yaml_.fail(node["cone_factor"], "render.cone_factor applies only with render.hit_threshold: pixel_cone");
+    }
   }
 
   std::vector<Light> read_lights(const YAML::Node& node) {

@@ -1,0 +1,91 @@
+// `clmarch bench`'s measurements, in the order that keeps each from disturbing the next: OpenCL
+// renders, the ceiling kernel, then the CPU reference (which loads every core).
+#include "bench/bench_report.hpp"
+
+#include "bench/throughput.hpp"
+#include "reference/reference_renderer.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+
+namespace clmarch {
+
+BenchReport run_bench(const Scene& scene, const OpenClOptions& options, const BenchSettings& settings) {
+  BenchReport r;
+  r.width = scene.render.width;
+  r.height = scene.render.height;
+  r.repeat = settings.repeat;
+  const double pixels = static_cast<double>(r.width) * r.height;
+
+  OpenClOptions shaded = options;
+  shaded.purpose = KernelPurpose::Shaded;
+  RenderResult last;
+  r.shaded_ms = median(time_renders(scene, shaded, settings.repeat, &last));
+  r.device = last.stats.device;
+  r.lanes = last.stats.lanes;
+  r.build_ms = last.stats.build_ms;
+  r.rays_per_s = pixels / (r.shaded_ms * 1e-3);
+
+  // Only the march runs in the depth-only kernel, so its steps are all its distance evaluations.
+  OpenClOptions depth = options;
+  depth.purpose = KernelPurpose::DepthSteps;
+  r.depth_ms = median(time_renders(scene, depth, settings.repeat, &last));
+  r.steps_per_pixel = static_cast<double>(last.stats.steps) / pixels;
+  r.evals_per_s = static_cast<double>(last.stats.steps) / (r.depth_ms * 1e-3);
+  r.depth_to_shaded = r.depth_ms / r.shaded_ms;
+
+  CeilingKernel ceiling(scene, options, settings.ceiling_depths);
+  ceiling.run_ms();  // PoCL compiles the work-group function at the first enqueue
+  std::vector<double> ceiling_ms;
+  for (int i = 0; i < settings.repeat; ++i) ceiling_ms.push_back(ceiling.run_ms());
+  r.ceiling_ms = median(ceiling_ms);
+  r.ceiling_points = ceiling.points();
+  r.ceiling_evals_per_s = static_cast<double>(ceiling.counted_evaluations()) / (r.ceiling_ms * 1e-3);
+  r.ceiling_ratio = r.evals_per_s / r.ceiling_evals_per_s;
+
+  if (settings.reference) {
+    const auto start = std::chrono::steady_clock::now();
+    render_reference(scene);
+    r.reference_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    r.opencl_to_reference = r.shaded_ms / *r.reference_ms;
+  }
+  return r;
+}
+
+nlohmann::json BenchReport::to_json() const {
+  const auto or_null = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
+  return {{"device", device},
+          {"lanes", lanes},
+          {"width", width},
+          {"height", height},
+          {"repeat", repeat},
+          {"build_ms", build_ms},
+          {"kernel_ms", shaded_ms},
+          {"depth_kernel_ms", depth_ms},
+          {"rays_per_s", rays_per_s},
+          {"steps_per_pixel", steps_per_pixel},
+          {"evals_per_s", evals_per_s},
+          {"ceiling_evals_per_s", ceiling_evals_per_s},
+          {"ceiling_kernel_ms", ceiling_ms},
+          {"ceiling_points", ceiling_points},
+          {"ceiling_ratio", ceiling_ratio},
+          {"depth_to_shaded_ratio", depth_to_shaded},
+          {"reference_ms", or_null(reference_ms)},
+          {"opencl_to_reference_ratio", or_null(opencl_to_reference)}};
+}
+
+std::string BenchReport::to_text() const {
+  std::string out = fmt::format("{}x{} on {} ({} lanes), median of {} runs\n", width, height, device, lanes, repeat);
+  out += fmt::format("  shaded kernel      {:9.2f} ms   {:.3g} rays/s\n", shaded_ms, rays_per_s);
+  out += fmt::format("  depth-only kernel  {:9.2f} ms   {:.2f} of the shaded time\n", depth_ms, depth_to_shaded);
+  out += fmt::format("  march steps        {:9.2f} per pixel\n", steps_per_pixel);
+  out += fmt::format("  distance evals     {:9.3g} /s  {:.2f} of the ceiling\n", evals_per_s, ceiling_ratio);
+  out += fmt::format("  ceiling            {:9.3g} /s  ({} points in {:.2f} ms)\n", ceiling_evals_per_s, ceiling_points, ceiling_ms);
+  if (reference_ms) {
+    out += fmt::format("  CPU reference      {:9.1f} ms   OpenCL shaded takes {:.3f} of it\n", *reference_ms, *opencl_to_reference);
+  }
+  return out;
+}
+
+}  // namespace clmarch

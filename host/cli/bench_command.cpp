@@ -1,0 +1,48 @@
+// `clmarch bench`.
+#include "cli/bench_command.hpp"
+
+#include "bench/bench_report.hpp"
+#include "common/errors.hpp"
+
+#include <fmt/format.h>
+
+#include <iostream>
+
+namespace clmarch {
+
+CLI::App* add_bench_command(CLI::App& app, BenchCommandOptions& options) {
+  CLI::App* bench = app.add_subcommand(
+      "bench", "Measure a scene's kernel times, rays/s, steps and distance evaluations/s against the device's ceiling");
+  bench->footer(
+      "Kernel times are medians of --repeat runs from OpenCL profiling events. The ceiling is the scene's\n"
+      "distance function evaluated without divergence (docs/performance.md).\n"
+      "Examples:\n"
+      "  clmarch bench scenes/torus.yaml --size 1280x720\n"
+      "  clmarch bench scenes/torus.yaml --set render.over_relaxation=1.2 --repeat 9 --json\n"
+      "  clmarch bench scenes/mandelbulb.yaml --no-reference --device 0 --lanes 8\n"
+      "  clmarch bench scenes/moving_shapes.yaml --time 1.5");
+  add_scene_options(*bench, options.scene);
+  bench->add_option("--repeat", options.repeat, "Timed runs of each kernel, after one untimed run (default 5; e.g. --repeat 9)")
+      ->check(CLI::Range(1, 1000));
+  bench->add_flag("--json", options.json, "Print the figures as one JSON object on stdout");
+  bench->add_flag("--no-reference", options.no_reference, "Skip the CPU reference render (slow for large or fractal scenes)");
+  return bench;
+}
+
+int run_bench_command(const BenchCommandOptions& options) {
+  const Scene scene = load_scene_with_options(options.scene);
+  BenchSettings settings;
+  settings.repeat = options.repeat;
+  settings.reference = !options.no_reference;
+  const BenchReport report = run_bench(scene, opencl_options(options.scene), settings);
+  if (options.json) {
+    nlohmann::json json = report.to_json();
+    json["scene"] = options.scene.scene_path;
+    std::cout << json.dump() << std::endl;
+  } else {
+    std::cout << options.scene.scene_path << ": " << report.to_text();
+  }
+  return kExitOk;
+}
+
+}  // namespace clmarch
