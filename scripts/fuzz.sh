@@ -16,7 +16,7 @@ mkdir -p build-fuzz/corpus build-fuzz/artifacts
 seeds=(scenes)
 [ -d tests/fuzz_regressions ] && seeds+=(tests/fuzz_regressions)
 build-fuzz/clmarch_fuzz_scene -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=4096 \
-  -dict=fuzz/scene.dict -artifact_prefix=build-fuzz/artifacts/ -print_final_stats=1 \
+  -dict=tests/fuzz/scene.dict -artifact_prefix=build-fuzz/artifacts/ -print_final_stats=1 \
   build-fuzz/corpus "${seeds[@]}" 2> build-fuzz/fuzz.log || {
   tail -n 60 build-fuzz/fuzz.log >&2
   echo "fuzz.sh: the fuzzer found a bug; its input is in build-fuzz/artifacts/" >&2

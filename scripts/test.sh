@@ -29,6 +29,6 @@ sanitize_build() {
 }
 step "sanitizer build" sanitize_build
 # Sanitizer options and the leak suppressions for the OpenCL driver are built into the
-# executables (sanitize/sanitizer_defaults.cpp).
+# executables (tests/sanitize/sanitizer_defaults.cpp).
 step "tests under ASan+UBSan" ctest --test-dir build-sanitize --output-on-failure -j "$jobs"
 step "fuzzing" scripts/fuzz.sh "${CLMARCH_FUZZ_SECONDS:-60}"

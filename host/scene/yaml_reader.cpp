@@ -79,7 +79,7 @@ double YamlReader::number(const YAML::Node& node, const std::string& what, Range
   }
   if (!std::isfinite(value)) fail(node, fmt::format("{} must be finite (got {})", what, node.Scalar()));
   // The device computes in float: a larger value would become inf there, and as a literal of the
-  // generated program "inff", which OpenCL C cannot parse (found by fuzz/scene_fuzzer.cpp).
+  // generated program "inff", which OpenCL C cannot parse (found by tests/fuzz/scene_fuzzer.cpp).
   if (std::abs(value) > kMaxSceneNumber) {
     fail(node, fmt::format("{} must be within +-{:g}, the float range (got {})", what, kMaxSceneNumber, node.Scalar()));
   }
