@@ -1,10 +1,13 @@
 // `clmarch render`.
 #include "cli/render_command.hpp"
 
+#include "cli/frame_sequence.hpp"
+
 #include "cl/devices.hpp"
 #include "common/cancellation.hpp"
 #include "common/errors.hpp"
 #include "common/log.hpp"
+#include "common/progress.hpp"
 #include "image/atomic_file.hpp"
 #include "image/image_writer.hpp"
 #include "reference/reference_renderer.hpp"
@@ -18,6 +21,7 @@
 #include <chrono>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
 namespace clmarch {
 namespace {
@@ -45,6 +49,7 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& options) {
       "  clmarch render scenes/torus.yaml --device 0 --lanes 1     # one pixel per work-item\n"
       "  clmarch render scenes/torus.yaml --dump-kernel torus.cl   # the OpenCL C that is built\n"
       "  clmarch render scenes/moving_shapes.yaml --time 1.5       # t = 1.5 in the scene's expressions\n"
+      "  clmarch render scenes/moving_shapes.yaml --frames 0:47 --fps 24 -o frames/shot_####.png\n"
       "  clmarch render scenes/torus.yaml --quiet                  # nothing on stderr unless it fails\n"
       "  clmarch render scenes/torus.yaml --verbose                # device, build, cache, lanes, local size\n"
       "Ctrl-C stops the render and writes nothing (exit code 130). Options: docs/cli.md.");
@@ -61,14 +66,22 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& options) {
       ->check(CLI::IsMember({"opencl", "reference"}));
   render->add_option("--dump-kernel", options.dump_kernel,
                      "Write the exact OpenCL C source that is built, before building it (e.g. --dump-kernel torus.cl)");
+  CLI::Option* frames = render->add_option("--frames", options.frames,
+                     "Render frames FIRST:LAST (both included) of an animation, frame n at t = n / fps, to numbered "
+                     "files: a run of # in -o/--buffers is the frame number (-o shot_####.png), else _NNNN goes "
+                     "before the extension (e.g. --frames 0:47 --fps 24)");
+  render->add_option("--fps", options.fps, "Frames per second of --frames (default 24; e.g. --fps 30)")
+      ->check(CLI::PositiveNumber)
+      ->needs(frames);
   render->add_flag("--stats", options.stats,
                    "Print one JSON line of figures on stdout: device, lanes, build_ms, kernel_ms, steps, rays_per_s");
   return render;
 }
 
-int run_render_command(const RenderCommandOptions& options) {
-  std::string output = options.output;
-  if (output.empty()) output = std::filesystem::path(options.scene.scene_path).stem().string() + ".png";
+namespace {
+
+/// Refuses option combinations that cannot apply, before anything is loaded or written.
+void check_render_options(const RenderCommandOptions& options, const std::string& output) {
   check_image_path(output, "--output");
   if (options.backend == "reference") {
     for (const auto& [given, name] : {std::pair{options.scene.device.has_value(), "--device"},
@@ -86,14 +99,23 @@ int run_render_command(const RenderCommandOptions& options) {
     check_output_folder(options.buffers, "--buffers");
   }
   if (!options.dump_kernel.empty()) check_output_folder(options.dump_kernel, "--dump-kernel");
+  if (!options.frames.empty() && options.scene.time) {
+    throw InputError("--time and --frames both set the time: --frames renders frame n at t = n / fps");
+  }
+}
 
-  const Scene scene = load_scene_with_options(options.scene);
-  log_verbose(fmt::format("scene {}: {}x{} pixels, max_steps {}", options.scene.scene_path, scene.render.width,
-                          scene.render.height, scene.render.max_steps));
-  RenderResult result;
+/// Where one image goes: the files named by the options, numbered when rendering a sequence.
+struct FrameFiles {
+  std::string output;
+  std::string buffers;
+  std::string dump_kernel;
+};
+
+RenderResult render_scene(const RenderCommandOptions& options, const Scene& scene, const FrameFiles& files) {
   if (options.backend == "reference") {
     log_verbose(fmt::format("rendering on the CPU reference (double precision, {} threads)",
                             tbb::this_task_arena::max_concurrency()));
+    RenderResult result;
     const auto start = std::chrono::steady_clock::now();
     result.buffers = render_reference(scene);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -102,24 +124,31 @@ int run_render_command(const RenderCommandOptions& options) {
     for (float s : result.buffers.plane(Channel::Steps)) result.stats.steps += static_cast<std::uint64_t>(s);
     for (float s : result.buffers.plane(Channel::WallSteps)) result.stats.wall_steps += static_cast<std::uint64_t>(s);
     result.stats.rays_per_s = static_cast<double>(scene.render.width) * scene.render.height / (ms * 1e-3);
-  } else {
-    OpenClOptions cl = opencl_options(options.scene);
-    cl.purpose = purpose_for(scene, !options.buffers.empty());
-    cl.dump_kernel_path = options.dump_kernel;
-    result = render_opencl(scene, cl);
-    // RenderStats does not carry the local size yet; default_local_size is the rule the renderer's
-    // own local_size() follows (they must agree until the renderer reports the size it used).
-    log_verbose(fmt::format("lanes {} (pixels per work-item), local size {}, {} chunk{}, kernel {:.1f} ms",
-                            result.stats.lanes, default_local_size(select_device(options.scene.device)),
-                            result.stats.chunks, result.stats.chunks == 1 ? "" : "s", result.stats.kernel_ms));
+    return result;
   }
+  OpenClOptions cl = opencl_options(options.scene);
+  cl.purpose = purpose_for(scene, !files.buffers.empty());
+  cl.dump_kernel_path = files.dump_kernel;
+  RenderResult result = render_opencl(scene, cl);
+  // RenderStats does not carry the local size yet; default_local_size is the rule the renderer's
+  // own local_size() follows (they must agree until the renderer reports the size it used).
+  log_verbose(fmt::format("lanes {} (pixels per work-item), local size {}, {} chunk{}, kernel {:.1f} ms",
+                          result.stats.lanes, default_local_size(select_device(options.scene.device)),
+                          result.stats.chunks, result.stats.chunks == 1 ? "" : "s", result.stats.kernel_ms));
+  return result;
+}
+
+/// Renders and writes one image (and its buffers); frame is set for sequences.
+void render_image(const RenderCommandOptions& options, const Scene& scene, const FrameFiles& files,
+                  std::optional<int> frame) {
+  RenderResult result = render_scene(options, scene, files);
   // A Ctrl-C that came too late for the renderer's own checks still writes nothing.
   throw_if_cancelled();
   apply_view(result.buffers, scene.shading.view, scene.render);
 
-  write_color_image(output, result.buffers);
-  if (!options.buffers.empty()) write_buffers_exr(options.buffers, result.buffers);
-  log_info(fmt::format("wrote {}{}", output, options.buffers.empty() ? "" : " and " + options.buffers));
+  write_color_image(files.output, result.buffers);
+  if (!files.buffers.empty()) write_buffers_exr(files.buffers, result.buffers);
+  log_info(fmt::format("wrote {}{}", files.output, files.buffers.empty() ? "" : " and " + files.buffers));
 
   if (options.stats) {
     const RenderStats& s = result.stats;
@@ -127,8 +156,44 @@ int run_render_command(const RenderCommandOptions& options) {
                            {"width", scene.render.width}, {"height", scene.render.height}, {"build_ms", s.build_ms},
                            {"kernel_ms", s.kernel_ms},  {"steps", s.steps},            {"rays_per_s", s.rays_per_s},
                            {"chunks", s.chunks}, {"surface_steps", s.steps - s.wall_steps}, {"wall_steps", s.wall_steps}};
+    if (frame) {
+      line["frame"] = *frame;
+      line["time"] = scene.time;
+    }
     std::cout << line.dump() << std::endl;
   }
+}
+
+/// Every frame of --frames in turn; each image is complete before the next begins, so a Ctrl-C
+/// leaves the finished frames and nothing of the one in progress.
+void render_sequence(const RenderCommandOptions& options, const std::string& output) {
+  const FrameRange range = parse_frame_range(options.frames, options.fps);
+  ProgressLine progress("frames", range.count());
+  for (int frame = range.first; frame <= range.last; ++frame) {
+    const Scene scene = load_scene_with_options(options.scene, range.time_of(frame));
+    FrameFiles files{frame_path(output, frame, range), "", ""};
+    if (!options.buffers.empty()) files.buffers = frame_path(options.buffers, frame, range);
+    if (!options.dump_kernel.empty()) files.dump_kernel = frame_path(options.dump_kernel, frame, range);
+    log_verbose(fmt::format("frame {} at t = {} s", frame, scene.time));
+    render_image(options, scene, files, frame);
+    progress.advance();
+  }
+}
+
+}  // namespace
+
+int run_render_command(const RenderCommandOptions& options) {
+  std::string output = options.output;
+  if (output.empty()) output = std::filesystem::path(options.scene.scene_path).stem().string() + ".png";
+  check_render_options(options, output);
+  if (!options.frames.empty()) {
+    render_sequence(options, output);
+    return kExitOk;
+  }
+  const Scene scene = load_scene_with_options(options.scene);
+  log_verbose(fmt::format("scene {}: {}x{} pixels, max_steps {}", options.scene.scene_path, scene.render.width,
+                          scene.render.height, scene.render.max_steps));
+  render_image(options, scene, FrameFiles{output, options.buffers, options.dump_kernel}, std::nullopt);
   return kExitOk;
 }
 

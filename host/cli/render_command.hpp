@@ -16,6 +16,9 @@ struct RenderCommandOptions {
   std::string backend = "opencl";
   std::string dump_kernel;
   bool stats = false;
+  /// --frames A:B; empty: one image at --time.
+  std::string frames;
+  double fps = 24.0;
 };
 
 /// Registers the subcommand; run_render_command does the work once parsed.

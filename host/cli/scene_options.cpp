@@ -46,7 +46,7 @@ Scene load_scene_with_options(const SceneOptions& options, std::optional<double>
   for (const std::string& set : options.sets) overrides.push_back(parse_override(set));
   std::optional<std::pair<int, int>> size;
   if (!options.size.empty()) size = parse_size(options.size);
-  Scene scene = load_scene_file(options.scene_path, overrides, time.value_or(options.time));
+  Scene scene = load_scene_file(options.scene_path, overrides, time ? *time : options.time.value_or(0.0));
   if (size) {
     scene.render.width = size->first;
     scene.render.height = size->second;

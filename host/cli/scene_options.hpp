@@ -19,8 +19,8 @@ struct SceneOptions {
   std::vector<std::string> sets;
   std::optional<int> device;
   std::optional<int> lanes;
-  /// The time t of expressions in the scene, in seconds (--time).
-  double time = 0.0;
+  /// The time t of expressions in the scene, in seconds (--time); absent: 0.
+  std::optional<double> time;
 };
 
 /// Registers the shared options on a subcommand.

@@ -1,0 +1,87 @@
+// --frames A:B --fps F: the range and file names, and a sequence rendered through the executable
+// whose frames equal single renders at t = n / fps.
+#include "cli/frame_sequence.hpp"
+#include "common/errors.hpp"
+#include "support/test_support.hpp"
+
+#include <gtest/gtest.h>
+
+namespace clmarch {
+namespace {
+
+using testing::read_image;
+using testing::run_clmarch;
+using testing::TempDir;
+
+TEST(FrameRange, ParsesInclusiveRangeAndTimes) {
+  const FrameRange range = parse_frame_range("3:10", 4.0);
+  EXPECT_EQ(range.first, 3);
+  EXPECT_EQ(range.last, 10);
+  EXPECT_EQ(range.count(), 8);
+  EXPECT_DOUBLE_EQ(range.time_of(6), 1.5);
+}
+
+TEST(FrameRange, RejectsMalformedRanges) {
+  for (const char* text : {"", "3", "3:", ":4", "a:b", "-1:4", "5:4", "1:2:3", "1.5:3", "1234567:1234568"}) {
+    EXPECT_THROW(parse_frame_range(text, 24.0), InputError) << text;
+  }
+  EXPECT_THROW(parse_frame_range("0:1", 0.0), InputError);
+  EXPECT_THROW(parse_frame_range("0:1", -24.0), InputError);
+}
+
+TEST(FramePath, HashRunBecomesPaddedFrameNumber) {
+  const FrameRange range = parse_frame_range("0:120", 24.0);
+  EXPECT_EQ(frame_path("out/shot_####.png", 7, range), "out/shot_0007.png");
+  EXPECT_EQ(frame_path("f#.exr", 12, range), "f12.exr");
+  EXPECT_EQ(frame_path("a#b/f##.png", 3, range), "a#b/f03.png") << "only the file name is numbered";
+}
+
+TEST(FramePath, WithoutHashesTheNumberGoesBeforeTheExtension) {
+  EXPECT_EQ(frame_path("dir/torus.png", 5, parse_frame_range("0:9", 24.0)), "dir/torus_0005.png");
+  EXPECT_EQ(frame_path("torus.png", 5, parse_frame_range("0:123456", 24.0)), "torus_000005.png");
+}
+
+TEST(FrameSequence, FramesEqualSingleRendersAtTheirTimes) {
+  TempDir dir;
+  const std::string scene = testing::source_path("scenes/moving_shapes.yaml").string();
+  const auto sequence = run_clmarch({"render", scene, "--size", "48x27", "--frames", "2:3", "--fps", "4", "-o",
+                                     (dir / "seq_##.png").string(), "--buffers", (dir / "buf.exr").string()});
+  ASSERT_EQ(sequence.exit_code, 0) << sequence.err;
+  EXPECT_EQ(dir.files(), (std::vector<std::string>{"buf_0002.exr", "buf_0003.exr", "seq_02.png", "seq_03.png"}));
+
+  for (const auto& [frame, time] : {std::pair{2, "0.5"}, std::pair{3, "0.75"}}) {
+    const std::string single = (dir / ("single_" + std::to_string(frame) + ".png")).string();
+    const auto one = run_clmarch({"render", scene, "--size", "48x27", "--time", time, "-o", single});
+    ASSERT_EQ(one.exit_code, 0) << one.err;
+    const auto a = read_image(dir / ("seq_0" + std::to_string(frame) + ".png"));
+    const auto b = read_image(single);
+    EXPECT_EQ(a.pixels, b.pixels) << "frame " << frame << " must be the render at t = " << time;
+  }
+  EXPECT_NE(read_image(dir / "seq_02.png").pixels, read_image(dir / "seq_03.png").pixels)
+      << "the scene moves between t = 0.5 and 0.75";
+}
+
+TEST(FrameSequence, BadOptionsWriteNothing) {
+  TempDir dir;
+  const std::string scene = testing::source_path("scenes/moving_shapes.yaml").string();
+  const std::string out = (dir / "f.png").string();
+  struct Case {
+    std::vector<std::string> args;
+    std::string message;
+  };
+  for (const Case& c : {Case{{"--frames", "4:2"}, "--frames 4:2: the last frame must not come before the first"},
+                        Case{{"--frames", "0-4"}, "--frames 0-4: expected FIRST:LAST"},
+                        Case{{"--fps", "30"}, "--fps requires --frames"},
+                        Case{{"--frames", "0:1", "--fps", "0"}, "--fps"},
+                        Case{{"--frames", "0:1", "--time", "2"}, "--time and --frames both set the time"}}) {
+    std::vector<std::string> args = {"render", scene, "--size", "16x9", "-o", out};
+    args.insert(args.end(), c.args.begin(), c.args.end());
+    const auto result = run_clmarch(args);
+    EXPECT_EQ(result.exit_code, kExitBadInput) << c.message;
+    EXPECT_NE(result.err.find(c.message), std::string::npos) << result.err;
+    EXPECT_TRUE(dir.files().empty()) << c.message;
+  }
+}
+
+}  // namespace
+}  // namespace clmarch
