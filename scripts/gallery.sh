@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Renders every scene in scenes/ at 320x180 into docs/images/gallery/ and writes docs/gallery.md
+# Renders every scene in scenes/ at 480x270 into docs/images/gallery/ and writes docs/gallery.md
 # with each scene's description and render time.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -8,12 +8,20 @@ mkdir -p docs/images/gallery
   echo "# Gallery"
   echo
   echo "Every scene in \`scenes/\`, rendered by \`scripts/gallery.sh\` with the OpenCL path on PoCL"
-  echo "(320×180; kernel time from \`--stats\`, on a 2-core machine)."
+  echo "(480×270; kernel time from \`--stats\`, on a 2-core machine)."
+  echo
+  echo "| article (\`../shared/seeds/\`) | scenes |"
+  echo "|---|---|"
+  echo "| Crum, ray marching (000) | torus, smooth_blend, scaffold, mandelbulb, crum_normals |"
+  echo "| Heckel, Painting with Math (001) | sphere_shadows, operators_demo, moving_shapes, menger, terrain_fbm, terrain_derivative, martian_landscape |"
+  echo "| Ray Marching in Three.js (002) | two_spheres |"
+  echo "| An Introduction to Raymarching, the PBR course (003) | pbr_sphere, lava_lamp |"
+  echo "| Infinite tiling by unit cells (004) | tiled_spheres, tiled_boxes |"
   echo
   for scene in scenes/*.yaml; do
     name=$(basename "$scene" .yaml)
     description=$(sed -n 's/^description: *//p' "$scene")
-    stats=$(build/clmarch render "$scene" --size 320x180 --quiet --stats -o "docs/images/gallery/$name.png")
+    stats=$(build/clmarch render "$scene" --size 480x270 --quiet --stats -o "docs/images/gallery/$name.png")
     kernel_ms=$(printf '%s' "$stats" | sed -n 's/.*"kernel_ms":\([0-9.]*\).*/\1/p')
     echo "## $name"
     echo
