@@ -38,6 +38,8 @@ typedef struct MarchParams {
   float4 right_extent; /* xyz = r * aspect * tan(fov / 2) */
   float4 up_extent;    /* xyz = u * tan(fov / 2) */
   float4 origin_in_cell; /* tiling (cells): xyz = camera offset inside its cell, 0 <= x < cell */
+  float4 bounds;         /* xyz = camera position - centre of the sphere camera rays are clipped to,
+                            w = its radius; w = 0: rays are not clipped */
   CLMARCH_INT width;
   CLMARCH_INT height;
   CLMARCH_INT pixel_count;  /* width * height */
@@ -53,7 +55,7 @@ typedef struct MarchParams {
 } MarchParams;
 
 #ifndef __OPENCL_VERSION__
-static_assert(sizeof(MarchParams) == 5 * 16 + 12 * 4, "MarchParams layout must match OpenCL C");
+static_assert(sizeof(MarchParams) == 6 * 16 + 12 * 4, "MarchParams layout must match OpenCL C");
 #endif
 
 #endif

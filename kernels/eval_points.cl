@@ -34,5 +34,5 @@ __kernel void eval_ceiling(__global const float* xs, __global const float* ys, _
     counted -= live; /* live lanes are -1 */
   }
   STORE_LANES(sum, base, sums);
-  STORE_LANES(counted, base, evaluations);
+  STORE_INT_LANES(counted, base, evaluations);
 }

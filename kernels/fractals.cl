@@ -23,18 +23,18 @@ SDF_INLINE vfloat sd_mandelbulb(vec3v p, float4 center, float power, int iterati
   for (int i = 0; i < iterations && LANE_ANY(active); ++i) {
     vfloat theta = acos(clamp(z.z / fmax(r, MANDELBULB_TINY_RADIUS), -1.0f, 1.0f)) * power;
     vfloat phi = atan2(z.y, z.x) * power;
-    vfloat r_n1 = pow(r, power - 1.0f);
+    vfloat r_n1 = vpow(r, power - 1.0f);
     vfloat next_dr = r_n1 * power * dr + 1.0f;
     vfloat zr = r_n1 * r;
-    vfloat sin_theta = sin(theta);
-    vec3v next_z = v3_add(v3(zr * sin_theta * cos(phi), zr * sin_theta * sin(phi), zr * cos(theta)), c);
+    vfloat sin_theta = vsin(theta);
+    vec3v next_z = v3_add(v3(zr * sin_theta * vcos(phi), zr * sin_theta * vsin(phi), zr * vcos(theta)), c);
     z = v3_select(z, next_z, active);
     dr = select(dr, next_dr, active);
     r = v3_length(z);
     active &= MASK(r <= bailout);
   }
   r = fmax(r, MANDELBULB_TINY_RADIUS);
-  vfloat estimate = 0.5f * log(r) * r / dr;
+  vfloat estimate = 0.5f * vlog(r) * r / dr;
   return fmax(v3_length(c) - radius, fmin(estimate, MANDELBULB_ESTIMATE_CAP));
 }
 

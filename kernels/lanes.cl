@@ -14,44 +14,103 @@
 #pragma clang diagnostic ignored "-Wpsabi"
 #endif
 
+/* The lane scalar: float, or double with DOUBLE_PRECISION (cl_khr_fp64); REAL_EPSILON is its
+ * machine epsilon. Masks have the width of the scalar (select() wants long masks for double).
+ * Buffers stay float either way: STORE_LANES and LOAD_LANES convert (a no-op for float). */
+#ifdef DOUBLE_PRECISION
+#pragma OPENCL EXTENSION cl_khr_fp64 : enable
+typedef double real;
+typedef double4 real4;
+typedef double8 real8;
+typedef double16 real16;
+typedef long mask1;
+typedef long4 mask4;
+typedef long8 mask8;
+typedef long16 mask16;
+#define convert_real convert_double
+#define convert_real4 convert_double4
+#define convert_real8 convert_double8
+#define convert_real16 convert_double16
+#define REAL_EPSILON DBL_EPSILON
+#else
+typedef float real;
+typedef float4 real4;
+typedef float8 real8;
+typedef float16 real16;
+typedef int mask1;
+typedef int4 mask4;
+typedef int8 mask8;
+typedef int16 mask16;
+#define convert_real convert_float
+#define convert_real4 convert_float4
+#define convert_real8 convert_float8
+#define convert_real16 convert_float16
+#define REAL_EPSILON FLT_EPSILON
+#endif
+
 #if LANES == 1
-typedef float vfloat;
-typedef int vint;
-#define MASK(c) (-(int)(c))
+typedef real vfloat;
+typedef mask1 vint;
+#define MASK(c) (-(vint)(c))
 #define LANE_ANY(m) ((m) != 0)
 #define LANE_IOTA 0
-#define TO_VFLOAT(x) ((float)(x))
-#define STORE_LANES(v, base, ptr) ((ptr)[base] = (v))
-#define LOAD_LANES(base, ptr) ((ptr)[base])
+#define TO_VFLOAT(x) convert_real(x)
+#define STORE_LANES(v, base, ptr) ((ptr)[base] = (float)(v))
+#define STORE_INT_LANES(v, base, ptr) ((ptr)[base] = (int)(v))
+#define LOAD_LANES(base, ptr) convert_real((ptr)[base])
 #elif LANES == 4
-typedef float4 vfloat;
-typedef int4 vint;
+typedef real4 vfloat;
+typedef mask4 vint;
 #define MASK(c) (c)
 #define LANE_ANY(m) any(m)
-#define LANE_IOTA ((int4)(0, 1, 2, 3))
-#define TO_VFLOAT(x) convert_float4(x)
-#define STORE_LANES(v, base, ptr) vstore4((v), 0, (ptr) + (base))
-#define LOAD_LANES(base, ptr) vload4(0, (ptr) + (base))
+#define LANE_IOTA ((vint)(0, 1, 2, 3))
+#define TO_VFLOAT(x) convert_real4(x)
+#define STORE_LANES(v, base, ptr) vstore4(convert_float4(v), 0, (ptr) + (base))
+#define STORE_INT_LANES(v, base, ptr) vstore4(convert_int4(v), 0, (ptr) + (base))
+#define LOAD_LANES(base, ptr) convert_real4(vload4(0, (ptr) + (base)))
 #elif LANES == 8
-typedef float8 vfloat;
-typedef int8 vint;
+typedef real8 vfloat;
+typedef mask8 vint;
 #define MASK(c) (c)
 #define LANE_ANY(m) any(m)
-#define LANE_IOTA ((int8)(0, 1, 2, 3, 4, 5, 6, 7))
-#define TO_VFLOAT(x) convert_float8(x)
-#define STORE_LANES(v, base, ptr) vstore8((v), 0, (ptr) + (base))
-#define LOAD_LANES(base, ptr) vload8(0, (ptr) + (base))
+#define LANE_IOTA ((vint)(0, 1, 2, 3, 4, 5, 6, 7))
+#define TO_VFLOAT(x) convert_real8(x)
+#define STORE_LANES(v, base, ptr) vstore8(convert_float8(v), 0, (ptr) + (base))
+#define STORE_INT_LANES(v, base, ptr) vstore8(convert_int8(v), 0, (ptr) + (base))
+#define LOAD_LANES(base, ptr) convert_real8(vload8(0, (ptr) + (base)))
 #elif LANES == 16
-typedef float16 vfloat;
-typedef int16 vint;
+typedef real16 vfloat;
+typedef mask16 vint;
 #define MASK(c) (c)
 #define LANE_ANY(m) any(m)
-#define LANE_IOTA ((int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15))
-#define TO_VFLOAT(x) convert_float16(x)
-#define STORE_LANES(v, base, ptr) vstore16((v), 0, (ptr) + (base))
-#define LOAD_LANES(base, ptr) vload16(0, (ptr) + (base))
+#define LANE_IOTA ((vint)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15))
+#define TO_VFLOAT(x) convert_real16(x)
+#define STORE_LANES(v, base, ptr) vstore16(convert_float16(v), 0, (ptr) + (base))
+#define STORE_INT_LANES(v, base, ptr) vstore16(convert_int16(v), 0, (ptr) + (base))
+#define LOAD_LANES(base, ptr) convert_real16(vload16(0, (ptr) + (base)))
 #else
 #error "LANES must be 1, 4, 8 or 16"
+#endif
+
+/* Square roots and transcendentals of the distance functions and normals: the precise builtins,
+ * or with NATIVE_MATH the native_* ones (PoCL maps native_sin/cos to SLEEF's 3.5-ulp vector
+ * routines; the plain builtins are correctly rounded or 1-4 ulp). OpenCL has native_* for float
+ * only, so the host never sets NATIVE_MATH with DOUBLE_PRECISION. acos and atan2 have no native
+ * form. native_powr needs x >= 0, which every caller guarantees (radii). */
+#ifdef NATIVE_MATH
+#define vsqrt native_sqrt
+#define vrsqrt native_rsqrt
+#define vsin native_sin
+#define vcos native_cos
+#define vlog native_log
+#define vpow native_powr
+#else
+#define vsqrt sqrt
+#define vrsqrt rsqrt
+#define vsin sin
+#define vcos cos
+#define vlog log
+#define vpow pow
 #endif
 
 /* Functions of the distance field must inline into the march loop: a call that is not inlined
@@ -78,12 +137,12 @@ SDF_INLINE vec3v v3_abs(vec3v a) { return v3(fabs(a.x), fabs(a.y), fabs(a.z)); }
 SDF_INLINE vec3v v3_max0(vec3v a) { return v3(fmax(a.x, 0.0f), fmax(a.y, 0.0f), fmax(a.z, 0.0f)); }
 SDF_INLINE vfloat v3_dot(vec3v a, vec3v b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 /* sqrt(dot) rather than length(): PoCL's length() carries overflow-rescaling branches. */
-SDF_INLINE vfloat v3_length(vec3v a) { return sqrt(v3_dot(a, a)); }
+SDF_INLINE vfloat v3_length(vec3v a) { return vsqrt(v3_dot(a, a)); }
 SDF_INLINE vfloat v3_max_component(vec3v a) { return fmax(a.x, fmax(a.y, a.z)); }
 /* A zero vector stays zero instead of becoming NaN. */
 SDF_INLINE vec3v v3_normalize(vec3v a) {
   vfloat len2 = v3_dot(a, a);
-  return v3_scale(a, select((vfloat)(0.0f), rsqrt(len2), MASK(len2 > 0.0f)));
+  return v3_scale(a, select((vfloat)(0.0f), vrsqrt(len2), MASK(len2 > 0.0f)));
 }
 SDF_INLINE vec3v v3_select(vec3v a, vec3v b, vint m) {
   return v3(select(a.x, b.x, m), select(a.y, b.y, m), select(a.z, b.z, m));

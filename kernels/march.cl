@@ -52,6 +52,20 @@ SDF_INLINE vec3v add_reflections(vec3v color, Hit hit, vec3v dir, vint live, con
 }
 #endif
 
+/* Camera rays march only inside the scene's bounding sphere (host/scene/scene_bounds.cpp): lanes
+ * whose ray misses it do not march at all, the others start where they enter it (or at the camera)
+ * and end where they leave it. bounds.xyz = camera - centre; the discriminant is taken as
+ * r^2 - |offset - b dir|^2, which keeps its precision far from the sphere. */
+SDF_INLINE void clip_to_bounds(float4 bounds, vec3v dir, vint* marching, vfloat* t_start, vfloat* t_end) {
+  const vfloat b = bounds.x * dir.x + bounds.y * dir.y + bounds.z * dir.z;
+  const vec3v closest = v3(bounds.x - b * dir.x, bounds.y - b * dir.y, bounds.z - b * dir.z);
+  const vfloat h = bounds.w * bounds.w - v3_dot(closest, closest);
+  const vfloat root = sqrt(fmax(h, 0.0f));
+  *t_start = fmax(-b - root, 0.0f);
+  *t_end = fmin(-b + root, *t_end);
+  *marching &= MASK(h >= 0.0f) & MASK(*t_end > *t_start);
+}
+
 __kernel void march(const MarchParams params, __global float* out, __constant float4* lights) {
   const int base = (int)get_global_id(0) * LANES;
   const vint pixel = params.first_pixel + base + LANE_IOTA;
@@ -63,7 +77,13 @@ __kernel void march(const MarchParams params, __global float* out, __constant fl
   const vec3v origin = v3_from(params.origin);
 #endif
   const MarchLimits limits = {params.max_steps, params.epsilon, 0, 0.0f, params.over_relaxation, params.hit_cone_slope};
-  const MarchResult m = MARCH(origin, dir, live, (vfloat)(0.0f), (vfloat)(params.max_distance), limits);
+  vint marching = live;
+  vfloat t_start = (vfloat)(0.0f);
+  vfloat t_end = (vfloat)(params.max_distance);
+  if (params.bounds.w > 0.0f) {
+    clip_to_bounds(params.bounds, dir, &marching, &t_start, &t_end);
+  }
+  const MarchResult m = MARCH(origin, dir, marching, t_start, t_end, limits);
 
   const int stride = params.plane_stride;
   STORE_LANES(select((vfloat)(INFINITY), m.t, m.hit), base, out + CLMARCH_CHANNEL_DEPTH * stride);

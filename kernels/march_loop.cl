@@ -27,9 +27,14 @@ typedef struct {
   float hit_cone_slope;  /* a lane arrives below max(epsilon, hit_cone_slope * t) */
 } MarchLimits;
 
-/* The distance below which a lane at depth t has arrived: epsilon, or the pixel cone's radius. */
+/* The distance below which a lane at depth t has arrived: epsilon, or the pixel cone's radius, and
+ * never less than REAL_EPSILON * t (2^-23 t in float, the spacing of t at most): a smaller step leaves
+ * t + d == t, and the lane would stall until its budget ran out (a floor seen at grazing angles 2e4
+ * away, tests/stress_settings_test.cpp). The double reference needs no floor; `clmarch check`
+ * allows for it. Do not remove it. */
 SDF_INLINE vfloat hit_threshold(const MarchLimits* limits, vfloat t) {
-  return limits->hit_cone_slope > 0.0f ? fmax(limits->hit_cone_slope * t, limits->epsilon) : (vfloat)(limits->epsilon);
+  const vfloat base = limits->hit_cone_slope > 0.0f ? fmax(limits->hit_cone_slope * t, limits->epsilon) : (vfloat)(limits->epsilon);
+  return fmax(base, REAL_EPSILON * t);
 }
 
 /* Lanes that march over-relaxed from the start: all or none (masks are -1, also for LANES 1). */

@@ -7,22 +7,18 @@
 typedef uint vuint;
 #define NOISE_AS_VUINT(x) as_uint(x)
 #define NOISE_LATTICE(x) convert_int_sat(x)
-#define NOISE_UINT_TO_VFLOAT(x) convert_float(x)
 #elif LANES == 4
 typedef uint4 vuint;
 #define NOISE_AS_VUINT(x) as_uint4(x)
 #define NOISE_LATTICE(x) convert_int4_sat(x)
-#define NOISE_UINT_TO_VFLOAT(x) convert_float4(x)
 #elif LANES == 8
 typedef uint8 vuint;
 #define NOISE_AS_VUINT(x) as_uint8(x)
 #define NOISE_LATTICE(x) convert_int8_sat(x)
-#define NOISE_UINT_TO_VFLOAT(x) convert_float8(x)
 #elif LANES == 16
 typedef uint16 vuint;
 #define NOISE_AS_VUINT(x) as_uint16(x)
 #define NOISE_LATTICE(x) convert_int16_sat(x)
-#define NOISE_UINT_TO_VFLOAT(x) convert_float16(x)
 #endif
 
 /* 32 mixed bits of the lattice point (ix, iz): spatial-hash primes, then Chris Wellons'
@@ -39,7 +35,7 @@ SDF_INLINE vuint noise_hash(vuint ix, vuint iz, uint seed) {
 
 /* The lattice value in [0, 1): the top 24 bits times 2^-24, exact in float. */
 SDF_INLINE vfloat noise_hash01(vuint ix, vuint iz, uint seed) {
-  return NOISE_UINT_TO_VFLOAT(noise_hash(ix, iz, seed) >> 8) * 0x1p-24f;
+  return TO_VFLOAT(noise_hash(ix, iz, seed) >> 8) * 0x1p-24f;
 }
 
 /* A noise value and its gradient d/dx, d/dz. */
@@ -70,8 +66,8 @@ SDF_INLINE noise_sample value_noise(vfloat x, vfloat z, uint seed) {
 /* f . g for the lattice gradient g of gradient noise: two 16-bit halves of the hash in [-1, 1). */
 SDF_INLINE vfloat perlin_corner(vuint ix, vuint iz, uint seed, vfloat fx, vfloat fz) {
   const vuint h = noise_hash(ix, iz, seed);
-  const vfloat gx = NOISE_UINT_TO_VFLOAT(h & 0xffffu) * 0x1p-15f - 1.0f;
-  const vfloat gz = NOISE_UINT_TO_VFLOAT(h >> 16) * 0x1p-15f - 1.0f;
+  const vfloat gx = TO_VFLOAT(h & 0xffffu) * 0x1p-15f - 1.0f;
+  const vfloat gz = TO_VFLOAT(h >> 16) * 0x1p-15f - 1.0f;
   return gx * fx + gz * fz;
 }
 

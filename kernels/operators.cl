@@ -32,5 +32,5 @@ SDF_INLINE vfloat op_repeat_axis(vfloat x, float period) { return x - period * f
 
 /* Crum's displacement texture amplitude * sin(f x) sin(f y) sin(f z). */
 SDF_INLINE vfloat displacement(vec3v p, float amplitude, float frequency) {
-  return amplitude * sin(frequency * p.x) * sin(frequency * p.y) * sin(frequency * p.z);
+  return amplitude * vsin(frequency * p.x) * vsin(frequency * p.y) * vsin(frequency * p.z);
 }

@@ -37,8 +37,8 @@ SDF_INLINE vfloat sd_box_frame(vec3v p, float4 center, float4 half_size, float t
 /* Exact. Torus in the xz plane. */
 SDF_INLINE vfloat sd_torus(vec3v p, float4 center, float major_radius, float minor_radius) {
   vec3v q = v3_sub(p, v3_from(center));
-  vfloat ring = sqrt(q.x * q.x + q.z * q.z) - major_radius;
-  return sqrt(ring * ring + q.y * q.y) - minor_radius;
+  vfloat ring = vsqrt(q.x * q.x + q.z * q.z) - major_radius;
+  return vsqrt(ring * ring + q.y * q.y) - minor_radius;
 }
 
 /* Exact. normal is unit length (the loader normalises it). */
@@ -57,9 +57,9 @@ SDF_INLINE vfloat sd_capsule(vec3v p, float4 a, float4 b, float radius) {
 /* Exact. Capped cylinder along y. */
 SDF_INLINE vfloat sd_cylinder(vec3v p, float4 center, float radius, float half_height) {
   vec3v q = v3_sub(p, v3_from(center));
-  vfloat dr = sqrt(q.x * q.x + q.z * q.z) - radius;
+  vfloat dr = vsqrt(q.x * q.x + q.z * q.z) - radius;
   vfloat dh = fabs(q.y) - half_height;
   vfloat outside_r = fmax(dr, 0.0f);
   vfloat outside_h = fmax(dh, 0.0f);
-  return fmin(fmax(dr, dh), 0.0f) + sqrt(outside_r * outside_r + outside_h * outside_h);
+  return fmin(fmax(dr, dh), 0.0f) + vsqrt(outside_r * outside_r + outside_h * outside_h);
 }

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs what clmarch needs from Debian's packages, skipping what is present. Run as root (or
 # with sudo available); safe to run again. clang and libclang-rt-14-dev (libFuzzer and clang's
-# sanitizer runtimes) are for scripts/fuzz.sh.
+# sanitizer runtimes) are for scripts/fuzz.sh. `setup.sh --plots` also installs python3-matplotlib
+# for scripts/sweep-plot.py (run it with /usr/bin/python3).
 set -euo pipefail
 
 packages=(
@@ -12,6 +13,12 @@ packages=(
   libgtest-dev libbenchmark-dev libmuparser-dev
   clang libclang-rt-14-dev
 )
+for arg in "$@"; do
+  case "$arg" in
+    --plots) packages+=(python3-matplotlib) ;;
+    *) echo "setup.sh: unknown option $arg (expected --plots)" >&2; exit 2 ;;
+  esac
+done
 
 missing=()
 for p in "${packages[@]}"; do

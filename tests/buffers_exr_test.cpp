@@ -28,9 +28,11 @@ TEST(BuffersExr, ChannelsAndValuesFollowTheContract) {
     EXPECT_EQ(names, (std::vector<std::string>{"B", "G", "N.x", "N.y", "N.z", "R", "depth", "steps"}));
     const auto channel = [&](const char* name) { return spec.channelindex(name); };
     const testing::Image image = testing::read_image(dir / "b.exr");
-    // The corner misses the sphere, the centre hits it head-on at distance 4.
+    // The corner misses the sphere, the centre hits it head-on at distance 4. The corner's ray
+    // misses the scene's bounding sphere, so it takes no step (render.bounds: sphere).
     EXPECT_TRUE(std::isinf(image.at(0, 0, channel("depth"))));
-    EXPECT_GE(image.at(0, 0, channel("steps")), 1.0f);
+    EXPECT_EQ(image.at(0, 0, channel("steps")), 0.0f);
+    EXPECT_GE(image.at(16, 12, channel("steps")), 1.0f);
     // Pixel centres sit half a pixel off the axis: depth 4 within that offset.
     EXPECT_NEAR(image.at(16, 12, channel("depth")), 4.0, 0.01);
     EXPECT_NEAR(image.at(16, 12, channel("N.z")), 1.0, 1e-2);

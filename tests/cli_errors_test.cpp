@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <fstream>
 
 namespace clmarch {
@@ -30,6 +31,23 @@ const std::string kValidScene = "sdf: {sphere: {radius: 1}}\nrender: {width: 16,
 std::string expand(std::string s, const std::string& dir) {
   for (std::size_t at; (at = s.find("DIR")) != std::string::npos;) s.replace(at, 3, dir);
   return s;
+}
+
+/// An SDF tree of 10^9 spheres in ten lines of YAML aliases ("billion laughs").
+std::string alias_bomb() {
+  std::string yaml = "sdf:\n  union:\n    - &l0 {sphere: {}}\n";
+  for (int level = 1; level <= 9; ++level) {
+    yaml += "    - &l" + std::to_string(level) + " {union: [";
+    for (int k = 0; k < 10; ++k) yaml += (k ? ", *l" : "*l") + std::to_string(level - 1);
+    yaml += "]}\n";
+  }
+  return yaml;
+}
+
+std::string many_lights(int count) {
+  std::string yaml = "sdf: {sphere: {}}\nlights: [";
+  for (int i = 0; i < count; ++i) yaml += "{directional: {direction: [0, 1, 0]}}, ";
+  return yaml + "]\n";
 }
 
 const std::vector<BadInputCase>& bad_input_cases() {
@@ -74,6 +92,48 @@ const std::vector<BadInputCase>& bad_input_cases() {
        {"--lanes", "--backend reference"}},
       {"unknown_backend", kValidScene, {"render", "DIR/scene.yaml", "--backend", "vulkan", "-o", "DIR/out.png"}, {"--backend"}},
       {"empty_scene_file", "# nothing\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"}, {"DIR/scene.yaml", "empty"}},
+      {"alias_bomb", alias_bomb(), {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
+       {"DIR/scene.yaml:", "the tree has too many nodes", "expected at most 10000"}},
+      {"alias_cycle", "sdf: &a {union: [*a]}\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
+       {"DIR/scene.yaml:1:6:", "deeper than 64 levels"}},
+      {"too_many_lights", many_lights(1025), {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
+       {"DIR/scene.yaml:2:9:", "lights has too many entries (got 1025, expected at most 1024)"}},
+      {"second_yaml_document", kValidScene + "---\nsdf: {box: {}}\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
+       {"DIR/scene.yaml:3:1:", "one YAML document"}},
+      {"scene_is_a_folder", "", {"render", "DIR", "-o", "DIR/out.png"}, {"DIR: is a folder"}},
+      {"infinite_value", "sdf: {sphere: {radius: .inf}}\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
+       {"DIR/scene.yaml:1:24:", "must be finite (got .inf)"}},
+      {"number_beyond_double", "sdf: {sphere: {radius: 1e400}}\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
+       {"DIR/scene.yaml:1:24:", "the float range (got 1e400)"}},
+      {"fraction_for_integer", kValidScene + "shading: {reflections: 1.5}\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
+       {"DIR/scene.yaml:3:24:", "shading.reflections must be an integer (got '1.5')"}},
+      {"unknown_top_level_key", kValidScene + "rendr: {}\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
+       {"DIR/scene.yaml:3:1:", "unknown key 'rendr' in the scene"}},
+      {"missing_required_key", kValidScene + "lights: [{point: {intensity: 2}}]\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
+       {"DIR/scene.yaml:3:18:", "lights[0].point.position is required"}},
+      {"list_expected", kValidScene + "lights: {point: {position: [0, 1, 0]}}\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
+       {"DIR/scene.yaml:3:9:", "lights must be a list (got a map)"}},
+      {"empty_tree", "sdf: {}\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"}, {"DIR/scene.yaml:1:6:", "(got 0 keys)"}},
+      {"multi_line_value", kValidScene + "camera: {fov: \"wide\\nangle\"}\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
+       {"DIR/scene.yaml:3:15:", "'wide\\nangle'"}},
+      {"set_value_not_yaml", kValidScene, {"render", "DIR/scene.yaml", "--set", "render.width=[1", "-o", "DIR/out.png"},
+       {"--set render.width=[1: the value is not valid YAML"}},
+      {"set_index_past_end", "sdf: {union: [{sphere: {}}]}\n", {"render", "DIR/scene.yaml", "--set", "sdf.union.3.sphere.radius=2", "-o", "DIR/out.png"},
+       {"--set sdf.union.3.sphere.radius=2", "index 3 is past the end of a list of 1"}},
+      {"set_alias_cycle", kValidScene, {"render", "DIR/scene.yaml", "--set", "sdf=&a {union: [*a]}", "-o", "DIR/out.png"},
+       {"--set sdf=&a {union: [*a]}: the value nests too deep"}},
+      {"size_not_wxh", kValidScene, {"render", "DIR/scene.yaml", "--size", "big", "-o", "DIR/out.png"},
+       {"--size big: expected WIDTHxHEIGHT"}},
+      {"size_too_many_pixels", kValidScene, {"render", "DIR/scene.yaml", "--size", "65536x65536", "-o", "DIR/out.png"},
+       {"--size 65536x65536: too many pixels (got 4294967296, expected at most 2147483647)"}},
+      {"time_not_finite", kValidScene, {"render", "DIR/scene.yaml", "--time", "nan", "-o", "DIR/out.png"}, {"--time nan"}},
+      {"output_is_a_folder", kValidScene, {"render", "DIR/scene.yaml", "-o", "DIR"}, {"--output DIR: is a folder"}},
+      {"output_without_extension", kValidScene, {"render", "DIR/scene.yaml", "-o", "DIR/out"}, {"--output DIR/out", "extension"}},
+      {"buffers_folder_missing", kValidScene, {"render", "DIR/scene.yaml", "--buffers", "DIR/no/b.exr", "-o", "DIR/out.png"},
+       {"--buffers DIR/no/b.exr", "does not exist"}},
+      {"check_out_dir_missing", kValidScene, {"check", "DIR/scene.yaml", "--out-dir", "DIR/none"}, {"--out-dir DIR/none: no such folder"}},
+      {"check_bad_size", kValidScene, {"check", "DIR/scene.yaml", "--size", "0x0"}, {"--size 0x0", "(got 0 x 0)"}},
+      {"bench_bad_set_path", kValidScene, {"bench", "DIR/scene.yaml", "--set", "render.x=1"}, {"(--set)", "unknown key 'x'"}},
       {"camera_up_parallel", "sdf: {sphere: {}}\ncamera: {position: [0, 5, 0], look_at: [0, 0, 0], up: [0, 1, 0]}\n",
        {"render", "DIR/scene.yaml", "-o", "DIR/out.png"}, {"camera.up"}},
   };
@@ -122,6 +182,18 @@ TEST(Cli, DefaultOutputIsSceneNamePng) {
   const std::string command = "cd '" + dir.path().string() + "' && '" + CLMARCH_BINARY + "' render ball.yaml 2>/dev/null";
   ASSERT_EQ(std::system(command.c_str()), 0);
   EXPECT_EQ(dir.files(), (std::vector<std::string>{"ball.png", "ball.yaml"}));
+}
+
+TEST(Cli, DefaultOutputSaysWhereItWrote) {
+  TempDir dir;
+  std::ofstream(dir / "ball.yaml") << kValidScene;
+  const std::string command = "cd '" + dir.path().string() + "' && '" + CLMARCH_BINARY + "' render ball.yaml 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string err;
+  for (char buffer[256]; std::fgets(buffer, sizeof buffer, pipe);) err += buffer;
+  ASSERT_EQ(pclose(pipe), 0) << err;
+  EXPECT_EQ(err, "clmarch: wrote ball.png\n");
 }
 
 TEST(Cli, DevicesListsPocl) {

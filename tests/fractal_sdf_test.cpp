@@ -22,14 +22,7 @@ using testing::scene_from_yaml;
 // Closed forms of a handful of double operations on O(1) values.
 constexpr double kExact = 1e-12;
 
-std::string error_of(const std::string& yaml) {
-  try {
-    load_scene_text(yaml, "s.yaml", {});
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
-}
+using testing::error_of;
 
 std::vector<glm::dvec3> random_points(std::size_t count, double extent, unsigned seed) {
   std::mt19937 rng(seed);

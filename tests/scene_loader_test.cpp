@@ -10,14 +10,7 @@ namespace {
 
 using testing::scene_from_yaml;
 
-std::string error_of(const std::string& yaml, const std::vector<SceneOverride>& overrides = {}) {
-  try {
-    load_scene_text(yaml, "s.yaml", overrides);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
-}
+using testing::error_of;
 
 TEST(SceneLoader, DefaultsOfTheContract) {
   const Scene scene = scene_from_yaml("sdf: {sphere: {}}\n");

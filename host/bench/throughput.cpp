@@ -31,7 +31,8 @@ std::vector<double> time_renders(const Scene& scene, const OpenClOptions& option
 CeilingKernel::CeilingKernel(const Scene& scene, const OpenClOptions& options, int depths_per_ray) : depths_(depths_per_ray) {
   const DeviceEntry device = select_device(options.device);
   lanes_ = options.lanes.value_or(default_lanes(device));
-  program_ = build_device_program(device, generate_kernel_source(scene, {KernelPurpose::EvalPoints, lanes_}));
+  program_ = build_device_program(device, generate_kernel_source(scene, {KernelPurpose::EvalPoints, lanes_, options.variant}),
+                                  kernel_build_options(options.variant));
 
   const int width = scene.render.width, height = scene.render.height;
   rays_ = static_cast<std::uint64_t>(width) * height;

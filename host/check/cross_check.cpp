@@ -17,6 +17,9 @@ constexpr double kUnitRoundoff = 0x1p-24;
 /// Rounding steps between a ray parameter and a distance value: the position o + t*d, the
 /// direction's normalisation and the distance function each round a few times.
 constexpr double kRoundingSteps = 16.0;
+/// The kernel's hit threshold is never below 2^-23 t, float's spacing of t at most (a smaller step
+/// would leave t + d == t: kernels/march_loop.cl); the double reference has no such floor.
+constexpr double kFloatSpacingOfT = 0x1p-23;
 /// Below this |cos| between ray and normal a ray is grazing; its depth bound stops growing.
 constexpr double kGrazingCosine = 0.1;
 /// Colors are delivered in 8 bits: half a step is the smallest difference that can show.
@@ -38,6 +41,9 @@ ErrorSummary summarise(std::vector<double> values) {
   s.p50 = at(0.5);
   s.p99 = at(kQuantile);
   s.max = values.back();
+  double squares = 0.0;
+  for (double v : values) squares += v * v;
+  s.rms = std::sqrt(squares / static_cast<double>(values.size()));
   return s;
 }
 
@@ -49,6 +55,8 @@ glm::dvec3 normal_at(const FrameBuffers& b, int i, int j) {
 
 double angle_between(const glm::dvec3& a, const glm::dvec3& b) {
   const double la = glm::length(a), lb = glm::length(b);
+  // Both zero: both found a vanishing gradient (a camera at a sphere's centre), which agrees.
+  if (la == 0.0 && lb == 0.0) return 0.0;
   if (la == 0.0 || lb == 0.0) return M_PI;
   return std::acos(std::clamp(glm::dot(a, b) / (la * lb), -1.0, 1.0));
 }
@@ -114,8 +122,8 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
       const double cosine = std::max(std::abs(glm::dot(dir, n_ref)), kGrazingCosine);
       const double rounding = kRoundingSteps * kUnitRoundoff * (origin_size + t_ref);
       // Both marches stop within threshold / cos short of the surface; the threshold is epsilon, or
-      // the pixel cone's radius at that depth.
-      const double threshold = std::max(eps, cone_slope * t_ref);
+      // the pixel cone's radius at that depth, and never below float's spacing of t.
+      const double threshold = std::max({eps, cone_slope * t_ref, kFloatSpacingOfT * t_ref});
       const double depth_tolerance = threshold / cosine + rounding;
       depth_abs.push_back(dt);
       depth_rel.push_back(dt / std::max(t_ref, 1e-30));
@@ -187,7 +195,7 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
 }
 
 nlohmann::json CheckReport::to_json() const {
-  const auto summary = [](const ErrorSummary& s) { return nlohmann::json{{"p50", s.p50}, {"p99", s.p99}, {"max", s.max}}; };
+  const auto summary = [](const ErrorSummary& s) { return nlohmann::json{{"p50", s.p50}, {"p99", s.p99}, {"max", s.max}, {"rms", s.rms}}; };
   return {{"passed", passed()},
           {"pixels", pixels},
           {"both_hit", both_hit},

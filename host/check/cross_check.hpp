@@ -12,11 +12,12 @@
 
 namespace clmarch {
 
-/// p50 / p99 / max of a set of non-negative errors.
+/// p50 / p99 / max and root mean square of a set of non-negative errors.
 struct ErrorSummary {
   double p50 = 0.0;
   double p99 = 0.0;
   double max = 0.0;
+  double rms = 0.0;
 };
 
 /// One comparison, the figures of `clmarch check`.

@@ -13,7 +13,7 @@
 
 namespace clmarch {
 
-DeviceProgram build_device_program(const DeviceEntry& device, const std::string& source) {
+DeviceProgram build_device_program(const DeviceEntry& device, const std::string& source, const std::string& options) {
   return with_device_errors(device, [&] {
     DeviceProgram out;
     out.device = device;
@@ -21,12 +21,12 @@ DeviceProgram build_device_program(const DeviceEntry& device, const std::string&
     out.queue = cl::CommandQueue(out.context, device.device, CL_QUEUE_PROFILING_ENABLE);
     out.program = cl::Program(out.context, source);
     log_verbose(fmt::format("device {}, {}, build options '{}'", device.label(),
-                            device.is_gpu ? "GPU" : device.is_cpu ? "CPU" : "other", kBuildOptions));
+                            device.is_gpu ? "GPU" : device.is_cpu ? "CPU" : "other", options));
     const bool probe_cache = verbosity() == Verbosity::Verbose;
     std::optional<BuildCacheProbe> probe;
     if (probe_cache) probe.emplace(device);
     const auto start = std::chrono::steady_clock::now();
-    out.program.build(std::vector<cl::Device>{device.device}, kBuildOptions);
+    out.program.build(std::vector<cl::Device>{device.device}, options.c_str());
     out.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     out.build_log = out.program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device.device);
     if (probe) {

@@ -21,9 +21,11 @@ struct DeviceProgram {
   std::string build_log;
 };
 
-/// Builds source for the device with kBuildOptions. Throws DeviceError with the build log on
-/// failure. With --verbose it logs the device, the options, the build time and the driver cache.
-DeviceProgram build_device_program(const DeviceEntry& device, const std::string& source);
+/// Builds source for the device with options (kBuildOptions and more). Throws DeviceError with the
+/// build log on failure. With --verbose it logs the device, the options, the build time and the
+/// driver cache.
+DeviceProgram build_device_program(const DeviceEntry& device, const std::string& source,
+                                   const std::string& options = kBuildOptions);
 
 /// Milliseconds between the start and end of a profiled event.
 double event_milliseconds(const cl::Event& event);

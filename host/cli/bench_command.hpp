@@ -1,10 +1,13 @@
 // `clmarch bench`: the speed of one scene on OpenCL against the device's throughput ceiling and
-// the CPU reference (host/bench/).
+// the CPU reference (host/bench/), or with --sweep, time against error over combinations of settings.
 #pragma once
 
 #include "cli/scene_options.hpp"
 
 #include <CLI/CLI.hpp>
+
+#include <string>
+#include <vector>
 
 namespace clmarch {
 
@@ -13,6 +16,12 @@ struct BenchCommandOptions {
   int repeat = 5;
   bool json = false;
   bool no_reference = false;
+  /// --sweep KEY=V1,V2,...: time against error over every combination (cli/bench_sweep).
+  std::vector<std::string> sweeps;
+  std::string csv;
+  bool append = false;
+  /// Each axis alone around the scene's settings instead of the Cartesian product.
+  bool one_at_a_time = false;
 };
 
 CLI::App* add_bench_command(CLI::App& app, BenchCommandOptions& options);

@@ -2,10 +2,12 @@
 #include "cli/scene_options.hpp"
 
 #include "common/errors.hpp"
+#include "render/host_memory.hpp"
 #include "scene/scene_loader.hpp"
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <regex>
 
 namespace clmarch {
@@ -26,6 +28,16 @@ void add_scene_options(CLI::App& command, SceneOptions& options) {
       ->check(CLI::Number);
 }
 
+void check_host_memory(const Scene& scene, const std::string& size_option) {
+  const std::optional<AvailableMemory> available = available_host_memory();
+  if (!available) return;
+  const std::string shortfall = host_memory_shortfall(scene.render.width, scene.render.height, *available);
+  if (shortfall.empty()) return;
+  if (!size_option.empty()) throw InputError(fmt::format("{}: {}", size_option, shortfall));
+  const std::string where = scene.size_origin.empty() ? scene.source_name : scene.size_origin;
+  throw InputError(fmt::format("{}: render.width x render.height: {}", where, shortfall));
+}
+
 std::pair<int, int> parse_size(const std::string& text) {
   static const std::regex pattern(R"(^(\d{1,6})x(\d{1,6})$)");
   std::smatch match;
@@ -35,9 +47,12 @@ std::pair<int, int> parse_size(const std::string& text) {
   const int width = std::stoi(match[1].str());
   const int height = std::stoi(match[2].str());
   if (width < 1 || height < 1 || width > 65536 || height > 65536) {
-    throw InputError(fmt::format("--size {}: width and height must be in [1, 65536]", text));
+    throw InputError(fmt::format("--size {}: width and height must be in [1, 65536] (got {} x {})", text, width, height));
   }
-  if (!image_size_fits(width, height)) throw InputError(fmt::format("--size {}: more than {} pixels", text, kMaxPixels));
+  if (!image_size_fits(width, height)) {
+    throw InputError(fmt::format("--size {}: too many pixels (got {}, expected at most {})", text,
+                                 static_cast<long long>(width) * height, kMaxPixels));
+  }
   return {width, height};
 }
 
@@ -46,11 +61,15 @@ Scene load_scene_with_options(const SceneOptions& options, std::optional<double>
   for (const std::string& set : options.sets) overrides.push_back(parse_override(set));
   std::optional<std::pair<int, int>> size;
   if (!options.size.empty()) size = parse_size(options.size);
+  if (options.time && !std::isfinite(*options.time)) {
+    throw InputError(fmt::format("--time {}: the time must be a finite number of seconds (got {})", *options.time, *options.time));
+  }
   Scene scene = load_scene_file(options.scene_path, overrides, time ? *time : options.time.value_or(0.0));
   if (size) {
     scene.render.width = size->first;
     scene.render.height = size->second;
   }
+  check_host_memory(scene, size ? "--size " + options.size : "");
   return scene;
 }
 

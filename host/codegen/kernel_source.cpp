@@ -1,6 +1,7 @@
 // Program assembly: defines first, then library files and generated code in dependency order.
 #include "codegen/kernel_source.hpp"
 
+#include "cl/device_program.hpp"
 #include "codegen/cl_literals.hpp"
 #include "codegen/embedded_kernels.hpp"
 #include "codegen/sdf_codegen.hpp"
@@ -77,11 +78,14 @@ std::string atmosphere_defines(const Shading& s) {
 
 std::string feature_defines(const Scene& scene, const KernelOptions& options) {
   std::string out = fmt::format("#define LANES {}\n", options.lanes);
+  if (options.variant.precision == Precision::Double) out += "#define DOUBLE_PRECISION\n";
+  if (options.variant.native_math) out += "#define NATIVE_MATH\n";
   const bool normals = options.purpose == KernelPurpose::Normals || options.purpose == KernelPurpose::Shaded;
   const bool shading = options.purpose == KernelPurpose::Shaded;
   if (normals) {
     out += "#define NEED_NORMALS\n";
     if (scene.render.normal_method == NormalMethod::Tetrahedral) out += "#define NORMAL_TETRAHEDRAL\n";
+    if (scene.render.normal_method == NormalMethod::Forward) out += "#define NORMAL_FORWARD\n";
   }
   if (shading) {
     const Shading& s = scene.shading;
@@ -120,6 +124,12 @@ bool uses_kind(const Node& node, std::initializer_list<NodeKind> kinds) {
 }  // namespace
 
 std::string generate_kernel_source(const Scene& scene, const KernelOptions& options) {
+  if (options.variant.native_math && options.variant.precision == Precision::Double) {
+    throw std::invalid_argument("native math needs float precision: OpenCL has no native_* functions for double");
+  }
+  if (options.variant.precision == Precision::Double && options.lanes == 1) {
+    throw std::invalid_argument(kDoubleNeedsVectorLanes);
+  }
   const bool shading = options.purpose == KernelPurpose::Shaded;
   std::string src = fmt::format("/* clmarch program for {} */\n", scene.source_name);
   src += feature_defines(scene, options);
@@ -146,6 +156,12 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
   }
   src += kernel_file("march.cl");
   return src;
+}
+
+std::string kernel_build_options(const KernelVariant& variant) {
+  std::string options = kBuildOptions;
+  if (variant.fast_math) options += " -cl-fast-relaxed-math";
+  return options;
 }
 
 }  // namespace clmarch

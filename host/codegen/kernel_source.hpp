@@ -20,13 +20,46 @@ enum class KernelPurpose {
   EvalPoints,
 };
 
+/// The arithmetic of the lanes: float, or double (needs cl_khr_fp64). Buffers stay float.
+enum class Precision { Float, Double };
+inline constexpr const char* kPrecisionNames[] = {"float", "double"};
+
+/// Arithmetic variants of one program, which `clmarch bench --sweep` compares (docs/accuracy.md).
+struct KernelVariant {
+  Precision precision = Precision::Float;
+  /// native_* square roots and transcendentals in the distance functions (NATIVE_MATH; float only).
+  bool native_math = false;
+  /// -cl-fast-relaxed-math in the build options.
+  bool fast_math = false;
+
+  bool operator==(const KernelVariant&) const = default;
+};
+
 struct KernelOptions {
+  KernelOptions() = default;
+  /// {purpose, lanes} keeps the default variant.
+  KernelOptions(KernelPurpose what, int pixels_per_item, KernelVariant arithmetic = {})
+      : purpose(what), lanes(pixels_per_item), variant(arithmetic) {}
+
   KernelPurpose purpose = KernelPurpose::Shaded;
   /// Pixels per work-item: 1, 4, 8 or 16.
   int lanes = 1;
+  KernelVariant variant;
 };
 
-/// The full program source, exactly as it is built (and dumped by --dump-kernel).
+/// Why double precision needs LANES 4, 8 or 16: the kernels pass float literals to builtins
+/// (fmax(x, 0.0f)), which for a scalar double x matches fmax(double, double) and fmax(float, float)
+/// equally well; for vectors only the double overload is viable.
+inline constexpr const char* kDoubleNeedsVectorLanes =
+    "double precision needs lanes 4, 8 or 16 (with one lane, calls such as fmax(x, 0.0f) are ambiguous for double x)";
+
+/// The full program source, exactly as it is built (and dumped by --dump-kernel). Throws
+/// std::invalid_argument for native math with double precision (OpenCL has no double native_*)
+/// and for double precision with 1 lane.
 std::string generate_kernel_source(const Scene& scene, const KernelOptions& options);
+
+/// The build options of a variant: kBuildOptions, plus -cl-fast-relaxed-math when asked. They key
+/// the driver's program cache together with the source (PoCL hashes both).
+std::string kernel_build_options(const KernelVariant& variant);
 
 }  // namespace clmarch

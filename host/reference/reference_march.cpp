@@ -23,7 +23,11 @@ void track_approach(MarchEnd& end, double h, double t, double previous, const Ma
   }
 }
 
-double hit_threshold(const MarchLimits& limits, double t) { return std::max(limits.hit_cone_slope * t, limits.epsilon); }
+// As in the kernel, never below the spacing of t in the arithmetic in use (here double's, 2^-52 t):
+// a smaller step leaves t + d == t and the ray would stall until its budget ran out.
+double hit_threshold(const MarchLimits& limits, double t) {
+  return std::max({limits.hit_cone_slope * t, limits.epsilon, std::numeric_limits<double>::epsilon() * t});
+}
 
 // Over-relaxation (Keinert et al. 2014, "Enhanced Sphere Tracing", with the safe fall-back): steps
 // are omega * d while the unbounding spheres of consecutive samples overlap, i.e. while

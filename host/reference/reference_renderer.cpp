@@ -2,9 +2,11 @@
 // and tone mapping in double, and the row-parallel frame loop.
 #include "reference/reference_renderer.hpp"
 
+#include "common/cancellation.hpp"
 #include "common/progress.hpp"
 #include "reference/reference_march.hpp"
 #include "reference/reference_sdf.hpp"
+#include "scene/scene_bounds.hpp"
 #include "reference/reference_shading.hpp"
 #include "scene/camera_model.hpp"
 
@@ -27,10 +29,18 @@ glm::dvec3 tetrahedral_normal(const Field& f, const glm::dvec3& p, double h) {
   return normalize_or_zero(xyy * f(p + xyy * h) + yyx * f(p + yyx * h) + yxy * f(p + yxy * h) + xxx * f(p + xxx * h));
 }
 
+// Forward differences: four taps like the tetrahedron, all on one side of p; first order.
+glm::dvec3 forward_normal(const Field& f, const glm::dvec3& p, double h) {
+  const double here = f(p);
+  return normalize_or_zero(glm::dvec3(f(p + glm::dvec3(h, 0.0, 0.0)) - here, f(p + glm::dvec3(0.0, h, 0.0)) - here,
+                                      f(p + glm::dvec3(0.0, 0.0, h)) - here));
+}
+
 glm::dvec3 normal_of(const Field& f, const glm::dvec3& p, NormalMethod method, double h) {
   switch (method) {
     case NormalMethod::Central: return central_normal(f, p, h);
     case NormalMethod::Tetrahedral: return tetrahedral_normal(f, p, h);
+    case NormalMethod::Forward: return forward_normal(f, p, h);
   }
   return glm::dvec3(0.0);
 }
@@ -82,7 +92,20 @@ RayResult reference_trace(const Scene& scene, const glm::dvec3& origin, const gl
   // Under the cells tiling the march runs in the camera's cell; origin is the world position.
   const bool cells = scene.tiling && scene.tiling->method == TilingMethod::Cells;
   const glm::dvec3 frame_origin = cells ? origin - scene.camera.position + camera_origin_in_frame(scene) : origin;
-  const MarchEnd end = reference_march(scene, frame_origin, direction, 0.0, scene.render.max_distance, limits);
+  // Camera rays march only inside the scene's bounding sphere, if it has one (scene_bounds.hpp).
+  double t_start = 0.0;
+  double t_end = scene.render.max_distance;
+  bool marching = true;
+  if (const std::optional<BoundingSphere> bounds = camera_ray_bounds(scene)) {
+    const std::optional<RaySpan> span = ray_sphere_span(origin, direction, *bounds);
+    if (span) {
+      t_start = std::max(span->t_enter, 0.0);
+      t_end = std::min(span->t_exit, t_end);
+    }
+    marching = span && t_end > t_start;
+  }
+  MarchEnd end;
+  if (marching) end = reference_march(scene, frame_origin, direction, t_start, t_end, limits);
   RayResult r;
   r.steps = end.steps;
   r.wall_steps = end.wall_steps;
@@ -110,6 +133,9 @@ FrameBuffers render_reference(const Scene& scene) {
   ProgressLine progress("reference rows", height);
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
     for (int j = rows.begin(); j != rows.end(); ++j) {
+      // Ctrl-C: a row not yet begun is never begun (progress.advance() below polls too, but only
+      // after its row; keep both).
+      throw_if_cancelled();
       for (int i = 0; i < width; ++i) {
         const RayResult r = reference_trace(scene, basis.origin, pixel_ray_direction(basis, i, j));
         fb.at(Channel::R, i, j) = static_cast<float>(r.color.r);

@@ -9,6 +9,7 @@
 #include "device_types.h"
 #include "image/atomic_file.hpp"
 #include "scene/camera_model.hpp"
+#include "scene/scene_bounds.hpp"
 #include "scene/tiling_model.hpp"
 
 #include <algorithm>
@@ -84,9 +85,10 @@ PreparedProgram prepare(const Scene& scene, const OpenClOptions& options, Kernel
   KernelOptions kernel_options;
   kernel_options.purpose = purpose;
   kernel_options.lanes = options.lanes.value_or(default_lanes(device));
+  kernel_options.variant = options.variant;
   const std::string source = generate_kernel_source(scene, kernel_options);
   if (!options.dump_kernel_path.empty()) write_file_atomically(options.dump_kernel_path, source);
-  return {build_device_program(device, source), kernel_options.lanes};
+  return {build_device_program(device, source, kernel_build_options(options.variant)), kernel_options.lanes};
 }
 
 }  // namespace
@@ -118,6 +120,10 @@ RenderResult render_opencl(const Scene& scene, const OpenClOptions& options) {
   params.camera_height = static_cast<float>(scene.camera.position.y);
   params.over_relaxation = static_cast<float>(scene.render.over_relaxation);
   params.hit_cone_slope = static_cast<float>(hit_cone_slope(scene.render, scene.camera));
+  if (const std::optional<BoundingSphere> bounds = camera_ray_bounds(scene)) {
+    params.bounds = to_cl(scene.camera.position - bounds->center);
+    params.bounds.s[3] = static_cast<float>(bounds->radius);
+  }
   const std::vector<cl_float4> lights = light_data(scene);
 
   RenderResult result;

@@ -20,6 +20,8 @@ struct OpenClOptions {
   /// Pixels per work-item; default from the device (default_lanes).
   std::optional<int> lanes;
   KernelPurpose purpose = KernelPurpose::Shaded;
+  /// Precision, native math and fast math of the program (default: float, precise builtins).
+  KernelVariant variant;
   /// Where to write the exact program source before building; empty: nowhere.
   std::string dump_kernel_path;
   /// Most pixels per dispatch; 0: as many as the device's largest buffer allows (capped so that

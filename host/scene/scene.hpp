@@ -127,14 +127,19 @@ struct Camera {
   double fov_degrees = 45.0;
 };
 
-/// How surface normals are estimated from the distance field.
-enum class NormalMethod { Central, Tetrahedral };
-inline constexpr const char* kNormalMethodNames[] = {"central", "tetrahedral"};
+/// How surface normals are estimated from the distance field: central differences (6 taps), the
+/// tetrahedron (4 taps) or forward differences f(p + h e_i) - f(p) (4 taps).
+enum class NormalMethod { Central, Tetrahedral, Forward };
+inline constexpr const char* kNormalMethodNames[] = {"central", "tetrahedral", "forward"};
 
 /// When a ray counts as arrived: below epsilon, or below a threshold that grows with depth so it
 /// stays a fixed share of a pixel's footprint (the pixel cone).
 enum class HitThreshold { Fixed, PixelCone };
 inline constexpr const char* kHitThresholdNames[] = {"fixed", "pixel_cone"};
+
+/// Whether camera rays are clipped to the scene's bounding sphere (host/scene/scene_bounds.hpp).
+enum class SceneBounds { None, Sphere };
+inline constexpr const char* kSceneBoundsNames[] = {"none", "sphere"};
 
 /// Settings of the march itself.
 struct RenderSettings {
@@ -152,6 +157,10 @@ struct RenderSettings {
   HitThreshold hit_threshold = HitThreshold::Fixed;
   /// pixel_cone: the threshold is max(epsilon, cone_factor * t * pixel angle).
   double cone_factor = 1.0;
+  /// sphere: camera rays march only inside the bounding sphere of a bounded scene.
+  SceneBounds bounds = SceneBounds::Sphere;
+
+  bool operator==(const RenderSettings&) const = default;
 };
 
 enum class LightKind { Point, Directional };
@@ -301,6 +310,9 @@ struct Scene {
   std::optional<Tiling> tiling;
   /// The time t (seconds) at which expressions in the file were evaluated.
   double time = 0.0;
+  /// Where render.width/height were set ("file:line:col", "file (--set)"), for checks made after
+  /// loading (host memory); empty when both are the defaults.
+  std::string size_origin;
 };
 
 }  // namespace clmarch

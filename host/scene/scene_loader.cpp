@@ -6,7 +6,10 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -30,7 +33,10 @@ class SceneReader {
     yaml_.expect_map(root, "the scene", {"description", "camera", "render", "sdf", "lights", "shading", "tiling"});
     if (const YAML::Node description = root["description"]) yaml_.text(description, "description");
     if (const YAML::Node camera = root["camera"]) scene.camera = read_camera(camera);
-    if (const YAML::Node render = root["render"]) scene.render = read_render(render);
+    if (const YAML::Node render = root["render"]) {
+      scene.render = read_render(render);
+      if (const YAML::Node side = render["width"] ? render["width"] : render["height"]) scene.size_origin = yaml_.where(side);
+    }
     scene.sdf = read_node(yaml_.required(root, "sdf", "sdf (the distance field tree)"), "sdf", 1);
     if (const YAML::Node lights = root["lights"]) scene.lights = read_lights(lights);
     if (const YAML::Node shading = root["shading"]) scene.shading = read_shading(shading);
@@ -58,7 +64,7 @@ class SceneReader {
   RenderSettings read_render(const YAML::Node& node) {
     RenderSettings render;
     yaml_.expect_map(node, "render", {"width", "height", "max_steps", "epsilon", "max_distance", "normal_method", "normal_epsilon",
-                                      "over_relaxation", "hit_threshold", "cone_factor"});
+                                      "over_relaxation", "hit_threshold", "cone_factor", "bounds"});
     const Range side = Range::closed(1, kMaxImageSide);
     if (node["width"]) render.width = yaml_.integer(node["width"], "render.width", side);
     if (node["height"]) render.height = yaml_.integer(node["height"], "render.height", side);
@@ -70,8 +76,11 @@ class SceneReader {
     }
     yaml_.optional_number(node, "normal_epsilon", "render.normal_epsilon", render.normal_epsilon, Range::positive());
     read_march_acceleration(node, render);
+    if (node["bounds"]) render.bounds = static_cast<SceneBounds>(yaml_.choice(node["bounds"], "render.bounds", kSceneBoundsNames));
     if (!image_size_fits(render.width, render.height)) {
-      yaml_.fail(node, fmt::format("render.width x render.height = {} x {} exceeds {} pixels", render.width, render.height, kMaxPixels));
+      yaml_.fail(node, fmt::format("render.width x render.height = {} x {} exceeds {} pixels (got {}, expected at most {})",
+                                   render.width, render.height, kMaxPixels,
+                                   static_cast<long long>(render.width) * render.height, kMaxPixels));
     }
     return render;
   }
@@ -92,6 +101,9 @@ class SceneReader {
 
   std::vector<Light> read_lights(const YAML::Node& node) {
     if (!node.IsSequence()) yaml_.fail(node, fmt::format("lights must be a list (got {})", describe_yaml(node)));
+    if (node.size() > static_cast<std::size_t>(kMaxLights)) {
+      yaml_.fail(node, fmt::format("lights has too many entries (got {}, expected at most {})", node.size(), kMaxLights));
+    }
     std::vector<Light> lights;
     for (std::size_t i = 0; i < node.size(); ++i) {
       const YAML::Node entry = node[i];
@@ -231,7 +243,18 @@ class SceneReader {
   }
 
   Node read_node(const YAML::Node& yaml, const std::string& path, int depth) {
-    if (depth > kMaxTreeDepth) yaml_.fail(yaml, fmt::format("{}: the tree is deeper than {} levels", path, kMaxTreeDepth));
+    if (depth > kMaxTreeDepth) {
+      yaml_.fail(yaml, fmt::format("{}: the tree is deeper than {} levels (got level {}, expected at most {}; an alias "
+                                   "*name inside its own anchor &name makes an endless tree)",
+                                   path, kMaxTreeDepth, depth, kMaxTreeDepth));
+    }
+    // Counted on the way in, so that an alias bomb stops after kMaxTreeNodes nodes: yaml-cpp
+    // shares an aliased subtree, and only this walk would expand it.
+    if (++node_count_ > kMaxTreeNodes) {
+      yaml_.fail(yaml, fmt::format("{}: the tree has too many nodes (got node {} here, expected at most {}; an alias "
+                                   "*name counts its nodes again at every use)",
+                                   path, node_count_, kMaxTreeNodes));
+    }
     if (!yaml.IsMap() || yaml.size() != 1) {
       yaml_.fail(yaml, fmt::format("{} must be a map with one key naming the node kind, e.g. sphere: {{radius: 1}} (got {})",
                                    path, yaml.IsMap() ? fmt::format("{} keys", yaml.size()) : describe_yaml(yaml)));
@@ -436,32 +459,61 @@ class SceneReader {
   }
 
   YamlReader yaml_;
+  /// SDF nodes read so far.
+  int node_count_ = 0;
 };
 
-/// A copy of a parsed value built from fresh nodes, which carry no position: messages about it
-/// then say it came from --set rather than pointing at a line of the file.
-YAML::Node positionless_copy(const YAML::Node& node) {
-  switch (node.Type()) {
-    case YAML::NodeType::Scalar: return YAML::Node(node.Scalar());
-    case YAML::NodeType::Sequence: {
-      YAML::Node out(YAML::NodeType::Sequence);
-      for (const auto& item : node) out.push_back(positionless_copy(item));
-      return out;
+/// A copy of a parsed --set value built from fresh nodes, which carry no position: messages about
+/// it then say it came from --set rather than pointing at a line of the file. The copy expands
+/// aliases, so it stops after kMaxOverrideNodes nodes or kMaxOverrideDepth levels (an alias bomb,
+/// or an alias inside its own anchor, which yaml-cpp turns into a cycle).
+class PositionlessCopy {
+ public:
+  explicit PositionlessCopy(const std::string& option) : option_(option) {}
+
+  YAML::Node operator()(const YAML::Node& node, int depth = 1) {
+    if (depth > kMaxOverrideDepth) {
+      throw InputError(fmt::format("{}: the value nests too deep (got level {}, expected at most {})", option_, depth,
+                                   kMaxOverrideDepth));
     }
-    case YAML::NodeType::Map: {
-      YAML::Node out(YAML::NodeType::Map);
-      for (const auto& entry : node) out.force_insert(positionless_copy(entry.first), positionless_copy(entry.second));
-      return out;
+    if (++count_ > kMaxOverrideNodes) {
+      throw InputError(fmt::format("{}: the value has too many YAML values (got value {}, expected at most {}; an alias "
+                                   "*name counts its nodes again at every use)",
+                                   option_, count_, kMaxOverrideNodes));
     }
-    default: return YAML::Node(YAML::NodeType::Null);
+    switch (node.Type()) {
+      case YAML::NodeType::Scalar: return YAML::Node(node.Scalar());
+      case YAML::NodeType::Sequence: {
+        YAML::Node out(YAML::NodeType::Sequence);
+        for (const auto& item : node) out.push_back((*this)(item, depth + 1));
+        return out;
+      }
+      case YAML::NodeType::Map: {
+        YAML::Node out(YAML::NodeType::Map);
+        for (const auto& entry : node) out.force_insert((*this)(entry.first, depth + 1), (*this)(entry.second, depth + 1));
+        return out;
+      }
+      default: return YAML::Node(YAML::NodeType::Null);
+    }
   }
+
+ private:
+  const std::string& option_;
+  int count_ = 0;
+};
+
+/// The option as messages quote it, on one line whatever the value holds.
+std::string quoted_option(const SceneOverride& override_) {
+  std::string text = fmt::format("--set {}={}", override_.path, override_.value);
+  for (std::size_t at; (at = text.find('\n')) != std::string::npos;) text.replace(at, 1, "\\n");
+  return text;
 }
 
 void apply_override(YAML::Node& root, const SceneOverride& override_) {
-  const std::string option = fmt::format("--set {}={}", override_.path, override_.value);
+  const std::string option = quoted_option(override_);
   YAML::Node value;
   try {
-    value = positionless_copy(YAML::Load(override_.value));
+    value = PositionlessCopy(option)(YAML::Load(override_.value));
   } catch (const YAML::Exception& e) {
     throw InputError(fmt::format("{}: the value is not valid YAML: {}", option, e.msg));
   }
@@ -529,6 +581,7 @@ Scene load_scene_text(const std::string& text, const std::string& source_name, c
                       double time) {
   YAML::Node root;
   try {
+    check_yaml_node_count(text, source_name, kMaxYamlNodes);
     root = YAML::Load(text);
   } catch (const YAML::ParserException& e) {
     throw InputError(fmt::format("{}:{}:{}: malformed YAML: {}", source_name, e.mark.line + 1, e.mark.column + 1, e.msg));
@@ -544,11 +597,23 @@ Scene load_scene_text(const std::string& text, const std::string& source_name, c
 }
 
 Scene load_scene_file(const std::string& path, const std::vector<SceneOverride>& overrides, double time) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) throw InputError(fmt::format("{}: is a folder, not a scene file", path));
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(fmt::format("{}: cannot read the scene file: {}", path, std::strerror(errno)));
-  std::stringstream text;
-  text << in.rdbuf();
-  return load_scene_text(text.str(), path, overrides, time);
+  // Read in pieces and stop one past the limit, so that a huge file (or an endless one such as
+  // /dev/zero) costs no more than the limit.
+  std::string text;
+  std::array<char, 65536> piece{};
+  while (in.read(piece.data(), piece.size()) || in.gcount() > 0) {
+    text.append(piece.data(), static_cast<std::size_t>(in.gcount()));
+    if (static_cast<long long>(text.size()) > kMaxSceneFileBytes) {
+      throw InputError(fmt::format("{}: the scene file is too large (got more than {} bytes, expected at most {})", path,
+                                   kMaxSceneFileBytes, kMaxSceneFileBytes));
+    }
+  }
+  if (in.bad()) throw InputError(fmt::format("{}: cannot read the scene file: {}", path, std::strerror(errno)));
+  return load_scene_text(text, path, overrides, time);
 }
 
 }  // namespace clmarch

@@ -5,9 +5,13 @@
 
 #include <fmt/format.h>
 #include <muParser.h>
+#include <yaml-cpp/eventhandler.h>
 
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <set>
+#include <sstream>
 
 namespace clmarch {
 
@@ -37,6 +41,54 @@ std::string describe_yaml(const YAML::Node& node) {
   }
 }
 
+namespace {
+
+/// Counts parser events; the parse stops with an InputError at the first node past the limit.
+class NodeCounter : public YAML::EventHandler {
+ public:
+  NodeCounter(const std::string& source_name, long long max_nodes) : source_(source_name), max_(max_nodes) {}
+  void OnDocumentStart(const YAML::Mark& mark) override {
+    if (documents_++ == 0) return;
+    throw InputError(fmt::format("{}:{}:{}: a scene file holds one YAML document (got a second one after '---' here, "
+                                 "expected at most 1)",
+                                 source_, mark.line + 1, mark.column + 1));
+  }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark& mark, YAML::anchor_t) override { count(mark); }
+  void OnAlias(const YAML::Mark& mark, YAML::anchor_t) override { count(mark); }
+  void OnScalar(const YAML::Mark& mark, const std::string&, YAML::anchor_t, const std::string&) override { count(mark); }
+  void OnSequenceStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+    count(mark);
+  }
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+    count(mark);
+  }
+  void OnMapEnd() override {}
+
+ private:
+  void count(const YAML::Mark& mark) {
+    if (++count_ <= max_) return;
+    throw InputError(fmt::format("{}:{}:{}: the file has too many YAML values (got value {} here, expected at most {})",
+                                 source_, mark.line + 1, mark.column + 1, count_, max_));
+  }
+  const std::string& source_;
+  long long max_;
+  long long count_ = 0;
+  int documents_ = 0;
+};
+
+}  // namespace
+
+void check_yaml_node_count(const std::string& text, const std::string& source_name, long long max_nodes) {
+  std::istringstream in(text);
+  YAML::Parser parser(in);
+  NodeCounter counter(source_name, max_nodes);
+  // YAML::Load reads the first document only; a second one would be ignored without this.
+  while (parser.HandleNextDocument(counter)) {
+  }
+}
+
 std::string YamlReader::where(const YAML::Node& node) const {
   const YAML::Mark mark = node.Mark();
   if (mark.is_null()) return source_ + " (--set)";
@@ -44,7 +96,10 @@ std::string YamlReader::where(const YAML::Node& node) const {
 }
 
 void YamlReader::fail(const YAML::Node& at, const std::string& message) const {
-  throw InputError(fmt::format("{}: {}", where(at), message));
+  // Every error is one line, also when it quotes a multi-line value ("a\nb", a block scalar).
+  std::string line = message;
+  for (std::size_t at_newline; (at_newline = line.find('\n')) != std::string::npos;) line.replace(at_newline, 1, "\\n");
+  throw InputError(fmt::format("{}: {}", where(at), line));
 }
 
 void YamlReader::expect_map(const YAML::Node& node, const std::string& what,
@@ -66,6 +121,14 @@ double YamlReader::number(const YAML::Node& node, const std::string& what, Range
   double value = 0.0;
   if (!node.IsScalar()) fail(node, fmt::format("{} must be a number (got {})", what, describe_yaml(node)));
   if (!YAML::convert<double>::decode(node, value)) {
+    // yaml-cpp refuses a number beyond double's range (1e400), which would then read as a bad
+    // expression; say what is really wrong.
+    char* end = nullptr;
+    errno = 0;
+    std::strtod(node.Scalar().c_str(), &end);
+    if (errno == ERANGE && end != node.Scalar().c_str() && *end == '\0') {
+      fail(node, fmt::format("{} must be a number within +-{:g}, the float range (got {})", what, kMaxSceneNumber, node.Scalar()));
+    }
     try {
       mu::Parser parser;
       double t = time_;

@@ -77,4 +77,10 @@ class YamlReader {
 /// How a YAML value looks in a message: its text for scalars, else "a list" or "a map".
 std::string describe_yaml(const YAML::Node& node);
 
+/// Parses text without building nodes and throws InputError at the first node past max_nodes
+/// (scalars, nulls, lists, maps; an alias counts once here), so that a huge file costs no more
+/// than scanning that many nodes, or at the start of a second document ('---'). Malformed YAML
+/// throws YAML::ParserException.
+void check_yaml_node_count(const std::string& text, const std::string& source_name, long long max_nodes);
+
 }  // namespace clmarch

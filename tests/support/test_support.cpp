@@ -1,6 +1,7 @@
 // Test helpers.
 #include "support/test_support.hpp"
 
+#include "common/errors.hpp"
 #include "scene/scene_loader.hpp"
 
 #include <OpenImageIO/imageio.h>
@@ -16,7 +17,6 @@
 #include <sys/wait.h>
 
 namespace clmarch::testing {
-namespace {
 
 std::string read_text(const std::filesystem::path& path) {
   std::ifstream in(path);
@@ -24,8 +24,6 @@ std::string read_text(const std::filesystem::path& path) {
   text << in.rdbuf();
   return text.str();
 }
-
-}  // namespace
 
 std::string shell_quote(const std::string& s) {
   std::string out = "'";
@@ -41,6 +39,15 @@ std::string shell_quote(const std::string& s) {
 }
 
 Scene scene_from_yaml(const std::string& yaml) { return load_scene_text(yaml, "test.yaml"); }
+
+std::string error_of(const std::string& yaml, const std::vector<SceneOverride>& overrides) {
+  try {
+    load_scene_text(yaml, "s.yaml", overrides);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
 
 std::filesystem::path source_path(const std::string& relative) { return std::filesystem::path(CLMARCH_SOURCE_DIR) / relative; }
 

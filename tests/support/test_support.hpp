@@ -2,6 +2,7 @@
 #pragma once
 
 #include "scene/scene.hpp"
+#include "scene/scene_loader.hpp"
 
 #include <filesystem>
 #include <string>
@@ -11,6 +12,9 @@ namespace clmarch::testing {
 
 /// A scene from YAML text (messages name it "test.yaml").
 Scene scene_from_yaml(const std::string& yaml);
+
+/// The loader's message for YAML text named "s.yaml" with overrides, or "no error".
+std::string error_of(const std::string& yaml, const std::vector<SceneOverride>& overrides = {});
 
 /// A path inside the source tree (scenes/torus.yaml).
 std::filesystem::path source_path(const std::string& relative);
@@ -28,6 +32,9 @@ CommandResult run_clmarch(const std::vector<std::string>& args, const std::vecto
 /// Like run_clmarch, after shell_prefix (commands ending in "; ", e.g. "ulimit -f 8; ").
 CommandResult run_clmarch_in_shell(const std::string& shell_prefix, const std::vector<std::string>& args,
                                    const std::vector<std::string>& environment = {});
+
+/// The whole file as text (empty if it cannot be read).
+std::string read_text(const std::filesystem::path& path);
 
 /// s in single quotes for /bin/sh.
 std::string shell_quote(const std::string& s);

@@ -1,0 +1,75 @@
+// The sweep's measurements: the reference first (it loads every core), then the OpenCL renders,
+// timed in interleaved rounds so that a change of the machine's load spreads over all combinations.
+#include "bench/sweep_run.hpp"
+
+#include "bench/throughput.hpp"
+#include "common/log.hpp"
+#include "reference/reference_renderer.hpp"
+
+#include <fmt/format.h>
+#include <glm/glm.hpp>
+
+#include <chrono>
+
+namespace clmarch {
+namespace {
+
+Scene without_step_ao(Scene scene) {
+  scene.shading.step_ao = 0.0;
+  return scene;
+}
+
+}  // namespace
+
+Scene high_accuracy_scene(const Scene& scene, const SweepSettings& settings) {
+  Scene out = without_step_ao(scene);
+  const double size = glm::length(scene.camera.look_at - scene.camera.position);
+  RenderSettings& r = out.render;
+  r.epsilon = settings.reference_epsilon_scale * size;
+  r.max_steps = settings.reference_max_steps;
+  r.hit_threshold = HitThreshold::Fixed;
+  r.over_relaxation = 1.0;
+  r.normal_method = NormalMethod::Central;
+  return out;
+}
+
+SweepResult run_sweep(const Scene& base, const std::vector<SweepCase>& cases, const SweepSettings& settings) {
+  SweepResult result;
+  const Scene reference_scene = high_accuracy_scene(base, settings);
+  result.reference_epsilon = reference_scene.render.epsilon;
+  result.reference_max_steps = reference_scene.render.max_steps;
+  log_info(fmt::format("sweep: CPU reference, epsilon {:.3g}, max_steps {}", result.reference_epsilon,
+                       result.reference_max_steps));
+  const auto start = std::chrono::steady_clock::now();
+  const FrameBuffers reference = render_reference(reference_scene);
+  result.reference_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+
+  std::vector<Scene> scenes;
+  for (const SweepCase& c : cases) scenes.push_back(without_step_ao(c.scene));
+  const double pixels = static_cast<double>(base.render.width) * base.render.height;
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    log_info(fmt::format("sweep {}/{}: {}", k + 1, cases.size(), combination_label(cases[k].combination)));
+    // The first render pays the build and PoCL's work-group compile; its buffers are the ones compared.
+    const RenderResult first = render_opencl(scenes[k], cases[k].options);
+    SweepRow row;
+    row.combination = cases[k].combination;
+    row.render = scenes[k].render;
+    row.lanes = first.stats.lanes;
+    row.variant = cases[k].options.variant;
+    row.device = first.stats.device;
+    row.steps_per_pixel = static_cast<double>(first.stats.steps) / pixels;
+    row.is_defaults = cases[k].is_defaults;
+    row.error = cross_check(scenes[k], first.buffers, reference);
+    result.rows.push_back(std::move(row));
+  }
+  for (int round = 0; round < settings.repeat; ++round) {
+    log_verbose(fmt::format("sweep: timing round {}/{}", round + 1, settings.repeat));
+    for (std::size_t k = 0; k < cases.size(); ++k) {
+      result.rows[k].kernel_ms_runs.push_back(render_opencl(scenes[k], cases[k].options).stats.kernel_ms);
+    }
+  }
+  for (SweepRow& row : result.rows) row.kernel_ms = median(row.kernel_ms_runs);
+  return result;
+}
+
+}  // namespace clmarch

@@ -1,0 +1,81 @@
+// Sweep options to sweep cases: every combination is loaded (and so validated) before the first render.
+#include "cli/bench_sweep.hpp"
+
+#include "bench/sweep_csv.hpp"
+#include "bench/sweep_run.hpp"
+#include "cl/devices.hpp"
+#include "common/errors.hpp"
+#include "common/log.hpp"
+#include "image/atomic_file.hpp"
+
+#include <fmt/format.h>
+
+#include <string>
+
+namespace clmarch {
+namespace {
+
+bool has_fp64(const DeviceEntry& device) {
+  return device.device.getInfo<CL_DEVICE_EXTENSIONS>().find("cl_khr_fp64") != std::string::npos;
+}
+
+/// True when the case renders with march settings and a program equal to scene's with options.
+bool same_settings(const SweepCase& c, const Scene& scene, const OpenClOptions& options, const DeviceEntry& device) {
+  const auto lanes = [&](const OpenClOptions& o) { return o.lanes.value_or(default_lanes(device)); };
+  return c.scene.render == scene.render && lanes(c.options) == lanes(options) && c.options.variant == options.variant;
+}
+
+/// True when a case of a one-at-a-time sweep only restates the base's settings (render.epsilon=1e-4
+/// on a scene whose epsilon is 1e-4): the base row measures it already.
+bool repeats_base(const SweepCase& c, const Scene& base, const OpenClOptions& base_options, const DeviceEntry& device) {
+  for (const std::string& set : scene_sets(c.combination)) {
+    if (set.rfind("render.", 0) != 0) return false;
+  }
+  return same_settings(c, base, base_options, device);
+}
+
+}  // namespace
+
+int run_bench_sweep(const BenchCommandOptions& options) {
+  if (options.csv.empty()) throw InputError("--sweep needs --csv FILE (where the rows go)");
+  check_output_folder(options.csv, "--csv");
+  if (options.append) check_sweep_csv_appendable(options.csv);
+  std::vector<SweepAxis> axes;
+  for (const std::string& text : options.sweeps) axes.push_back(parse_sweep_axis(text));
+  const std::vector<SweepCombination> combinations = options.one_at_a_time ? expand_one_at_a_time(axes) : expand_sweep(axes);
+
+  const Scene base = load_scene_with_options(options.scene);
+  const OpenClOptions base_options = opencl_options(options.scene);
+  const DeviceEntry device = select_device(base_options.device);
+  // The defaults: the scene file's own march settings (at the same size) and the default program.
+  SceneOptions file_options = options.scene;
+  file_options.sets.clear();
+  const Scene defaults = load_scene_with_options(file_options);
+  OpenClOptions default_options;
+  default_options.device = base_options.device;
+  std::vector<SweepCase> cases;
+  for (const SweepCombination& combination : combinations) {
+    SceneOptions scene_options = options.scene;
+    for (const std::string& set : scene_sets(combination)) scene_options.sets.push_back(set);
+    SweepCase c{combination, load_scene_with_options(scene_options), with_kernel_settings(base_options, combination), false};
+    if (options.one_at_a_time && !cases.empty() && repeats_base(c, base, base_options, device)) continue;
+    c.is_defaults = same_settings(c, defaults, default_options, device);
+    cases.push_back(std::move(c));
+  }
+  for (const SweepCase& c : cases) {
+    if (c.options.variant.precision != Precision::Double) continue;
+    if (!has_fp64(device)) throw InputError(fmt::format("--sweep precision=double: {} has no cl_khr_fp64", device.label()));
+    if (c.options.lanes.value_or(default_lanes(device)) == 1) {
+      throw InputError(fmt::format("--sweep: {} ({})", kDoubleNeedsVectorLanes, combination_label(c.combination)));
+    }
+  }
+
+  SweepSettings settings;
+  settings.repeat = options.repeat;
+  const SweepResult result = run_sweep(base, cases, settings);
+  write_sweep_csv(options.csv, options.scene.scene_path, result, options.append);
+  log_info(fmt::format("wrote {} rows to {}", result.rows.size(), options.csv));
+  return kExitOk;
+}
+
+}  // namespace clmarch

@@ -1,0 +1,129 @@
+// Bounding spheres of the SDF tree, node by node.
+#include "scene/scene_bounds.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace clmarch {
+namespace {
+
+/// The smallest sphere holding both spheres (their thresholds counted with the larger gain).
+BoundingSphere enclosing(const BoundingSphere& a, const BoundingSphere& b) {
+  const double gain = std::max(a.gain, b.gain);
+  const double distance = glm::length(b.center - a.center);
+  if (distance + b.radius <= a.radius) return {a.center, a.radius, gain};
+  if (distance + a.radius <= b.radius) return {b.center, b.radius, gain};
+  const double radius = 0.5 * (distance + a.radius + b.radius);
+  const glm::dvec3 center = a.center + (b.center - a.center) * ((radius - a.radius) / distance);
+  return {center, radius, gain};
+}
+
+std::optional<BoundingSphere> primitive_bounds(const Primitive& primitive) {
+  struct Visitor {
+    std::optional<BoundingSphere> operator()(const Sphere& s) const { return BoundingSphere{s.center, s.radius}; }
+    std::optional<BoundingSphere> operator()(const Box& b) const { return BoundingSphere{b.center, glm::length(b.half_size)}; }
+    std::optional<BoundingSphere> operator()(const RoundBox& b) const {
+      return BoundingSphere{b.center, glm::length(b.half_size)};
+    }
+    std::optional<BoundingSphere> operator()(const BoxFrame& b) const {
+      return BoundingSphere{b.center, glm::length(b.half_size)};
+    }
+    std::optional<BoundingSphere> operator()(const Torus& t) const {
+      return BoundingSphere{t.center, t.major_radius + t.minor_radius};
+    }
+    std::optional<BoundingSphere> operator()(const Plane&) const { return std::nullopt; }
+    std::optional<BoundingSphere> operator()(const Capsule& c) const {
+      return BoundingSphere{0.5 * (c.a + c.b), 0.5 * glm::length(c.b - c.a) + c.radius};
+    }
+    std::optional<BoundingSphere> operator()(const Cylinder& c) const {
+      return BoundingSphere{c.center, std::hypot(c.radius, c.half_height)};
+    }
+    // Outside |p - center| = max(bailout, 1) the orbit escapes at once and the estimate is
+    // 0.5 ln(r) r > 0, growing with r.
+    std::optional<BoundingSphere> operator()(const Mandelbulb& m) const {
+      return BoundingSphere{m.center, std::max(m.bailout, 1.0)};
+    }
+    // The sponge is the cube with holes cut out: max(box, ...) >= the box's distance.
+    std::optional<BoundingSphere> operator()(const Menger& m) const {
+      return BoundingSphere{m.center, m.half_size * std::sqrt(3.0)};
+    }
+    std::optional<BoundingSphere> operator()(const Terrain&) const { return std::nullopt; }
+  };
+  return std::visit(Visitor{}, primitive);
+}
+
+std::optional<BoundingSphere> operator_bounds(const Node& node) {
+  switch (node.kind) {
+    case NodeKind::Repeat: return std::nullopt;
+    case NodeKind::Displace: {
+      // (d + displacement) / L < tau needs d < L tau + amplitude.
+      std::optional<BoundingSphere> child = node_bounds(node.children.front());
+      if (!child) return std::nullopt;
+      child->radius += node.displace_amplitude;
+      child->gain *= displacement_lipschitz(node);
+      return child;
+    }
+    case NodeKind::Union:
+    case NodeKind::SmoothUnion: {
+      std::optional<BoundingSphere> all;
+      for (const Node& child : node.children) {
+        const std::optional<BoundingSphere> b = node_bounds(child);
+        if (!b) return std::nullopt;
+        all = all ? enclosing(*all, *b) : *b;
+      }
+      return all;
+    }
+    case NodeKind::Intersection:
+    case NodeKind::SmoothIntersection: {
+      // Inside every operand: the smallest bounded one serves.
+      std::optional<BoundingSphere> best;
+      for (const Node& child : node.children) {
+        const std::optional<BoundingSphere> b = node_bounds(child);
+        if (b && (!best || b->radius < best->radius)) best = b;
+      }
+      return best;
+    }
+    case NodeKind::Subtraction:
+    case NodeKind::SmoothSubtraction: return node_bounds(node.children.front());
+    default: return std::nullopt;
+  }
+}
+
+}  // namespace
+
+std::optional<BoundingSphere> node_bounds(const Node& node) {
+  std::optional<BoundingSphere> b = is_primitive(node.kind) ? primitive_bounds(node.primitive) : operator_bounds(node);
+  if (!b) return std::nullopt;
+  // The polynomial smooth minimum and maximum undershoot the hard ones by at most k / 4.
+  if (is_smooth_operator(node.kind)) b->radius += b->gain * node.smooth_k / 4.0;
+  // p_parent = translate + R (scale p_local); the field is scale * f(p_local) * step_factor.
+  b->center = node.transform.translate + node.transform.world_from_local_rotation() * (node.transform.scale * b->center);
+  b->radius *= node.transform.scale;
+  b->gain /= node.step_factor;
+  return b;
+}
+
+std::optional<BoundingSphere> camera_ray_bounds(const Scene& scene) {
+  if (scene.render.bounds == SceneBounds::None || scene.tiling) return std::nullopt;
+  std::optional<BoundingSphere> b = node_bounds(scene.sdf);
+  if (!b) return std::nullopt;
+  // The largest hit threshold along a camera ray, which ends at max_distance.
+  const double threshold = std::max(scene.render.epsilon, hit_cone_slope(scene.render, scene.camera) * scene.render.max_distance);
+  const double glow = scene.shading.glow ? scene.shading.glow->radius : 0.0;
+  const double rounding = 1e-4 * (b->radius + glm::length(scene.camera.position - b->center));
+  b->radius += b->gain * (threshold + glow) + rounding;
+  return b;
+}
+
+std::optional<RaySpan> ray_sphere_span(const glm::dvec3& origin, const glm::dvec3& dir, const BoundingSphere& sphere) {
+  const glm::dvec3 offset = origin - sphere.center;
+  const double b = glm::dot(offset, dir);
+  // b^2 - c computed as r^2 - |offset - b dir|^2, which keeps its precision far from the sphere.
+  const glm::dvec3 closest = offset - b * dir;
+  const double h = sphere.radius * sphere.radius - glm::dot(closest, closest);
+  if (h < 0.0) return std::nullopt;
+  const double root = std::sqrt(h);
+  return RaySpan{-b - root, -b + root};
+}
+
+}  // namespace clmarch

@@ -1,0 +1,37 @@
+// The bounding sphere of a scene: camera rays are clipped to it, so rays that miss it cost no
+// distance evaluation and rays that pass through stop where they leave it. One definition, used by
+// the OpenCL renderer and the CPU reference alike (the march rule in docs/scene-format.md).
+#pragma once
+
+#include "scene/scene.hpp"
+
+#include <optional>
+
+namespace clmarch {
+
+/// Where a node's field can fall below a threshold tau: only inside the sphere of radius
+/// radius + gain * tau around center (in the node's parent frame). gain grows where the field is
+/// scaled down (step_factor, displacement's Lipschitz divisor).
+struct BoundingSphere {
+  glm::dvec3 center{0.0};
+  double radius = 0.0;
+  double gain = 1.0;
+};
+
+/// The bound of node's field; nothing for unbounded fields (plane, terrain, repeat).
+std::optional<BoundingSphere> node_bounds(const Node& node);
+
+/// The sphere camera rays are clipped to: the tree's bound grown by the largest threshold a camera
+/// ray can hit with, the glow radius (misses near the surface glow) and a margin for float rounding.
+/// Nothing when render.bounds is none, the tree is unbounded, or the scene is tiled.
+std::optional<BoundingSphere> camera_ray_bounds(const Scene& scene);
+
+/// The part [t_enter, t_exit] of the ray origin + t dir (dir unit) inside sphere; nothing if the
+/// ray's line misses it. t_enter may be negative (origin inside).
+struct RaySpan {
+  double t_enter = 0.0;
+  double t_exit = 0.0;
+};
+std::optional<RaySpan> ray_sphere_span(const glm::dvec3& origin, const glm::dvec3& dir, const BoundingSphere& sphere);
+
+}  // namespace clmarch

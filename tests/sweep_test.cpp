@@ -1,0 +1,184 @@
+// `clmarch bench --sweep`: the sweep syntax and its errors, the combinations, and a tiny sweep whose
+// CSV has the documented columns and whose errors order as the settings say they must. Timings are
+// only checked to be present, never against thresholds: the machine is shared.
+#include "bench/sweep_csv.hpp"
+#include "bench/sweep_spec.hpp"
+#include "common/errors.hpp"
+#include "support/test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace clmarch {
+namespace {
+
+using testing::run_clmarch;
+using testing::source_path;
+
+TEST(SweepSpec, ParsesSceneAndKernelKeys) {
+  const SweepAxis epsilon = parse_sweep_axis("render.epsilon=1e-2,1e-3");
+  EXPECT_EQ(epsilon.key, "render.epsilon");
+  EXPECT_EQ(epsilon.values, (std::vector<std::string>{"1e-2", "1e-3"}));
+  const SweepAxis lanes = parse_sweep_axis("lanes=1,16");
+  EXPECT_EQ(lanes.values, (std::vector<std::string>{"1", "16"}));
+  // Commas inside brackets belong to the YAML value.
+  const SweepAxis position = parse_sweep_axis("camera.position=[0,0,5],[1,2,3]");
+  EXPECT_EQ(position.values, (std::vector<std::string>{"[0,0,5]", "[1,2,3]"}));
+  EXPECT_EQ(parse_sweep_axis("precision=float,double").values.size(), 2u);
+  EXPECT_EQ(parse_sweep_axis("fast_math=on,off").values.size(), 2u);
+  EXPECT_EQ(parse_sweep_axis("native_math=on").values.size(), 1u);
+}
+
+TEST(SweepSpec, RejectsBadSyntaxUnknownKeysAndValues) {
+  for (const char* text : {"render.epsilon", "=1,2", "render.epsilon=", "render.epsilon=1e-3,,1e-4", "epsilon=1e-3",
+                           "lanes=3", "precision=half", "fast_math=yes", "native_math=1"}) {
+    EXPECT_THROW(parse_sweep_axis(text), InputError) << text;
+  }
+  try {
+    parse_sweep_axis("colour=1,2");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown key 'colour'"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SweepSpec, ProductAndOneAtATime) {
+  const std::vector<SweepAxis> axes = {parse_sweep_axis("render.epsilon=1e-2,1e-3"), parse_sweep_axis("lanes=1,4,16")};
+  const std::vector<SweepCombination> product = expand_sweep(axes);
+  ASSERT_EQ(product.size(), 6u);
+  EXPECT_EQ(combination_label(product[0]), "render.epsilon=1e-2 lanes=1");
+  EXPECT_EQ(combination_label(product[1]), "render.epsilon=1e-2 lanes=4");
+  EXPECT_EQ(combination_label(product[5]), "render.epsilon=1e-3 lanes=16");
+  EXPECT_EQ(scene_sets(product[5]), (std::vector<std::string>{"render.epsilon=1e-3"}));
+
+  const std::vector<SweepCombination> each = expand_one_at_a_time(axes);
+  ASSERT_EQ(each.size(), 6u);  // the base, then 2 + 3 single settings
+  EXPECT_EQ(combination_label(each[0]), "");
+  EXPECT_EQ(combination_label(each[2]), "render.epsilon=1e-3");
+  EXPECT_EQ(combination_label(each[3]), "lanes=1");
+
+  EXPECT_THROW(expand_sweep({axes[0], axes[0]}), InputError);
+  SweepAxis many{"render.max_steps", {}};
+  for (int i = 1; i <= 40; ++i) many.values.push_back(std::to_string(i));
+  EXPECT_THROW(expand_sweep({many, many, SweepAxis{"render.epsilon", many.values}}), InputError);
+}
+
+TEST(SweepSpec, KernelKeysSetTheOptions) {
+  const OpenClOptions options =
+      with_kernel_settings({}, {{"lanes", "8"}, {"precision", "double"}, {"fast_math", "on"}, {"render.epsilon", "1"}});
+  EXPECT_EQ(options.lanes, 8);
+  EXPECT_EQ(options.variant.precision, Precision::Double);
+  EXPECT_TRUE(options.variant.fast_math);
+  EXPECT_FALSE(options.variant.native_math);
+  EXPECT_THROW(with_kernel_settings({}, {{"precision", "double"}, {"native_math", "on"}}), InputError);
+}
+
+TEST(SweepCommand, BadInputIsOneLineAndExitCode2) {
+  testing::TempDir dir;
+  const std::string torus = source_path("scenes/torus.yaml").string();
+  const std::string csv = (dir / "s.csv").string();
+  for (const std::vector<std::string>& extra :
+       {std::vector<std::string>{"--sweep", "render.epsilon", "--csv", csv}, {"--sweep", "colour=1,2", "--csv", csv},
+        {"--sweep", "lanes=3", "--csv", csv}, {"--sweep", "render.epsilom=1e-3", "--csv", csv},
+        {"--sweep", "render.epsilon=-1", "--csv", csv}, {"--sweep", "render.epsilon=1e-3"}, {"--csv", csv},
+        {"--sweep", "render.epsilon=1e-3", "--csv", "/no/such/folder/s.csv"},
+        {"--sweep", "precision=double", "--sweep", "native_math=on", "--csv", csv},
+        {"--sweep", "precision=double", "--sweep", "lanes=1,16", "--csv", csv}}) {
+    std::vector<std::string> args = {"bench", torus, "--size", "16x9"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const testing::CommandResult r = run_clmarch(args);
+    EXPECT_EQ(r.exit_code, kExitBadInput) << extra[1] << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  EXPECT_TRUE(dir.files().empty());
+}
+
+/// The CSV as rows of column name -> text (no quoted commas in these tests' fields but the device's,
+/// which is quoted only if it has a comma).
+std::vector<std::map<std::string, std::string>> read_csv(const std::filesystem::path& path, std::string* header) {
+  std::ifstream in(path);
+  std::getline(in, *header);
+  std::vector<std::string> names;
+  std::stringstream head(*header);
+  for (std::string name; std::getline(head, name, ',');) names.push_back(name);
+  std::vector<std::map<std::string, std::string>> rows;
+  for (std::string line; std::getline(in, line);) {
+    std::stringstream fields(line);
+    std::map<std::string, std::string> row;
+    for (const std::string& name : names) std::getline(fields, row[name], ',');
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+TEST(SweepCommand, TinySweepWritesOrderedErrors) {
+  testing::TempDir dir;
+  const std::filesystem::path csv = dir / "torus.csv";
+  const std::string torus = source_path("scenes/torus.yaml").string();
+  const testing::CommandResult r = run_clmarch({"bench", torus, "--size", "48x27", "--repeat", "2", "-q", "--sweep",
+                                                "render.epsilon=1e-2,1e-5", "--sweep", "lanes=1,16", "--csv", csv.string()});
+  ASSERT_EQ(r.exit_code, kExitOk) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  std::string header;
+  const auto rows = read_csv(csv, &header);
+  std::string expected_header;
+  for (const std::string& c : sweep_csv_columns()) expected_header += (expected_header.empty() ? "" : ",") + c;
+  EXPECT_EQ(header, expected_header);
+  ASSERT_EQ(rows.size(), 4u);
+  std::map<std::string, std::map<std::string, std::string>> by;
+  for (const auto& row : rows) {
+    by[row.at("combination")] = row;
+    EXPECT_EQ(row.at("width"), "48");
+    EXPECT_GT(std::stod(row.at("kernel_ms")), 0.0);
+    EXPECT_GT(std::stod(row.at("steps_per_pixel")), 0.0);
+    EXPECT_EQ(row.at("precision"), "float");
+    EXPECT_EQ(row.at("defaults"), "0");  // the scene's epsilon is 1e-4
+  }
+  for (const char* lanes : {"1", "16"}) {
+    const auto& coarse = by.at(std::string("render.epsilon=1e-2 lanes=") + lanes);
+    const auto& fine = by.at(std::string("render.epsilon=1e-5 lanes=") + lanes);
+    EXPECT_EQ(coarse.at("lanes"), lanes);
+    EXPECT_EQ(std::stod(coarse.at("epsilon")), 1e-2);
+    // A ten times coarser threshold stops rays further in front of the surface in fewer steps.
+    EXPECT_GT(std::stod(coarse.at("depth_rms")), 10.0 * std::stod(fine.at("depth_rms"))) << lanes;
+    EXPECT_GT(std::stod(coarse.at("depth_p99")), std::stod(fine.at("depth_p99"))) << lanes;
+    EXPECT_LT(std::stod(coarse.at("steps_per_pixel")), std::stod(fine.at("steps_per_pixel"))) << lanes;
+    EXPECT_LT(std::stod(coarse.at("color_psnr_db")), std::stod(fine.at("color_psnr_db"))) << lanes;
+  }
+
+  // --append adds rows under the same header; the base row of a one-at-a-time sweep has the
+  // defaults, and a value equal to the scene's (epsilon 1e-4) is not rendered twice.
+  const testing::CommandResult more =
+      run_clmarch({"bench", torus, "--size", "48x27", "--repeat", "1", "-q", "--one-at-a-time", "--sweep",
+                   "render.epsilon=1e-4,1e-3", "--append", "--csv", csv.string()});
+  ASSERT_EQ(more.exit_code, kExitOk) << more.err;
+  const auto all = read_csv(csv, &header);
+  ASSERT_EQ(all.size(), 6u);
+  EXPECT_EQ(all[4].at("combination"), "");
+  EXPECT_EQ(all[4].at("defaults"), "1");
+  EXPECT_EQ(all[5].at("combination"), "render.epsilon=1e-3");
+  EXPECT_EQ(all[5].at("defaults"), "0");
+
+  // Under --set the base is not the defaults; the row that restores the scene's own value is.
+  const testing::CommandResult cone =
+      run_clmarch({"bench", torus, "--size", "48x27", "--repeat", "1", "-q", "--one-at-a-time", "--set",
+                   "render.epsilon=1e-3", "--sweep", "render.epsilon=1e-4", "--append", "--csv", csv.string()});
+  ASSERT_EQ(cone.exit_code, kExitOk) << cone.err;
+  const auto with_set = read_csv(csv, &header);
+  ASSERT_EQ(with_set.size(), 8u);
+  EXPECT_EQ(with_set[6].at("combination"), "");
+  EXPECT_EQ(with_set[6].at("defaults"), "0");
+  EXPECT_EQ(with_set[7].at("defaults"), "1");
+
+  std::ofstream(dir / "other.csv") << "a,b\n1,2\n";
+  const testing::CommandResult mismatch = run_clmarch({"bench", torus, "--size", "16x9", "--sweep", "lanes=1", "--append",
+                                                       "--csv", (dir / "other.csv").string()});
+  EXPECT_EQ(mismatch.exit_code, kExitBadInput) << mismatch.err;
+}
+
+}  // namespace
+}  // namespace clmarch
