@@ -33,7 +33,7 @@ typedef cl_float4 float4;
 /* Per-frame march parameters: the camera contract's basis and the march limits. Changing any of
  * these does not rebuild the program. */
 typedef struct MarchParams {
-  float4 origin;       /* xyz = camera position */
+  float4 origin;       /* xyz = camera position relative to map_frame_origin (host/scene/camera_model.hpp) */
   float4 forward;      /* xyz = f, unit */
   float4 right_extent; /* xyz = r * aspect * tan(fov / 2) */
   float4 up_extent;    /* xyz = u * tan(fov / 2) */

@@ -65,9 +65,12 @@ TEST(Scale, SameImageAt1eMinus4And1e4) {
 
 // At scales that are powers of two every float operation of the march scales exactly (no
 // constant of the distance code has a length), so depths scale bit for bit and the rest is equal.
+// Upwards only while the camera stays within 32 of the origin on each axis: beyond, the map frame
+// origin (a 64-unit grid, host/scene/camera_model.hpp) moves and the coordinates the device sees
+// no longer scale exactly; SameImageAt1eMinus4And1e4 covers 1e4 within tolerance.
 TEST(Scale, PowersOfTwoScaleBitForBit) {
   const FrameBuffers base = render(testing::scene_from_yaml(scaled_scene(1.0)), KernelPurpose::Normals);
-  for (double s : {0x1p-13, 0x1p13}) {
+  for (double s : {0x1p-13, 0x1p2}) {
     SCOPED_TRACE(fmt::format("scale {}", s));
     const FrameBuffers scaled = unscaled(render(testing::scene_from_yaml(scaled_scene(s)), KernelPurpose::Normals), s);
     EXPECT_TRUE(bitwise_equal(base, scaled));

@@ -5,6 +5,7 @@
 #include "codegen/cl_literals.hpp"
 #include "codegen/embedded_kernels.hpp"
 #include "codegen/sdf_codegen.hpp"
+#include "scene/camera_model.hpp"
 
 #include <fmt/format.h>
 
@@ -140,7 +141,8 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
   if (uses_kind(scene.sdf, {NodeKind::Terrain})) src += kernel_file("noise.cl");
   src += kernel_file("operators.cl");
   src += "#line 1 \"generated scene\"\n";
-  src += generate_sdf_functions(scene.sdf);
+  // eval_points takes world points; the march's points are relative to map_frame_origin.
+  src += generate_sdf_functions(scene.sdf, options.purpose == KernelPurpose::EvalPoints ? glm::dvec3(0.0) : map_frame_origin(scene));
   if (options.purpose == KernelPurpose::EvalPoints) {
     src += kernel_file("eval_points.cl");
     return src;

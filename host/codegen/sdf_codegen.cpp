@@ -8,6 +8,9 @@
 
 #include <glm/gtc/matrix_access.hpp>
 
+#include <cmath>
+#include <utility>
+
 namespace clmarch {
 namespace {
 
@@ -21,50 +24,56 @@ Material material_of(const Node& node, const Material& inherited) {
   return m;
 }
 
-std::string primitive_call(const Primitive& primitive, const std::string& p) {
+/// The call of a primitive at the point p + offset: positions are baked relative to offset, in
+/// double, so p stays small where the camera is far from the origin (map_frame_origin).
+std::string primitive_call(const Primitive& primitive, const std::string& p, const glm::dvec3& offset) {
   struct Visitor {
     const std::string& p;
+    const glm::dvec3& offset;
     std::string operator()(const Sphere& s) const {
-      return fmt::format("sd_sphere({}, {}, {})", p, cl_float4(s.center), cl_float(s.radius));
+      return fmt::format("sd_sphere({}, {}, {})", p, cl_float4(s.center - offset), cl_float(s.radius));
     }
     std::string operator()(const Box& b) const {
-      return fmt::format("sd_box({}, {}, {})", p, cl_float4(b.center), cl_float4(b.half_size));
+      return fmt::format("sd_box({}, {}, {})", p, cl_float4(b.center - offset), cl_float4(b.half_size));
     }
     std::string operator()(const RoundBox& b) const {
-      return fmt::format("sd_round_box({}, {}, {}, {})", p, cl_float4(b.center), cl_float4(b.half_size),
+      return fmt::format("sd_round_box({}, {}, {}, {})", p, cl_float4(b.center - offset), cl_float4(b.half_size),
                          cl_float(b.radius));
     }
     std::string operator()(const BoxFrame& b) const {
-      return fmt::format("sd_box_frame({}, {}, {}, {})", p, cl_float4(b.center), cl_float4(b.half_size),
+      return fmt::format("sd_box_frame({}, {}, {}, {})", p, cl_float4(b.center - offset), cl_float4(b.half_size),
                          cl_float(b.thickness));
     }
     std::string operator()(const Torus& t) const {
-      return fmt::format("sd_torus({}, {}, {}, {})", p, cl_float4(t.center), cl_float(t.major_radius),
+      return fmt::format("sd_torus({}, {}, {}, {})", p, cl_float4(t.center - offset), cl_float(t.major_radius),
                          cl_float(t.minor_radius));
     }
     std::string operator()(const Plane& s) const {
-      return fmt::format("sd_plane({}, {}, {})", p, cl_float4(s.normal), cl_float(s.offset));
+      // dot(n, p + offset) + c = dot(n, p) + (c + dot(n, offset))
+      return fmt::format("sd_plane({}, {}, {})", p, cl_float4(s.normal), cl_float(s.offset + glm::dot(s.normal, offset)));
     }
     std::string operator()(const Capsule& c) const {
-      return fmt::format("sd_capsule({}, {}, {}, {})", p, cl_float4(c.a), cl_float4(c.b), cl_float(c.radius));
+      return fmt::format("sd_capsule({}, {}, {}, {})", p, cl_float4(c.a - offset), cl_float4(c.b - offset),
+                         cl_float(c.radius));
     }
     std::string operator()(const Cylinder& c) const {
-      return fmt::format("sd_cylinder({}, {}, {}, {})", p, cl_float4(c.center), cl_float(c.radius),
+      return fmt::format("sd_cylinder({}, {}, {}, {})", p, cl_float4(c.center - offset), cl_float(c.radius),
                          cl_float(c.half_height));
     }
     std::string operator()(const Mandelbulb& m) const {
-      return fmt::format("sd_mandelbulb({}, {}, {}, {}, {})", p, cl_float4(m.center), cl_float(m.power), m.iterations,
-                         cl_float(m.bailout));
+      return fmt::format("sd_mandelbulb({}, {}, {}, {}, {})", p, cl_float4(m.center - offset), cl_float(m.power),
+                         m.iterations, cl_float(m.bailout));
     }
     std::string operator()(const Menger& m) const {
-      return fmt::format("sd_menger({}, {}, {}, {})", p, cl_float4(m.center), cl_float(m.half_size), m.iterations);
+      return fmt::format("sd_menger({}, {}, {}, {})", p, cl_float4(m.center - offset), cl_float(m.half_size),
+                         m.iterations);
     }
     std::string operator()(const Terrain& t) const {
       return fmt::format("sd_terrain_{}({}, {}, {}, {}, {}, {}u)", kTerrainNoiseNames[static_cast<int>(t.noise)], p,
                          cl_float(t.height), cl_float(t.amplitude), cl_float(t.frequency), t.octaves, t.seed);
     }
   };
-  return std::visit(Visitor{p}, primitive);
+  return std::visit(Visitor{p, offset}, primitive);
 }
 
 /// Emits the statements of one function body; with_color also tracks the material (albedo and
@@ -79,10 +88,13 @@ class SdfEmitter {
     std::string surface;  // empty without color
   };
 
-  Value emit(const Node& node, const std::string& p, const Material& inherited) {
+  /// The node's value at the point p + offset (offset: a constant the generator folds into the
+  /// node's positions in double).
+  Value emit(const Node& node, const std::string& p, const Material& inherited, const glm::dvec3& offset) {
     const Material color = material_of(node, inherited);
-    const std::string local_p = emit_transform(node.transform, p);
-    Value value = is_primitive(node.kind) ? emit_primitive(node, local_p, color) : emit_operator(node, local_p, color);
+    const auto [local_p, local_offset] = emit_transform(node.transform, p, offset);
+    Value value = is_primitive(node.kind) ? emit_primitive(node, local_p, color, local_offset)
+                                          : emit_operator(node, local_p, color, local_offset);
     if (node.transform.scale != 1.0) {
       // p was divided by the scale, so distances in the local frame are scaled back.
       const std::string scaled = fresh("d");
@@ -104,23 +116,37 @@ class SdfEmitter {
   std::string fresh(const char* prefix) { return fmt::format("{}{}", prefix, counter_++); }
   void line(const std::string& text) { body_ += "  " + text + "\n"; }
 
-  std::string emit_transform(const Transform& transform, const std::string& p) {
-    if (transform.is_identity()) return p;
+  /// The node's frame: the point and offset its subtree sees.
+  std::pair<std::string, glm::dvec3> emit_transform(const Transform& transform, const std::string& p,
+                                                    const glm::dvec3& offset) {
+    if (transform.is_identity()) return {p, offset};
     // localFromWorld = S^-1 R^T (p - translate)
     const glm::dmat3 local_from_world = glm::transpose(transform.world_from_local_rotation()) / transform.scale;
     const glm::dvec3 r0 = glm::row(local_from_world, 0), r1 = glm::row(local_from_world, 1),
                      r2 = glm::row(local_from_world, 2);
     const std::string q = fresh("p");
+    // p + offset - translate = p - (translate - offset): the offset ends here.
     line(fmt::format("vec3v {} = v3_transform(v3_sub({}, v3_from({})), {}, {}, {}, {}, {}, {}, {}, {}, {});", q, p,
-                     cl_float4(transform.translate), cl_float(r0.x), cl_float(r0.y), cl_float(r0.z), cl_float(r1.x),
+                     cl_float4(transform.translate - offset), cl_float(r0.x), cl_float(r0.y), cl_float(r0.z), cl_float(r1.x),
                      cl_float(r1.y), cl_float(r1.z), cl_float(r2.x), cl_float(r2.y), cl_float(r2.z)));
+    return {q, glm::dvec3(0.0)};
+  }
+
+  /// p + offset as a point of the kernel, for fields of absolute coordinates (noise, displacement).
+  std::string absolute_point(const std::string& p, const glm::dvec3& offset) {
+    if (offset == glm::dvec3(0.0)) return p;
+    const std::string q = fresh("p");
+    line(fmt::format("vec3v {} = v3_add({}, v3_from({}));", q, p, cl_float4(offset)));
     return q;
   }
 
-  Value emit_primitive(const Node& node, const std::string& p, const Material& color) {
+  Value emit_primitive(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
     Value value{fresh("d"), "", ""};
-    line(fmt::format("vfloat {} = {};  /* {} */", value.distance, primitive_call(node.primitive, p),
-                     node_kind_name(node.kind)));
+    // Terrain noise hashes absolute lattice coordinates, so it cannot fold the offset.
+    const std::string call = node.kind == NodeKind::Terrain
+                                 ? primitive_call(node.primitive, absolute_point(p, offset), glm::dvec3(0.0))
+                                 : primitive_call(node.primitive, p, offset);
+    line(fmt::format("vfloat {} = {};  /* {} */", value.distance, call, node_kind_name(node.kind)));
     if (with_color_) {
       value.color = fresh("c");
       line(fmt::format("vec3v {} = v3_from({});", value.color, cl_float4(color.albedo)));
@@ -131,31 +157,38 @@ class SdfEmitter {
     return value;
   }
 
-  Value emit_operator(const Node& node, const std::string& p, const Material& color) {
-    if (node.kind == NodeKind::Repeat) return emit_repeat(node, p, color);
-    if (node.kind == NodeKind::Displace) return emit_displace(node, p, color);
-    Value acc = emit(node.children.front(), p, color);
+  Value emit_operator(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
+    if (node.kind == NodeKind::Repeat) return emit_repeat(node, p, color, offset);
+    if (node.kind == NodeKind::Displace) return emit_displace(node, p, color, offset);
+    Value acc = emit(node.children.front(), p, color, offset);
     for (std::size_t i = 1; i < node.children.size(); ++i) {
-      const Value next = emit(node.children[i], p, color);
+      const Value next = emit(node.children[i], p, color, offset);
       acc = combine(node, acc, next);
     }
     return acc;
   }
 
-  Value emit_repeat(const Node& node, const std::string& p, const Material& color) {
+  Value emit_repeat(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
     const glm::dvec3& period = node.repeat_period;
-    const auto axis = [&](const char* c, double length) {
-      return length > 0.0 ? fmt::format("op_repeat_axis({}.{}, {})", p, c, cl_float(length)) : fmt::format("{}.{}", p, c);
+    glm::dvec3 child_offset = offset;
+    const auto axis = [&](const char* c, int i) {
+      if (!(period[i] > 0.0)) return fmt::format("{}.{}", p, c);
+      // Repetition forgets whole periods, so only the offset's remainder matters (floor-based).
+      const double remainder = offset[i] - period[i] * std::floor(offset[i] / period[i]);
+      child_offset[i] = 0.0;
+      const std::string x = remainder == 0.0 ? fmt::format("{}.{}", p, c) : fmt::format("{}.{} + {}", p, c, cl_float(remainder));
+      return fmt::format("op_repeat_axis({}, {})", x, cl_float(period[i]));
     };
     const std::string q = fresh("p");
-    line(fmt::format("vec3v {} = v3({}, {}, {});  /* repeat */", q, axis("x", period.x), axis("y", period.y), axis("z", period.z)));
-    return emit(node.children.front(), q, color);
+    line(fmt::format("vec3v {} = v3({}, {}, {});  /* repeat */", q, axis("x", 0), axis("y", 1), axis("z", 2)));
+    return emit(node.children.front(), q, color, child_offset);
   }
 
-  Value emit_displace(const Node& node, const std::string& p, const Material& color) {
-    const Value child = emit(node.children.front(), p, color);
+  Value emit_displace(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
+    const Value child = emit(node.children.front(), p, color, offset);
+    const std::string at = absolute_point(p, offset);
     Value out{fresh("d"), child.color, child.surface};
-    line(fmt::format("vfloat {} = ({} + displacement({}, {}, {})) * {};  /* displace */", out.distance, child.distance, p,
+    line(fmt::format("vfloat {} = ({} + displacement({}, {}, {})) * {};  /* displace */", out.distance, child.distance, at,
                      cl_float(node.displace_amplitude), cl_float(node.displace_frequency),
                      cl_float(1.0 / displacement_lipschitz(node))));
     return out;
@@ -212,12 +245,16 @@ class SdfEmitter {
 
 }  // namespace
 
-std::string generate_sdf_functions(const Node& root) {
+std::string generate_sdf_functions(const Node& root, const glm::dvec3& frame_origin) {
   SdfEmitter distance_only(false);
-  const SdfEmitter::Value d = distance_only.emit(root, "p", Material{});
+  const SdfEmitter::Value d = distance_only.emit(root, "p", Material{}, frame_origin);
   SdfEmitter with_color(true);
-  const SdfEmitter::Value dc = with_color.emit(root, "p", Material{});
-  return fmt::format(
+  const SdfEmitter::Value dc = with_color.emit(root, "p", Material{}, frame_origin);
+  const std::string frame = frame_origin == glm::dvec3(0.0)
+                                ? std::string()
+                                : fmt::format("/* p is relative to the world point ({}, {}, {}) (map_frame_origin). */\n",
+                                              frame_origin.x, frame_origin.y, frame_origin.z);
+  return frame + fmt::format(
       "/* Distance to the scene. */\n"
       "SDF_INLINE vfloat map(vec3v p) {{\n{}  return {};\n}}\n\n"
       "/* Distance to the scene and the material there: albedo, surface = (metallic, roughness,\n"

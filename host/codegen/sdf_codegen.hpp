@@ -8,7 +8,8 @@
 
 namespace clmarch {
 
-/// Source of the two functions map and map_color for this tree.
-std::string generate_sdf_functions(const Node& root);
+/// Source of the two functions map and map_color for this tree, taking points relative to the
+/// world point frame_origin (its positions are baked relative to it, in double).
+std::string generate_sdf_functions(const Node& root, const glm::dvec3& frame_origin = glm::dvec3(0.0));
 
 }  // namespace clmarch

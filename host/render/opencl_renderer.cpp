@@ -104,7 +104,7 @@ RenderResult render_opencl(const Scene& scene, const OpenClOptions& options) {
 
   const CameraBasis basis = camera_basis(scene.camera, width, height);
   MarchParams params{};
-  params.origin = to_cl(basis.origin);
+  params.origin = to_cl(basis.origin - map_frame_origin(scene));
   params.forward = to_cl(basis.forward);
   params.right_extent = to_cl(basis.right_extent);
   params.up_extent = to_cl(basis.up_extent);

@@ -31,4 +31,9 @@ glm::dvec3 pixel_ray_direction(const CameraBasis& basis, int i, int j) {
   return camera_ray_direction(basis, i + 0.5, j + 0.5);
 }
 
+glm::dvec3 map_frame_origin(const Scene& scene) {
+  if (scene.tiling) return glm::dvec3(0.0);
+  return glm::round(scene.camera.position / kMapFrameGrid) * kMapFrameGrid;
+}
+
 }  // namespace clmarch

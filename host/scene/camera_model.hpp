@@ -27,6 +27,14 @@ CameraBasis camera_basis(const Camera& camera, int width, int height);
 /// pixel (i, j) is (i + 0.5, j + 0.5).
 glm::dvec3 camera_ray_direction(const CameraBasis& basis, double x, double y);
 
+/// The world point the generated map() measures its points from (codegen folds it into the tree's
+/// positions in double; the renderer passes the camera relative to it): the camera position rounded
+/// to a multiple of kMapFrameGrid, so coordinates on the device stay small wherever the camera is,
+/// while a camera that moves within a grid cell keeps the same program. 0 near the origin and for
+/// tiled scenes (their cell traversal has its own camera-relative frame).
+inline constexpr double kMapFrameGrid = 64.0;
+glm::dvec3 map_frame_origin(const Scene& scene);
+
 /// Unit direction through the centre of pixel (i, j).
 glm::dvec3 pixel_ray_direction(const CameraBasis& basis, int i, int j);
 
