@@ -91,6 +91,8 @@ TEST(Verbosity, ProgressOnlyOnATerminalAndNotWhenQuiet) {
   const auto shown = run_clmarch_on_terminal(args("shown.png", false));
   ASSERT_EQ(shown.exit_code, kExitOk) << shown.err;
   EXPECT_TRUE(contains(shown.err, "\r\033[Kreference rows: ")) << shown.err;
+  EXPECT_TRUE(contains(shown.err, " rays/s, ")) << shown.err;
+  EXPECT_TRUE(contains(shown.err, " s left")) << shown.err;
   EXPECT_TRUE(contains(shown.err, "clmarch: wrote")) << shown.err;
   ASSERT_EQ(piped.wait(std::chrono::seconds(60)), kExitOk) << piped.err();
   EXPECT_EQ(piped.err(), "clmarch: wrote " + (dir / "piped.png").string() + "\n");

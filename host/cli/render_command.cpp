@@ -168,15 +168,16 @@ void render_image(const RenderCommandOptions& options, const Scene& scene, const
 /// leaves the finished frames and nothing of the one in progress.
 void render_sequence(const RenderCommandOptions& options, const std::string& output) {
   const FrameRange range = parse_frame_range(options.frames, options.fps);
-  ProgressLine progress("frames", range.count());
+  std::optional<ProgressLine> progress;
   for (int frame = range.first; frame <= range.last; ++frame) {
     const Scene scene = load_scene_with_options(options.scene, range.time_of(frame));
+    if (!progress) progress.emplace("frames", range.count(), static_cast<double>(scene.render.width) * scene.render.height);
     FrameFiles files{frame_path(output, frame, range), "", ""};
     if (!options.buffers.empty()) files.buffers = frame_path(options.buffers, frame, range);
     if (!options.dump_kernel.empty()) files.dump_kernel = frame_path(options.dump_kernel, frame, range);
     log_verbose(fmt::format("frame {} at t = {} s", frame, scene.time));
     render_image(options, scene, files, frame);
-    progress.advance();
+    progress->advance();
   }
 }
 

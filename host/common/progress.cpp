@@ -14,8 +14,8 @@ namespace clmarch {
 
 bool progress_enabled() { return verbosity() != Verbosity::Quiet && isatty(STDERR_FILENO) == 1; }
 
-ProgressLine::ProgressLine(std::string label, long long total)
-    : label_(std::move(label)), total_(total), enabled_(progress_enabled()),
+ProgressLine::ProgressLine(std::string label, long long total, double rays_per_unit)
+    : label_(std::move(label)), total_(total), rays_per_unit_(rays_per_unit), enabled_(progress_enabled()),
       start_(std::chrono::steady_clock::now()), last_draw_(start_) {}
 
 ProgressLine::~ProgressLine() {
@@ -35,7 +35,11 @@ void ProgressLine::advance(long long done) {
   const double elapsed = std::chrono::duration<double>(now - start_).count();
   const double fraction = static_cast<double>(now_done) / static_cast<double>(total_);
   const double left = fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
-  std::fputs(fmt::format("\r\033[K{}: {:.0f}% ({}/{}), {:.1f} s left", label_, 100.0 * fraction, now_done, total_, left).c_str(),
+  const std::string rate =
+      rays_per_unit_ > 0.0 ? fmt::format(", {:.3g} rays/s", rays_per_unit_ * static_cast<double>(now_done) / elapsed) : "";
+  std::fputs(fmt::format("\r\033[K{}: {:.0f}% ({}/{}){}, {:.1f} s left", label_, 100.0 * fraction, now_done, total_, rate,
+                         left)
+                 .c_str(),
              stderr);
   drawn_ = true;
 }

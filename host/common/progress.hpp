@@ -14,8 +14,9 @@ bool progress_enabled();
 
 class ProgressLine {
  public:
-  /// label names the work ("reference"); total counts its units (rows, tiles, frames).
-  ProgressLine(std::string label, long long total);
+  /// label names the work ("reference"); total counts its units (rows, tiles, frames), each of
+  /// rays_per_unit rays (pixels), which the line turns into rays/s when it is > 0.
+  ProgressLine(std::string label, long long total, double rays_per_unit = 0.0);
   ~ProgressLine();
   ProgressLine(const ProgressLine&) = delete;
   ProgressLine& operator=(const ProgressLine&) = delete;
@@ -28,6 +29,7 @@ class ProgressLine {
  private:
   std::string label_;
   long long total_;
+  double rays_per_unit_;
   bool enabled_;
   std::atomic<long long> done_{0};
   std::chrono::steady_clock::time_point start_;

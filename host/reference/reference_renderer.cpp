@@ -130,7 +130,7 @@ FrameBuffers render_reference(const Scene& scene) {
   const int height = scene.render.height;
   const CameraBasis basis = camera_basis(scene.camera, width, height);
   FrameBuffers fb(width, height);
-  ProgressLine progress("reference rows", height);
+  ProgressLine progress("reference rows", height, scene.render.width);
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
     for (int j = rows.begin(); j != rows.end(); ++j) {
       // Ctrl-C: a row not yet begun is never begun (progress.advance() below polls too, but only

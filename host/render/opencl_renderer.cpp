@@ -130,7 +130,8 @@ RenderResult render_opencl(const Scene& scene, const OpenClOptions& options) {
   result.buffers = FrameBuffers(width, height);
   const std::size_t chunk_pixels = dispatch.plane_stride;
   const std::size_t chunk_count = (pixels + chunk_pixels - 1) / chunk_pixels;
-  ProgressLine progress("OpenCL chunks", static_cast<long long>(chunk_count));
+  ProgressLine progress("OpenCL chunks", static_cast<long long>(chunk_count),
+                        static_cast<double>(pixels) / static_cast<double>(chunk_count));
   double kernel_ms = 0.0;
   with_device_errors(dp.device, [&] {
     const std::size_t bytes = dispatch.plane_stride * CLMARCH_CHANNEL_COUNT * sizeof(float);
