@@ -87,7 +87,11 @@ glm::dvec3 reference_normal(const Node& root, const glm::dvec3& p, NormalMethod 
   return normal_of([&](const glm::dvec3& q) { return reference_distance(root, q); }, p, method, h);
 }
 
-RayResult reference_trace(const Scene& scene, const glm::dvec3& origin, const glm::dvec3& direction) {
+namespace {
+
+// The trace of a camera ray clipped to bounds (camera_ray_bounds(scene), computed once per image).
+RayResult trace_within(const Scene& scene, const std::optional<BoundingSphere>& bounds, const glm::dvec3& origin,
+                       const glm::dvec3& direction) {
   const MarchLimits limits = camera_march_limits(scene);
   // Under the cells tiling the march runs in the camera's cell; origin is the world position.
   const bool cells = scene.tiling && scene.tiling->method == TilingMethod::Cells;
@@ -96,7 +100,7 @@ RayResult reference_trace(const Scene& scene, const glm::dvec3& origin, const gl
   double t_start = 0.0;
   double t_end = scene.render.max_distance;
   bool marching = true;
-  if (const std::optional<BoundingSphere> bounds = camera_ray_bounds(scene)) {
+  if (bounds) {
     const std::optional<RaySpan> span = ray_sphere_span(origin, direction, *bounds);
     if (span) {
       t_start = std::max(span->t_enter, 0.0);
@@ -125,10 +129,17 @@ RayResult reference_trace(const Scene& scene, const glm::dvec3& origin, const gl
   return r;
 }
 
+}  // namespace
+
+RayResult reference_trace(const Scene& scene, const glm::dvec3& origin, const glm::dvec3& direction) {
+  return trace_within(scene, camera_ray_bounds(scene), origin, direction);
+}
+
 FrameBuffers render_reference(const Scene& scene) {
   const int width = scene.render.width;
   const int height = scene.render.height;
   const CameraBasis basis = camera_basis(scene.camera, width, height);
+  const std::optional<BoundingSphere> bounds = camera_ray_bounds(scene);
   FrameBuffers fb(width, height);
   ProgressLine progress("reference rows", height, scene.render.width);
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
@@ -137,7 +148,7 @@ FrameBuffers render_reference(const Scene& scene) {
       // after its row; keep both).
       throw_if_cancelled();
       for (int i = 0; i < width; ++i) {
-        const RayResult r = reference_trace(scene, basis.origin, pixel_ray_direction(basis, i, j));
+        const RayResult r = trace_within(scene, bounds, basis.origin, pixel_ray_direction(basis, i, j));
         fb.at(Channel::R, i, j) = static_cast<float>(r.color.r);
         fb.at(Channel::G, i, j) = static_cast<float>(r.color.g);
         fb.at(Channel::B, i, j) = static_cast<float>(r.color.b);
