@@ -42,9 +42,9 @@ typedef struct MarchParams {
                             w = its radius; w = 0: rays are not clipped */
   CLMARCH_INT width;
   CLMARCH_INT height;
-  CLMARCH_INT pixel_count;  /* width * height */
-  CLMARCH_INT first_pixel;  /* row-major index of the first pixel of this dispatch (images render in chunks) */
-  CLMARCH_INT plane_stride; /* floats per output plane (the chunk rounded up to whole packets) */
+  CLMARCH_INT first_row;    /* first image row of this dispatch (images render in chunks of rows) */
+  CLMARCH_INT chunk_rows;   /* rows per dispatch, a multiple of the packet height */
+  CLMARCH_INT plane_stride; /* floats per output plane: chunk_rows * width */
   CLMARCH_INT max_steps;
   CLMARCH_FLOAT epsilon;
   CLMARCH_FLOAT max_distance;

@@ -1,7 +1,8 @@
-/* The sphere-tracing kernel: each work-item marches LANES consecutive pixels in lock-step (the
- * loops: march_loop.cl, tiling.cl), then writes depth (+inf on a miss), steps and wall steps, and
- * with NEED_NORMALS / NEED_SHADING the normal and the final color, into planes of out
- * (CLMARCH_CHANNEL_*), plane_stride floats each. */
+/* The sphere-tracing kernel: each work-item marches one packet, a tile of PACKET_WIDTH x
+ * PACKET_HEIGHT pixels, in lock-step (the loops: march_loop.cl, tiling.cl), then writes depth (+inf
+ * on a miss), steps and wall steps, and with NEED_NORMALS / NEED_SHADING the normal and the final
+ * color, into planes of out (CLMARCH_CHANNEL_*), plane_stride floats each. A dispatch covers the
+ * image rows first_row .. first_row + chunk_rows - 1; a plane holds them row by row. */
 
 #if defined(NEED_SHADING)
 /* The surface met by a ray from the camera-relative point relative_origin, marched in map()'s
@@ -66,17 +67,65 @@ SDF_INLINE void clip_to_bounds(float4 bounds, vec3v dir, vint* marching, vfloat*
   *marching &= MASK(h >= 0.0f) & MASK(*t_end > *t_start);
 }
 
-__kernel void march(const MarchParams params, __global float* out, __constant float4* lights) {
-  const int base = (int)get_global_id(0) * LANES;
-  const vint pixel = params.first_pixel + base + LANE_IOTA;
-  const vint live = MASK(pixel < params.pixel_count);
-  const vec3v dir = camera_ray(&params, pixel % params.width, pixel / params.width);
+/* Writes one value per lane into a plane: whole tiles as rows of vector stores, tiles cut by the
+ * image's right or bottom edge lane by lane (columns x rows of them are inside). */
+SDF_INLINE void store_tile(vfloat v, int at, int width, int columns, int rows, __global float* plane) {
+  if (columns == PACKET_WIDTH && rows == PACKET_HEIGHT) {
+    STORE_TILE(v, at, width, plane);
+    return;
+  }
+  float values[LANES];
+  STORE_LANES(v, 0, values);
+  for (int lane = 0; lane < LANES; ++lane) {
+    const int x = lane % PACKET_WIDTH, y = lane / PACKET_WIDTH;
+    if (x < columns && y < rows) plane[at + y * width + x] = values[lane];
+  }
+}
+
+#if defined(RECORD_SAMPLES)
+/* The first sample index of each lane's ray (sample_base: one int per image pixel, row-major;
+ * columns x rows of the tile at pixel `at` are inside the image, the others get -1). */
+SDF_INLINE vint tile_sample_base(__global const int* sample_base, int at, int width, int columns, int rows) {
+  mask1 bases[LANES];
+  for (int lane = 0; lane < LANES; ++lane) {
+    const int x = lane % PACKET_WIDTH, y = lane / PACKET_WIDTH;
+    bases[lane] = x < columns && y < rows ? sample_base[at + y * width + x] : -1;
+  }
+#if LANES == 1
+  return bases[0];
+#else
+  return VLOAD_LANES(0, bases);
+#endif
+}
+#endif
+
+__kernel void march(const MarchParams params, __global float* out, __constant float4* lights
+#if defined(RECORD_SAMPLES)
+                    , __global const int* sample_base, __global float* samples, const int sample_stride
+#endif
+) {
+  const int tiles_per_row = (params.width + PACKET_WIDTH - 1) / PACKET_WIDTH;
+  const int item = (int)get_global_id(0);
+  const int tile_row = item / tiles_per_row;
+  const int x0 = (item - tile_row * tiles_per_row) * PACKET_WIDTH;
+  const int row0 = tile_row * PACKET_HEIGHT; /* within the chunk */
+  const int y0 = params.first_row + row0;
+  const int rows = min(min(PACKET_HEIGHT, params.chunk_rows - row0), params.height - y0);
+  if (rows <= 0) return; /* padding of the dispatch to whole work-groups */
+  const int columns = min(PACKET_WIDTH, params.width - x0);
+  const vint live = MASK(LANE_X < columns) & MASK(LANE_Y < rows);
+  const vec3v dir = camera_ray(&params, x0 + LANE_X, y0 + LANE_Y);
 #if defined(TILING_CELLS)
   const vec3v origin = v3_from(params.origin_in_cell);
 #else
   const vec3v origin = v3_from(params.origin);
 #endif
-  const MarchLimits limits = {params.max_steps, params.epsilon, 0, 0.0f, params.over_relaxation, params.hit_cone_slope};
+  MarchLimits limits = {params.max_steps, params.epsilon, 0, 0.0f, params.over_relaxation, params.hit_cone_slope};
+#if defined(RECORD_SAMPLES)
+  limits.samples = samples;
+  limits.sample_stride = sample_stride;
+  limits.sample_base = tile_sample_base(sample_base, y0 * params.width + x0, params.width, columns, rows);
+#endif
   vint marching = live;
   vfloat t_start = (vfloat)(0.0f);
   vfloat t_end = (vfloat)(params.max_distance);
@@ -86,9 +135,13 @@ __kernel void march(const MarchParams params, __global float* out, __constant fl
   const MarchResult m = MARCH(origin, dir, marching, t_start, t_end, limits);
 
   const int stride = params.plane_stride;
-  STORE_LANES(select((vfloat)(INFINITY), m.t, m.hit), base, out + CLMARCH_CHANNEL_DEPTH * stride);
-  STORE_LANES(m.steps, base, out + CLMARCH_CHANNEL_STEPS * stride);
-  STORE_LANES(m.wall_steps, base, out + CLMARCH_CHANNEL_WALL_STEPS * stride);
+  const int at = row0 * params.width + x0;
+#define STORE_PLANE(channel, v) store_tile((v), at, params.width, columns, rows, out + (channel) * stride)
+  STORE_PLANE(CLMARCH_CHANNEL_DEPTH, select((vfloat)(INFINITY), m.t, m.hit));
+  STORE_PLANE(CLMARCH_CHANNEL_STEPS, m.steps);
+#if defined(TILING_CELLS)
+  STORE_PLANE(CLMARCH_CHANNEL_WALL_STEPS, m.wall_steps);
+#endif
 
 #ifdef NEED_NORMALS
   vec3v normal = v3_splat(0.0f);
@@ -109,15 +162,16 @@ __kernel void march(const MarchParams params, __global float* out, __constant fl
     normal = v3_select(normal, estimate_normal(m.local_point, params.normal_epsilon), m.hit);
 #endif
   }
-  STORE_LANES(normal.x, base, out + CLMARCH_CHANNEL_NX * stride);
-  STORE_LANES(normal.y, base, out + CLMARCH_CHANNEL_NY * stride);
-  STORE_LANES(normal.z, base, out + CLMARCH_CHANNEL_NZ * stride);
+  STORE_PLANE(CLMARCH_CHANNEL_NX, normal.x);
+  STORE_PLANE(CLMARCH_CHANNEL_NY, normal.y);
+  STORE_PLANE(CLMARCH_CHANNEL_NZ, normal.z);
 #ifdef NEED_SHADING
   color = tone_map(color);
-  STORE_LANES(color.x, base, out + CLMARCH_CHANNEL_R * stride);
-  STORE_LANES(color.y, base, out + CLMARCH_CHANNEL_G * stride);
-  STORE_LANES(color.z, base, out + CLMARCH_CHANNEL_B * stride);
+  STORE_PLANE(CLMARCH_CHANNEL_R, color.x);
+  STORE_PLANE(CLMARCH_CHANNEL_G, color.y);
+  STORE_PLANE(CLMARCH_CHANNEL_B, color.z);
 #endif
 #endif
+#undef STORE_PLANE
   (void)lights;
 }

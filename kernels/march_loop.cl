@@ -25,7 +25,37 @@ typedef struct {
   float soft_k;
   float over_relaxation; /* Keinert et al.'s omega; steps of omega * d while it is > 1 */
   float hit_cone_slope;  /* a lane arrives below max(epsilon, hit_cone_slope * t) */
+#if defined(RECORD_SAMPLES)
+  /* The benchmark's record of every point the march evaluates (kernels/replay.cl): lane l writes
+   * its k-th point to index sample_base[l] + k of the planes x, y, z of samples, sample_stride
+   * floats apart. NULL (shadow and mirror rays) or a negative base: not recorded. */
+  __global float* samples;
+  int sample_stride;
+  vint sample_base;
+#endif
 } MarchLimits;
+
+#if defined(RECORD_SAMPLES)
+/* Stores the point p of every active lane at its ray's next sample index (steps so far). */
+SDF_INLINE void record_samples(const MarchLimits* limits, vec3v p, vint active, vfloat steps) {
+  if (!limits->samples) return;
+  real xs[LANES], ys[LANES], zs[LANES], counts[LANES];
+  mask1 bases[LANES], recording[LANES];
+  STORE_PRIVATE(p.x, xs);
+  STORE_PRIVATE(p.y, ys);
+  STORE_PRIVATE(p.z, zs);
+  STORE_PRIVATE(steps, counts);
+  STORE_PRIVATE(limits->sample_base, bases);
+  STORE_PRIVATE(active, recording);
+  for (int lane = 0; lane < LANES; ++lane) {
+    if (recording[lane] == 0 || bases[lane] < 0) continue;
+    const long at = (long)bases[lane] + (long)counts[lane];
+    limits->samples[at] = (float)xs[lane];
+    limits->samples[limits->sample_stride + at] = (float)ys[lane];
+    limits->samples[2L * limits->sample_stride + at] = (float)zs[lane];
+  }
+}
+#endif
 
 /* The distance below which a lane at depth t has arrived: epsilon, or the pixel cone's radius, and
  * never less than REAL_EPSILON * t (2^-23 t in float, the spacing of t at most): a smaller step leaves
@@ -78,7 +108,11 @@ SDF_INLINE MarchResult march_plain(vec3v origin, vec3v dir, vint live, vfloat t_
   vfloat safe = (vfloat)(INFINITY); /* nothing to undo before the first step */
   vfloat previous = (vfloat)(1e20f);
   for (int step = 0; step < limits.max_steps && LANE_ANY(active); ++step) {
-    const vfloat d = field(v3_add(origin, v3_scale(dir, m.t)));
+    const vec3v p = v3_add(origin, v3_scale(dir, m.t));
+    const vfloat d = field(p);
+#if defined(RECORD_SAMPLES)
+    record_samples(&limits, p, active, m.steps);
+#endif
     m.steps += select((vfloat)(0.0f), (vfloat)(1.0f), active);
     track_approach(&m, d, previous, active, &limits);
     previous = d;

@@ -25,6 +25,13 @@ SDF_INLINE vfloat op_smooth_subtraction(vfloat a, vfloat b, float k) {
   return mix(a, -b, h) + k * h * (1.0f - h);
 }
 
+/* A lower bound of a subtree's field from its bounding sphere (host/scene/scene_bounds.hpp: the
+ * field falls below tau only within radius + gain * tau of the centre), so (|p - c| - radius) / gain.
+ * The generated map() skips a subtree whose bound shows it cannot change the operator's result. */
+SDF_INLINE vfloat sd_bound(vec3v p, float4 center, float radius, float inverse_gain) {
+  return (v3_length(v3_sub(p, v3_from(center))) - radius) * inverse_gain;
+}
+
 /* Centred domain repetition along one axis (IQ's opRep, floor-based like GLSL mod): the
  * coordinate inside its cell, in [-period/2, period/2). The distance stays a bound only while the
  * child fits inside the cell. */

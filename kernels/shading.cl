@@ -68,14 +68,19 @@ SDF_INLINE vec3v pbr_light(vec3v n, vec3v l, vec3v v, vec3v albedo, vfloat metal
   return v3_scale(v3_add(diffuse, v3_scale(fresnel, specular)), n_dot_l);
 }
 #else
+/* x^SHADING_SHININESS for x >= 0, as exp2(s log2 x): PoCL 3.1's double16 pow() returns inf for some
+ * lanes on AVX-512 CPUs (seen on tiled_spheres with DOUBLE_PRECISION), while exp2 and log2 are
+ * right; x = 0 gives exp2(-inf) = 0. */
+SDF_INLINE vfloat specular_power(vfloat x) { return exp2((vfloat)(SHADING_SHININESS) * log2(x)); }
+
 SDF_INLINE vfloat specular_term(vec3v n, vec3v l, vec3v v) {
 #if defined(SHADING_MODEL_PHONG)
   /* reflect(-l, n) = 2 dot(n, l) n - l */
   vec3v r = v3_sub(v3_scale(n, 2.0f * v3_dot(n, l)), l);
-  return pow(fmax(v3_dot(r, v), 0.0f), (vfloat)(SHADING_SHININESS));
+  return specular_power(fmax(v3_dot(r, v), 0.0f));
 #elif defined(SHADING_MODEL_BLINN_PHONG)
   vec3v half_vector = v3_normalize(v3_add(l, v));
-  return pow(fmax(v3_dot(n, half_vector), 0.0f), (vfloat)(SHADING_SHININESS));
+  return specular_power(fmax(v3_dot(n, half_vector), 0.0f));
 #else
   (void)n;
   (void)l;

@@ -37,6 +37,9 @@ SDF_INLINE MarchResult march_cells(vec3v origin, vec3v dir, vint live, vfloat t_
   for (int step = 0; step < limits.max_steps && LANE_ANY(active); ++step) {
     const vec3v p = v3_add(entry, v3_scale(dir, s));
     const vfloat d = map(p);
+#if defined(RECORD_SAMPLES)
+    record_samples(&limits, p, active, m.steps);
+#endif
     const vfloat wall_x = wall_distance(p.x, dir.x, cell.x);
     const vfloat wall_y = wall_distance(p.y, dir.y, cell.y);
     const vfloat wall_z = wall_distance(p.z, dir.z, cell.z);

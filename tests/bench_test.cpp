@@ -25,22 +25,84 @@ TEST(Bench, MedianOfOddAndEvenCounts) {
   EXPECT_EQ(median({4.0, 1.0, 3.0, 2.0}), 2.5);
 }
 
-TEST(Bench, CeilingKernelCountsOneEvaluationPerPoint) {
+TEST(Bench, LaneUseCountsIdleLanesOfEachTile) {
+  // A 5 x 5 image in 4 x 4 tiles (16 lanes): four tiles, 25 pixels inside the image.
+  std::vector<float> steps(25, 0.0f);
+  steps[0] = 4.0f;       // tile (0, 0): one ray of 4 steps, 16 lanes x 4 iterations
+  steps[4] = 2.0f;       // tile (1, 0): a 1-wide strip, 16 x 2
+  steps[24] = 1.0f;      // tile (1, 1): the corner pixel, 16 x 1
+  EXPECT_DOUBLE_EQ(lane_use(steps, 5, 5, 16), 7.0 / (16.0 * 7.0));
+  EXPECT_DOUBLE_EQ(lane_use(steps, 5, 5, 1), 1.0);
+  EXPECT_DOUBLE_EQ(lane_use(std::vector<float>(25, 3.0f), 5, 5, 4), 75.0 / (4.0 * 3.0 * 9.0));
+  EXPECT_DOUBLE_EQ(lane_use(std::vector<float>(25, 0.0f), 5, 5, 16), 1.0);
+}
+
+TEST(Bench, CeilingReplaysExactlyTheMarchsPoints) {
   Scene scene = load_scene_file(testing::source_path("scenes/torus.yaml").string());
-  // 37 x 11 = 407 rays: not a whole number of packets or work-groups, so padding lanes exist.
+  // 37 x 11 = 407 rays: not a whole number of tiles or work-groups, so padding lanes exist.
   scene.render.width = 37;
   scene.render.height = 11;
   for (int lanes : {1, 16}) {
     OpenClOptions options;
     options.lanes = lanes;
-    CeilingKernel ceiling(scene, options, 5);
+    options.purpose = KernelPurpose::DepthSteps;
+    const RenderResult render = render_opencl(scene, options);
+    CeilingKernel ceiling(scene, options, 3);
     EXPECT_EQ(ceiling.lanes(), lanes);
-    EXPECT_EQ(ceiling.points(), 37u * 11u * 5u);
+    EXPECT_GT(render.stats.steps, 0u);
+    EXPECT_EQ(ceiling.marched_steps(), render.stats.steps) << "lanes " << lanes;
+    EXPECT_EQ(ceiling.samples(), render.stats.steps);
+    EXPECT_EQ(ceiling.pixel_stride(), 1u);
+    EXPECT_EQ(ceiling.points(), 3 * render.stats.steps);
     for (int run = 0; run < 2; ++run) {
       EXPECT_GE(ceiling.run_ms(), 0.0);
       EXPECT_EQ(ceiling.counted_evaluations(), ceiling.points()) << "lanes " << lanes << ", run " << run;
     }
     EXPECT_EQ(ceiling.program().build_log.find("warning"), std::string::npos) << ceiling.program().build_log;
+
+    // Past max_samples the points of every k-th pixel are kept: fewer, and whole rays.
+    CeilingKernel capped(scene, options, 1, render.stats.steps / 3);
+    EXPECT_GE(capped.pixel_stride(), 3u);
+    EXPECT_LT(capped.samples(), render.stats.steps);
+    std::uint64_t kept = 0;
+    const std::vector<float>& steps = render.buffers.plane(Channel::Steps);
+    for (std::size_t pixel = 0; pixel < steps.size(); pixel += capped.pixel_stride()) kept += static_cast<std::uint64_t>(steps[pixel]);
+    EXPECT_EQ(capped.samples(), kept);
+    capped.run_ms();
+    EXPECT_EQ(capped.counted_evaluations(), capped.points());
+  }
+}
+
+TEST(Bench, RecordedPointsAreTheMarchsSamples) {
+  // A plane z = 0 seen from z = 5: the march starts at the camera and steps by the plane's exact
+  // distance, so each pixel's k-th point is at distance z_k along its ray from the previous one.
+  // Float rounds z to 2^-24 relative; 1e-5 leaves room for the sums along the ray.
+  constexpr double kFloatSteps = 1e-5;
+  const Scene scene = testing::scene_from_yaml(
+      "camera: {position: [0, 0, 5], look_at: [0, 0, 0], fov: 60}\n"
+      "render: {width: 9, height: 7, max_steps: 6, epsilon: 1e-6, max_distance: 100, bounds: none}\n"
+      "sdf: {plane: {normal: [0, 0, 1], offset: 0}}\n");
+  for (int lanes : {1, 16}) {
+    OpenClOptions options;
+    options.lanes = lanes;
+    options.purpose = KernelPurpose::DepthSteps;
+    const RenderResult render = render_opencl(scene, options);
+    const std::vector<float>& steps = render.buffers.plane(Channel::Steps);
+    CeilingKernel ceiling(scene, options, 1);
+    const std::vector<glm::vec3> points = ceiling.read_samples();
+    std::size_t at = 0;
+    for (std::size_t pixel = 0; pixel < steps.size(); ++pixel) {
+      ASSERT_GE(steps[pixel], 1.0f);
+      for (int k = 0; k < static_cast<int>(steps[pixel]); ++k, ++at) {
+        ASSERT_LT(at, points.size());
+        if (k == 0) {
+          EXPECT_NEAR(glm::distance(points[at], glm::vec3(0.0f, 0.0f, 5.0f)), 0.0, kFloatSteps) << "pixel " << pixel;
+        } else {
+          EXPECT_NEAR(glm::distance(points[at], points[at - 1]), points[at - 1].z, kFloatSteps) << "pixel " << pixel << " k " << k;
+        }
+      }
+    }
+    EXPECT_EQ(at, points.size()) << "lanes " << lanes;
   }
 }
 
@@ -51,14 +113,19 @@ TEST(Bench, JsonHasEveryFigureAndTheyAreConsistent) {
   const nlohmann::json j = nlohmann::json::parse(r.out);
   for (const char* key : {"scene", "device", "lanes", "width", "height", "repeat", "build_ms", "kernel_ms", "depth_kernel_ms",
                           "rays_per_s", "steps_per_pixel", "evals_per_s", "ceiling_evals_per_s", "ceiling_kernel_ms",
-                          "ceiling_points", "ceiling_ratio", "depth_to_shaded_ratio", "reference_ms",
+                          "ceiling_points", "ceiling_samples", "ceiling_pixel_stride", "lane_use", "ceiling_ratio", "depth_to_shaded_ratio", "reference_ms",
                           "opencl_to_reference_ratio"}) {
     EXPECT_TRUE(j.contains(key)) << key << " missing in " << r.out;
   }
   const double pixels = 64.0 * 36.0;
   EXPECT_EQ(j["width"], 64);
   EXPECT_EQ(j["repeat"], 2);
-  EXPECT_EQ(j["ceiling_points"], 64 * 36 * 16);
+  // The ceiling replays the march's points: all of them at this size, kCeilingRepeats times each.
+  EXPECT_EQ(j["ceiling_pixel_stride"], 1);
+  EXPECT_EQ(j["ceiling_samples"].get<double>(), j["steps_per_pixel"].get<double>() * pixels);
+  EXPECT_EQ(j["ceiling_points"], j["ceiling_samples"].get<std::uint64_t>() * kCeilingRepeats);
+  EXPECT_GT(j["lane_use"].get<double>(), 0.0);
+  EXPECT_LE(j["lane_use"].get<double>(), 1.0);
   const double shaded = j["kernel_ms"], depth = j["depth_kernel_ms"], reference = j["reference_ms"];
   EXPECT_GT(shaded, 0.0);
   EXPECT_GT(depth, 0.0);

@@ -194,10 +194,8 @@ TEST(Menger, IsOneLipschitz) {
 
 // Kernel against reference: points within the fractals' reach, plus some far away; the tolerance
 // is per unit of |p| (float rounds coordinates relative to their size).
-void expect_kernel_matches_reference(const std::string& sdf_yaml, double tolerance) {
+void expect_kernel_matches_reference_at(const std::string& sdf_yaml, const std::vector<glm::dvec3>& points, double tolerance) {
   const Scene scene = scene_from_yaml("sdf:\n  " + sdf_yaml + "\n");
-  std::vector<glm::dvec3> points = random_points(2000, 1.6, 17);
-  for (const glm::dvec3& far : random_points(48, 30.0, 18)) points.push_back(far);
   for (int lanes : {1, 16}) {
     OpenClOptions options;
     options.lanes = lanes;
@@ -211,6 +209,12 @@ void expect_kernel_matches_reference(const std::string& sdf_yaml, double toleran
   }
 }
 
+void expect_kernel_matches_reference(const std::string& sdf_yaml, double tolerance) {
+  std::vector<glm::dvec3> points = random_points(2000, 1.6, 17);
+  for (const glm::dvec3& far : random_points(48, 30.0, 18)) points.push_back(far);
+  expect_kernel_matches_reference_at(sdf_yaml, points, tolerance);
+}
+
 TEST(MandelbulbKernel, MatchesTheReference) {
   // The float orbit rounds each iteration by a few units of 2^-24 relative; the map multiplies
   // position errors by n r^(n-1) per iteration, and the estimate divides by the same growth in dr,
@@ -222,6 +226,30 @@ TEST(MandelbulbKernel, MatchesTheReference) {
   expect_kernel_matches_reference("mandelbulb: {}", kMandelbulbTolerance);
   expect_kernel_matches_reference("mandelbulb: {power: 3, iterations: 20, bailout: 4, center: [0.2, -0.1, 0.3]}",
                                   kMandelbulbTolerance);
+}
+
+TEST(MandelbulbKernel, PowerEightFormMatchesOnTheAxesAndNearTheSet) {
+  // Power 8 runs the polynomial form (sd_mandelbulb8): check it where its guards act, on the pole
+  // axis (x = y = 0, where atan2(0, 0) = 0 sets the angle) and through the centre, and densely in
+  // the shell where the march samples it. Tolerance as in MatchesTheReference.
+  constexpr double kMandelbulbTolerance = 1e-4;
+  const Scene scene = scene_from_yaml("sdf:\n  mandelbulb: {}\n");
+  ASSERT_NE(generate_kernel_source(scene, {KernelPurpose::EvalPoints, 16}).find("sd_mandelbulb8(p,"), std::string::npos);
+  std::vector<glm::dvec3> points;
+  for (int i = -60; i <= 60; ++i) {
+    const double s = i / 40.0;
+    points.push_back({0.0, 0.0, s});
+    points.push_back({s, 0.0, 0.0});
+    points.push_back({0.0, s, 0.0});
+    points.push_back({s, s, s});
+  }
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), shell(0.6, 1.2);
+  while (points.size() < 3000) {
+    const glm::dvec3 d(unit(rng), unit(rng), unit(rng));
+    if (glm::length(d) > 1e-3) points.push_back(glm::normalize(d) * shell(rng));
+  }
+  expect_kernel_matches_reference_at("mandelbulb: {}", points, kMandelbulbTolerance);
 }
 
 TEST(MengerKernel, MatchesTheReference) {

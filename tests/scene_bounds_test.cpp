@@ -131,7 +131,9 @@ void expect_clipping_keeps_the_image(const FrameBuffers& clipped, const FrameBuf
   int idle = 0;
   for (std::size_t i = 0; i < depth_full.size(); ++i) {
     ASSERT_EQ(std::isinf(depth_clipped[i]), std::isinf(depth_full[i])) << "pixel " << i;
-    if (!std::isinf(depth_full[i])) EXPECT_NEAR(depth_clipped[i], depth_full[i], 2.0 * epsilon) << "pixel " << i;
+    if (!std::isinf(depth_full[i])) {
+      EXPECT_NEAR(depth_clipped[i], depth_full[i], 2.0 * epsilon) << "pixel " << i;
+    }
     steps_clipped += clipped.plane(Channel::Steps)[i];
     steps_full += full.plane(Channel::Steps)[i];
     idle += clipped.plane(Channel::Steps)[i] == 0.0f;

@@ -33,16 +33,20 @@ BenchReport run_bench(const Scene& scene, const OpenClOptions& options, const Be
   r.depth_ms = median(time_renders(scene, depth, settings.repeat, &last));
   r.steps_per_pixel = static_cast<double>(last.stats.steps) / pixels;
   r.evals_per_s = static_cast<double>(last.stats.steps) / (r.depth_ms * 1e-3);
+  r.lane_use = lane_use(last.buffers.plane(Channel::Steps), r.width, r.height, r.lanes);
   r.depth_to_shaded = r.depth_ms / r.shaded_ms;
 
-  CeilingKernel ceiling(scene, options, settings.ceiling_depths);
+  CeilingKernel ceiling(scene, options);
   ceiling.run_ms();  // PoCL compiles the work-group function at the first enqueue
   std::vector<double> ceiling_ms;
   for (int i = 0; i < settings.repeat; ++i) ceiling_ms.push_back(ceiling.run_ms());
   r.ceiling_ms = median(ceiling_ms);
   r.ceiling_points = ceiling.points();
-  r.ceiling_evals_per_s = static_cast<double>(ceiling.counted_evaluations()) / (r.ceiling_ms * 1e-3);
-  r.ceiling_ratio = r.evals_per_s / r.ceiling_evals_per_s;
+  r.ceiling_samples = ceiling.samples();
+  r.ceiling_pixel_stride = ceiling.pixel_stride();
+  // A scene whose rays all skip the march has no points to replay: no ceiling, ratio 0.
+  r.ceiling_evals_per_s = r.ceiling_ms > 0.0 ? static_cast<double>(ceiling.counted_evaluations()) / (r.ceiling_ms * 1e-3) : 0.0;
+  r.ceiling_ratio = r.ceiling_evals_per_s > 0.0 ? r.evals_per_s / r.ceiling_evals_per_s : 0.0;
 
   if (settings.reference) {
     const auto start = std::chrono::steady_clock::now();
@@ -66,6 +70,9 @@ nlohmann::json BenchReport::to_json() const {
           {"rays_per_s", rays_per_s},
           {"steps_per_pixel", steps_per_pixel},
           {"evals_per_s", evals_per_s},
+          {"lane_use", lane_use},
+          {"ceiling_samples", ceiling_samples},
+          {"ceiling_pixel_stride", ceiling_pixel_stride},
           {"ceiling_evals_per_s", ceiling_evals_per_s},
           {"ceiling_kernel_ms", ceiling_ms},
           {"ceiling_points", ceiling_points},
@@ -80,8 +87,11 @@ std::string BenchReport::to_text() const {
   out += fmt::format("  shaded kernel      {:9.2f} ms   {:.3g} rays/s\n", shaded_ms, rays_per_s);
   out += fmt::format("  depth-only kernel  {:9.2f} ms   {:.2f} of the shaded time\n", depth_ms, depth_to_shaded);
   out += fmt::format("  march steps        {:9.2f} per pixel\n", steps_per_pixel);
+  out += fmt::format("  lane use           {:9.2f} of the lane-steps executed\n", lane_use);
   out += fmt::format("  distance evals     {:9.3g} /s  {:.2f} of the ceiling\n", evals_per_s, ceiling_ratio);
-  out += fmt::format("  ceiling            {:9.3g} /s  ({} points in {:.2f} ms)\n", ceiling_evals_per_s, ceiling_points, ceiling_ms);
+  out += fmt::format("  ceiling            {:9.3g} /s  ({} evaluations of {} march points{} in {:.2f} ms)\n", ceiling_evals_per_s,
+                     ceiling_points, ceiling_samples,
+                     ceiling_pixel_stride > 1 ? fmt::format(", every {}th pixel's", ceiling_pixel_stride) : "", ceiling_ms);
   if (reference_ms) {
     out += fmt::format("  CPU reference      {:9.1f} ms   OpenCL shaded takes {:.3f} of it\n", *reference_ms, *opencl_to_reference);
   }

@@ -16,8 +16,6 @@ namespace clmarch {
 struct BenchSettings {
   /// Timed runs of each kernel; the median is reported.
   int repeat = 5;
-  /// Ceiling points per camera ray.
-  int ceiling_depths = 16;
   /// Also time one CPU reference render.
   bool reference = true;
 };
@@ -39,10 +37,18 @@ struct BenchReport {
   double steps_per_pixel = 0.0;
   /// Distance evaluations per second of the depth-only kernel, which evaluates nothing but the march.
   double evals_per_s = 0.0;
-  /// The ceiling: evaluations per second of eval_ceiling at the same packet width.
+  /// Lane-steps that evaluated a marching ray, over those executed (packets march until their
+  /// slowest ray ends), in the depth-only render.
+  double lane_use = 0.0;
+  /// The ceiling (CeilingKernel): evaluations per second of the march's own points, replayed
+  /// densely at the same packet width.
   double ceiling_evals_per_s = 0.0;
   double ceiling_ms = 0.0;
+  /// Evaluations of one ceiling run: the recorded points times kCeilingRepeats.
   std::uint64_t ceiling_points = 0;
+  /// Points recorded from the march (those of every ceiling_pixel_stride-th pixel).
+  std::uint64_t ceiling_samples = 0;
+  std::uint64_t ceiling_pixel_stride = 1;
   /// evals_per_s / ceiling_evals_per_s.
   double ceiling_ratio = 0.0;
   /// depth_ms / shaded_ms.

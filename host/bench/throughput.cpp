@@ -1,20 +1,74 @@
-// Repeated renders and the throughput ceiling kernel.
+// Repeated renders and the throughput ceiling: record the march's points, then replay them.
 #include "bench/throughput.hpp"
 
 #include "cl/cl_errors.hpp"
-#include "codegen/kernel_source.hpp"
-#include "scene/camera_model.hpp"
+#include "render/march_dispatch.hpp"
 
 #include <algorithm>
 #include <numeric>
 
 namespace clmarch {
+namespace {
+
+/// Marches the scene's camera rays with the Ceiling program: each pixel's k-th evaluated point is
+/// stored at sample_base[pixel] + k of the x, y, z planes of samples (stride floats apart), and
+/// nothing for a base of -1. Returns the steps of every pixel.
+std::vector<int> record_march(const Scene& scene, DeviceProgram& dp, int lanes, const std::vector<cl_int>& sample_base,
+                              cl::Buffer* samples, std::size_t stride) {
+  const int width = scene.render.width, height = scene.render.height;
+  const Dispatch dispatch = plan_tile_dispatch(dp.device, width, height, chunk_pixels_for(dp.device), lanes);
+  const std::vector<cl_float4> lights = light_data(scene);
+  std::vector<float> steps(static_cast<std::size_t>(width) * height);
+  const std::size_t bytes = dispatch.plane_stride * CLMARCH_CHANNEL_COUNT * sizeof(float);
+  cl::Buffer out(dp.context, CL_MEM_WRITE_ONLY | CL_MEM_HOST_READ_ONLY, bytes);
+  cl::Buffer light_buffer(dp.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, lights.size() * sizeof(cl_float4),
+                          const_cast<cl_float4*>(lights.data()));
+  cl::Buffer bases(dp.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sample_base.size() * sizeof(cl_int),
+                   const_cast<cl_int*>(sample_base.data()));
+  cl::Kernel kernel(dp.program, "march");
+  kernel.setArg(1, out);
+  kernel.setArg(2, light_buffer);
+  kernel.setArg(3, bases);
+  if (samples) {
+    kernel.setArg(4, *samples);
+  } else {
+    kernel.setArg(4, sizeof(cl_mem), nullptr);  // a NULL pointer: the march records nothing
+  }
+  kernel.setArg(5, static_cast<cl_int>(stride));
+  for_each_chunk(dp.queue, kernel, march_params(scene, dispatch), dispatch, height, [&](int first_row, int rows, const cl::Event&) {
+    dp.queue.enqueueReadBuffer(out, CL_TRUE, CLMARCH_CHANNEL_STEPS * dispatch.plane_stride * sizeof(float),
+                               static_cast<std::size_t>(rows) * width * sizeof(float),
+                               steps.data() + static_cast<std::size_t>(first_row) * width);
+  });
+  return std::vector<int>(steps.begin(), steps.end());
+}
+
+}  // namespace
 
 double median(std::vector<double> values) {
   if (values.empty()) return 0.0;
   std::sort(values.begin(), values.end());
   const std::size_t mid = values.size() / 2;
   return values.size() % 2 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
+}
+
+double lane_use(const std::vector<float>& steps, int width, int height, int lanes) {
+  const int tile_width = packet_width(lanes), tile_height = packet_height(lanes);
+  double used = 0.0, executed = 0.0;
+  for (int y0 = 0; y0 < height; y0 += tile_height) {
+    for (int x0 = 0; x0 < width; x0 += tile_width) {
+      float slowest = 0.0f;
+      for (int y = y0; y < std::min(y0 + tile_height, height); ++y) {
+        for (int x = x0; x < std::min(x0 + tile_width, width); ++x) {
+          const float s = steps[static_cast<std::size_t>(y) * width + x];
+          used += s;
+          slowest = std::max(slowest, s);
+        }
+      }
+      executed += static_cast<double>(slowest) * lanes;
+    }
+  }
+  return executed > 0.0 ? used / executed : 1.0;
 }
 
 std::vector<double> time_renders(const Scene& scene, const OpenClOptions& options, int repeat, RenderResult* last) {
@@ -28,47 +82,53 @@ std::vector<double> time_renders(const Scene& scene, const OpenClOptions& option
   return ms;
 }
 
-CeilingKernel::CeilingKernel(const Scene& scene, const OpenClOptions& options, int depths_per_ray) : depths_(depths_per_ray) {
-  const DeviceEntry device = select_device(options.device);
-  lanes_ = options.lanes.value_or(default_lanes(device));
-  program_ = build_device_program(device, generate_kernel_source(scene, {KernelPurpose::EvalPoints, lanes_, options.variant}),
-                                  kernel_build_options(options.variant));
-
-  const int width = scene.render.width, height = scene.render.height;
-  rays_ = static_cast<std::uint64_t>(width) * height;
-  local_items_ = default_local_size(device);
-  const std::size_t items = (rays_ + lanes_ - 1) / lanes_;
-  global_items_ = (items + local_items_ - 1) / local_items_ * local_items_;
-  plane_ = global_items_ * lanes_;
-
-  // Rays of the image through the camera contract; the depths span the region around look_at.
-  const CameraBasis basis = camera_basis(scene.camera, width, height);
-  const double span = 2.0 * glm::length(scene.camera.look_at - scene.camera.position);
-  const double spacing = span / depths_;
-  std::vector<std::vector<float>> planes(6, std::vector<float>(plane_, 0.0f));
-  for (int j = 0; j < height; ++j) {
-    for (int i = 0; i < width; ++i) {
-      const std::size_t at = static_cast<std::size_t>(j) * width + i;
-      const glm::dvec3 step = pixel_ray_direction(basis, i, j) * spacing;
-      for (int a = 0; a < 3; ++a) {
-        planes[a][at] = static_cast<float>(basis.origin[a]);
-        planes[3 + a][at] = static_cast<float>(step[a]);
-      }
-    }
-  }
+CeilingKernel::CeilingKernel(const Scene& scene, const OpenClOptions& options, int repeats, std::uint64_t max_samples)
+    : repeats_(repeats) {
+  PreparedProgram prepared = prepare_program(scene, options, KernelPurpose::Ceiling);
+  program_ = std::move(prepared.program);
+  lanes_ = prepared.lanes;
   with_device_errors(program_.device, [&] {
-    kernel_ = cl::Kernel(program_.program, "eval_ceiling");
-    for (int a = 0; a < 6; ++a) {
-      inputs_.emplace_back(program_.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, plane_ * sizeof(float), planes[a].data());
-      kernel_.setArg(a, inputs_.back());
+    // First the steps of every pixel (recording nothing), then each kept pixel's points at offsets
+    // from the running sum of its steps. Both marches run the same program, so they take the same steps.
+    const std::size_t pixels = static_cast<std::size_t>(scene.render.width) * scene.render.height;
+    std::vector<cl_int> sample_base(pixels, -1);
+    const std::vector<int> steps = record_march(scene, program_, lanes_, sample_base, nullptr, 0);
+    marched_steps_ = std::accumulate(steps.begin(), steps.end(), std::uint64_t{0});
+    pixel_stride_ = std::max<std::uint64_t>(1, (marched_steps_ + max_samples - 1) / max_samples);
+    for (std::size_t pixel = 0; pixel < pixels; pixel += pixel_stride_) {
+      sample_base[pixel] = static_cast<cl_int>(samples_);
+      samples_ += static_cast<std::uint64_t>(steps[pixel]);
     }
+    const Dispatch replay = plan_point_dispatch(program_.device, std::max<std::uint64_t>(samples_, 1), lanes_);
+    global_items_ = replay.global_items;
+    local_items_ = replay.local_items;
+    plane_ = replay.plane_stride;
+    // Padding points past samples_ stay 0: the replay evaluates them in lanes it does not count.
+    const std::size_t bytes = 3 * plane_ * sizeof(float);
+    samples_buffer_ = cl::Buffer(program_.context, CL_MEM_READ_WRITE, bytes);
+    program_.queue.enqueueFillBuffer(samples_buffer_, 0.0f, 0, bytes);
+    record_march(scene, program_, lanes_, sample_base, &samples_buffer_, plane_);
+
+    kernel_ = cl::Kernel(program_.program, "replay_samples");
     sums_ = cl::Buffer(program_.context, CL_MEM_WRITE_ONLY, plane_ * sizeof(float));
     evaluations_ = cl::Buffer(program_.context, CL_MEM_WRITE_ONLY, plane_ * sizeof(cl_int));
-    kernel_.setArg(6, static_cast<cl_int>(rays_));
-    kernel_.setArg(7, static_cast<cl_int>(depths_));
-    kernel_.setArg(8, sums_);
-    kernel_.setArg(9, evaluations_);
+    kernel_.setArg(0, samples_buffer_);
+    kernel_.setArg(1, static_cast<cl_int>(samples_));
+    kernel_.setArg(2, static_cast<cl_int>(plane_));
+    kernel_.setArg(3, static_cast<cl_int>(repeats_));
+    kernel_.setArg(4, sums_);
+    kernel_.setArg(5, evaluations_);
   });
+}
+
+std::vector<glm::vec3> CeilingKernel::read_samples() {
+  std::vector<float> planes(3 * plane_);
+  with_device_errors(program_.device, [&] {
+    program_.queue.enqueueReadBuffer(samples_buffer_, CL_TRUE, 0, planes.size() * sizeof(float), planes.data());
+  });
+  std::vector<glm::vec3> points(samples_);
+  for (std::size_t i = 0; i < points.size(); ++i) points[i] = {planes[i], planes[plane_ + i], planes[2 * plane_ + i]};
+  return points;
 }
 
 double CeilingKernel::run_ms() {

@@ -79,6 +79,7 @@ std::string atmosphere_defines(const Shading& s) {
 
 std::string feature_defines(const Scene& scene, const KernelOptions& options) {
   std::string out = fmt::format("#define LANES {}\n", options.lanes);
+  if (options.purpose == KernelPurpose::Ceiling) out += "#define RECORD_SAMPLES\n";
   if (options.variant.precision == Precision::Double) out += "#define DOUBLE_PRECISION\n";
   if (options.variant.native_math) out += "#define NATIVE_MATH\n";
   const bool normals = options.purpose == KernelPurpose::Normals || options.purpose == KernelPurpose::Shaded;
@@ -142,7 +143,8 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
   src += kernel_file("operators.cl");
   src += "#line 1 \"generated scene\"\n";
   // eval_points takes world points; the march's points are relative to map_frame_origin.
-  src += generate_sdf_functions(scene.sdf, options.purpose == KernelPurpose::EvalPoints ? glm::dvec3(0.0) : map_frame_origin(scene));
+  src += generate_sdf_functions(scene.sdf, options.purpose == KernelPurpose::EvalPoints ? glm::dvec3(0.0) : map_frame_origin(scene),
+                                scene.render.subtree_bounds == SceneBounds::Sphere);
   if (options.purpose == KernelPurpose::EvalPoints) {
     src += kernel_file("eval_points.cl");
     return src;
@@ -151,12 +153,14 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
   src += kernel_file("camera.cl");
   src += kernel_file("march_loop.cl");
   if (scene.tiling && scene.tiling->method == TilingMethod::Cells) src += kernel_file("tiling.cl");
-  if (options.purpose != KernelPurpose::DepthSteps) src += kernel_file("normals.cl");
+  const bool depth_only = options.purpose == KernelPurpose::DepthSteps || options.purpose == KernelPurpose::Ceiling;
+  if (!depth_only) src += kernel_file("normals.cl");
   if (shading) {
     src += kernel_file("shading.cl");
     src += kernel_file("atmosphere.cl");
   }
   src += kernel_file("march.cl");
+  if (options.purpose == KernelPurpose::Ceiling) src += kernel_file("replay.cl");
   return src;
 }
 

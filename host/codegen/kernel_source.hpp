@@ -16,8 +16,11 @@ enum class KernelPurpose {
   Normals,
   /// The march kernel with normals and the lit color.
   Shaded,
-  /// The eval_points kernel (tests, throughput ceiling).
+  /// The eval_points kernel (tests against closed forms).
   EvalPoints,
+  /// The benchmark's ceiling: the depth-only march kernel recording every point it evaluates
+  /// (RECORD_SAMPLES), and replay_samples, which evaluates those points densely.
+  Ceiling,
 };
 
 /// The arithmetic of the lanes: float, or double (needs cl_khr_fp64). Buffers stay float.

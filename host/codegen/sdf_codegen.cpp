@@ -3,13 +3,16 @@
 #include "codegen/sdf_codegen.hpp"
 
 #include "codegen/cl_literals.hpp"
+#include "scene/scene_bounds.hpp"
 
 #include <fmt/format.h>
 
 #include <glm/gtc/matrix_access.hpp>
 
 #include <cmath>
+#include <optional>
 #include <utility>
+#include <vector>
 
 namespace clmarch {
 namespace {
@@ -61,6 +64,11 @@ std::string primitive_call(const Primitive& primitive, const std::string& p, con
                          cl_float(c.half_height));
     }
     std::string operator()(const Mandelbulb& m) const {
+      // Power 8 has a form without transcendentals in the loop (kernels/fractals.cl).
+      if (m.power == 8.0) {
+        return fmt::format("sd_mandelbulb8({}, {}, {}, {})", p, cl_float4(m.center - offset), m.iterations,
+                           cl_float(m.bailout));
+      }
       return fmt::format("sd_mandelbulb({}, {}, {}, {}, {})", p, cl_float4(m.center - offset), cl_float(m.power),
                          m.iterations, cl_float(m.bailout));
     }
@@ -76,11 +84,30 @@ std::string primitive_call(const Primitive& primitive, const std::string& p, con
   return std::visit(Visitor{p, offset}, primitive);
 }
 
+/// A rough cost of evaluating a subtree, in sphere evaluations: what decides whether a bounding
+/// sphere (about one sphere evaluation and a branch) can pay for itself.
+int subtree_cost(const Node& node) {
+  int cost = 0;
+  for (const Node& child : node.children) cost += subtree_cost(child);
+  switch (node.kind) {
+    case NodeKind::Sphere:
+    case NodeKind::Plane: return 1;
+    case NodeKind::Mandelbulb: return 6 * std::get<Mandelbulb>(node.primitive).iterations;
+    case NodeKind::Menger: return 3 * std::get<Menger>(node.primitive).iterations;
+    case NodeKind::Terrain: return 4 * std::get<Terrain>(node.primitive).octaves;
+    case NodeKind::Displace: return cost + 6;
+    default: return std::max(2, cost + 1);
+  }
+}
+
+/// Subtrees from this cost on are gated behind their bounding sphere inside unions and subtractions.
+constexpr int kGateCost = 8;
+
 /// Emits the statements of one function body; with_color also tracks the material (albedo and
 /// surface = metallic, roughness, reflectivity), blended by the same rules as the albedo.
 class SdfEmitter {
  public:
-  explicit SdfEmitter(bool with_color) : with_color_(with_color) {}
+  SdfEmitter(bool with_color, bool gate_subtrees) : with_color_(with_color), gate_subtrees_(gate_subtrees) {}
 
   struct Value {
     std::string distance;
@@ -114,7 +141,7 @@ class SdfEmitter {
 
  private:
   std::string fresh(const char* prefix) { return fmt::format("{}{}", prefix, counter_++); }
-  void line(const std::string& text) { body_ += "  " + text + "\n"; }
+  void line(const std::string& text) { body_ += "  " + indent_ + text + "\n"; }
 
   /// The node's frame: the point and offset its subtree sees.
   std::pair<std::string, glm::dvec3> emit_transform(const Transform& transform, const std::string& p,
@@ -160,12 +187,89 @@ class SdfEmitter {
   Value emit_operator(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
     if (node.kind == NodeKind::Repeat) return emit_repeat(node, p, color, offset);
     if (node.kind == NodeKind::Displace) return emit_displace(node, p, color, offset);
+    if (node.kind == NodeKind::Union) return emit_union(node, p, color, offset);
     Value acc = emit(node.children.front(), p, color, offset);
     for (std::size_t i = 1; i < node.children.size(); ++i) {
-      const Value next = emit(node.children[i], p, color, offset);
+      const Node& child = node.children[i];
+      const std::optional<std::string> skip_limit = sequential_skip_limit(node, acc.distance);
+      const Value next = skip_limit ? emit_gated(child, p, color, offset, *skip_limit) : emit(child, p, color, offset);
       acc = combine(node, acc, next);
     }
     return acc;
+  }
+
+  /// Above what bound of a later child the operator returns acc unchanged: smooth union acc + k
+  /// (its blend weight is 1 there), subtraction -acc, smooth subtraction k - acc (weight 0).
+  /// Nothing for intersections, whose result is the largest operand.
+  static std::optional<std::string> sequential_skip_limit(const Node& node, const std::string& acc) {
+    const std::string k = cl_float(node.smooth_k);
+    switch (node.kind) {
+      case NodeKind::SmoothUnion: return fmt::format("{} + {}", acc, k);
+      case NodeKind::Subtraction: return fmt::format("-{}", acc);
+      case NodeKind::SmoothSubtraction: return fmt::format("{} - {}", k, acc);
+      default: return std::nullopt;
+    }
+  }
+
+  /// A union's children in any order of evaluation (min is commutative, and the material follows
+  /// the first child at the minimum whatever the order): children not worth a bound first, then
+  /// the others gated by the least distance so far; combined in the scene's order.
+  Value emit_union(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
+    std::vector<std::size_t> gated, plain;
+    for (std::size_t i = 0; i < node.children.size(); ++i) (worth_a_bound(node.children[i]) ? gated : plain).push_back(i);
+    std::vector<std::optional<Value>> values(node.children.size());
+    std::string least;  // the least distance of the children evaluated so far, while a gate needs it
+    const auto fold = [&](const std::string& distance) {
+      if (least.empty()) {
+        least = distance;
+        return;
+      }
+      const std::string next = fresh("m");
+      line(fmt::format("vfloat {} = fmin({}, {});", next, least, distance));
+      least = next;
+    };
+    for (std::size_t i : plain) {
+      values[i] = emit(node.children[i], p, color, offset);
+      if (!gated.empty()) fold(values[i]->distance);
+    }
+    for (std::size_t i : gated) {
+      values[i] = least.empty() ? emit(node.children[i], p, color, offset)
+                                : emit_gated(node.children[i], p, color, offset, least);
+      if (i != gated.back()) fold(values[i]->distance);
+    }
+    Value acc = *values.front();
+    for (std::size_t i = 1; i < values.size(); ++i) acc = combine(node, acc, *values[i]);
+    return acc;
+  }
+
+  /// Worth gating behind its bounding sphere: a bounded subtree that costs well more than the bound.
+  bool worth_a_bound(const Node& node) const {
+    return gate_subtrees_ && subtree_cost(node) >= kGateCost && node_bounds(node).has_value();
+  }
+
+  /// The child, evaluated only if a lane's bound of it is at most skip_limit (the operator's result
+  /// does not depend on it above that); otherwise its value is the bound, and its material unset.
+  Value emit_gated(const Node& child, const std::string& p, const Material& color, const glm::dvec3& offset,
+                   const std::string& skip_limit) {
+    if (!worth_a_bound(child)) return emit(child, p, color, offset);
+    const BoundingSphere sphere = *node_bounds(child);
+    Value out{fresh("d"), "", ""};
+    line(fmt::format("vfloat {} = sd_bound({}, {}, {}, {});  /* bound of {} */", out.distance, p,
+                     cl_float4(sphere.center - offset), cl_float(sphere.radius), cl_float(1.0 / sphere.gain),
+                     node_kind_name(child.kind)));
+    if (with_color_) {
+      out.color = fresh("c");
+      out.surface = fresh("s");
+      line(fmt::format("vec3v {} = v3_splat(0.0f), {} = v3_splat(0.0f);", out.color, out.surface));
+    }
+    line(fmt::format("if (LANE_ANY(MASK({} <= {}))) {{", out.distance, skip_limit));
+    indent_ += "  ";
+    const Value inside = emit(child, p, color, offset);
+    line(fmt::format("{} = {};", out.distance, inside.distance));
+    if (with_color_) line(fmt::format("{} = {}; {} = {};", out.color, inside.color, out.surface, inside.surface));
+    indent_.resize(indent_.size() - 2);
+    line("}");
+    return out;
   }
 
   Value emit_repeat(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
@@ -239,16 +343,18 @@ class SdfEmitter {
   }
 
   bool with_color_;
+  bool gate_subtrees_;
   int counter_ = 0;
   std::string body_;
+  std::string indent_;
 };
 
 }  // namespace
 
-std::string generate_sdf_functions(const Node& root, const glm::dvec3& frame_origin) {
-  SdfEmitter distance_only(false);
+std::string generate_sdf_functions(const Node& root, const glm::dvec3& frame_origin, bool gate_subtrees) {
+  SdfEmitter distance_only(false, gate_subtrees);
   const SdfEmitter::Value d = distance_only.emit(root, "p", Material{}, frame_origin);
-  SdfEmitter with_color(true);
+  SdfEmitter with_color(true, gate_subtrees);
   const SdfEmitter::Value dc = with_color.emit(root, "p", Material{}, frame_origin);
   const std::string frame = frame_origin == glm::dvec3(0.0)
                                 ? std::string()

@@ -9,7 +9,10 @@
 namespace clmarch {
 
 /// Source of the two functions map and map_color for this tree, taking points relative to the
-/// world point frame_origin (its positions are baked relative to it, in double).
-std::string generate_sdf_functions(const Node& root, const glm::dvec3& frame_origin = glm::dvec3(0.0));
+/// world point frame_origin (its positions are baked relative to it, in double). With
+/// gate_subtrees, unions and subtractions evaluate an expensive bounded subtree only where its
+/// bounding sphere shows it can change their result (render.subtree_bounds).
+std::string generate_sdf_functions(const Node& root, const glm::dvec3& frame_origin = glm::dvec3(0.0),
+                                   bool gate_subtrees = true);
 
 }  // namespace clmarch

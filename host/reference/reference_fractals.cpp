@@ -19,8 +19,6 @@ double floor_mod(double x, double period) { return x - period * std::floor(x / p
 
 }  // namespace
 
-double mandelbulb_radius(double power) { return std::pow(2.0, 1.0 / (power - 1.0)); }
-
 double sd_mandelbulb(const glm::dvec3& p, const Mandelbulb& bulb) {
   const double n = bulb.power;
   const glm::dvec3 c = p - bulb.center;

@@ -8,10 +8,6 @@
 
 namespace clmarch {
 
-/// Radius of a ball about the centre that holds the whole power-n Mandelbulb: 2^(1/(n-1)).
-/// Outside it the orbit grows monotonically (|z^n + c| >= |z|^n - |c| > |z|), so nothing escapes less.
-double mandelbulb_radius(double power);
-
 /// The escape-time distance estimator 0.5 log(r) r / dr of the Mandelbulb (a bound near the set,
 /// not exactly 1-Lipschitz), capped at 1 and never below |p - c| - mandelbulb_radius: far away it
 /// is the distance to the enclosing ball.

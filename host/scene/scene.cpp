@@ -9,6 +9,8 @@
 
 namespace clmarch {
 
+double mandelbulb_radius(double power) { return std::pow(2.0, 1.0 / (power - 1.0)); }
+
 std::string_view node_kind_name(NodeKind kind) {
   switch (kind) {
 #define CLMARCH_PRIMITIVE(k, name) case NodeKind::k: return name;

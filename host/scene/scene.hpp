@@ -53,6 +53,9 @@ struct Capsule { glm::dvec3 a{0.0, -0.5, 0.0}; glm::dvec3 b{0.0, 0.5, 0.0}; doub
 struct Cylinder { glm::dvec3 center{0.0}; double radius = 0.5; double half_height = 0.5; };
 /// The power-n Mandelbulb (pole along z) by its escape-time distance estimator, a bound.
 struct Mandelbulb { glm::dvec3 center{0.0}; double power = 8.0; int iterations = 8; double bailout = 2.0; };
+/// Radius of a ball about the centre that holds the whole power-n Mandelbulb: 2^(1/(n-1)). Its
+/// estimator is never below the distance to this ball (kernels/fractals.cl, the reference).
+double mandelbulb_radius(double power);
 /// Inigo Quilez's Menger sponge: a cube of half size half_size with iterations levels of crosses cut out.
 struct Menger { glm::dvec3 center{0.0}; double half_size = 1.0; int iterations = 4; };
 /// The noise a terrain's fractal sum is built from (formulas: kernels/noise.cl, reference_noise.cpp).
@@ -137,7 +140,8 @@ inline constexpr const char* kNormalMethodNames[] = {"central", "tetrahedral", "
 enum class HitThreshold { Fixed, PixelCone };
 inline constexpr const char* kHitThresholdNames[] = {"fixed", "pixel_cone"};
 
-/// Whether camera rays are clipped to the scene's bounding sphere (host/scene/scene_bounds.hpp).
+/// Whether camera rays are clipped to the scene's bounding sphere, and whether the generated map()
+/// skips subtrees by their bounding spheres (host/scene/scene_bounds.hpp).
 enum class SceneBounds { None, Sphere };
 inline constexpr const char* kSceneBoundsNames[] = {"none", "sphere"};
 
@@ -159,6 +163,9 @@ struct RenderSettings {
   double cone_factor = 1.0;
   /// sphere: camera rays march only inside the bounding sphere of a bounded scene.
   SceneBounds bounds = SceneBounds::Sphere;
+  /// sphere: unions and subtractions skip an expensive bounded subtree wherever its bounding sphere
+  /// shows it cannot change the result (host/codegen/sdf_codegen.cpp).
+  SceneBounds subtree_bounds = SceneBounds::Sphere;
 
   bool operator==(const RenderSettings&) const = default;
 };

@@ -38,10 +38,9 @@ std::optional<BoundingSphere> primitive_bounds(const Primitive& primitive) {
     std::optional<BoundingSphere> operator()(const Cylinder& c) const {
       return BoundingSphere{c.center, std::hypot(c.radius, c.half_height)};
     }
-    // Outside |p - center| = max(bailout, 1) the orbit escapes at once and the estimate is
-    // 0.5 ln(r) r > 0, growing with r.
+    // The estimator is never below the distance to the ball that holds the whole set.
     std::optional<BoundingSphere> operator()(const Mandelbulb& m) const {
-      return BoundingSphere{m.center, std::max(m.bailout, 1.0)};
+      return BoundingSphere{m.center, mandelbulb_radius(m.power)};
     }
     // The sponge is the cube with holes cut out: max(box, ...) >= the box's distance.
     std::optional<BoundingSphere> operator()(const Menger& m) const {

@@ -64,7 +64,7 @@ class SceneReader {
   RenderSettings read_render(const YAML::Node& node) {
     RenderSettings render;
     yaml_.expect_map(node, "render", {"width", "height", "max_steps", "epsilon", "max_distance", "normal_method", "normal_epsilon",
-                                      "over_relaxation", "hit_threshold", "cone_factor", "bounds"});
+                                      "over_relaxation", "hit_threshold", "cone_factor", "bounds", "subtree_bounds"});
     const Range side = Range::closed(1, kMaxImageSide);
     if (node["width"]) render.width = yaml_.integer(node["width"], "render.width", side);
     if (node["height"]) render.height = yaml_.integer(node["height"], "render.height", side);
@@ -77,6 +77,10 @@ class SceneReader {
     yaml_.optional_number(node, "normal_epsilon", "render.normal_epsilon", render.normal_epsilon, Range::positive());
     read_march_acceleration(node, render);
     if (node["bounds"]) render.bounds = static_cast<SceneBounds>(yaml_.choice(node["bounds"], "render.bounds", kSceneBoundsNames));
+    if (node["subtree_bounds"]) {
+      render.subtree_bounds =
+          static_cast<SceneBounds>(yaml_.choice(node["subtree_bounds"], "render.subtree_bounds", kSceneBoundsNames));
+    }
     if (!image_size_fits(render.width, render.height)) {
       yaml_.fail(node, fmt::format("render.width x render.height = {} x {} exceeds {} pixels (got {}, expected at most {})",
                                    render.width, render.height, kMaxPixels,

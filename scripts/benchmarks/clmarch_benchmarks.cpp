@@ -1,24 +1,27 @@
-// Benchmarks of scenes/torus.yaml at 1280x720: the shaded and the depth-only render, and the
-// throughput ceiling of its distance function (eval_ceiling). Times are the kernels' own, from
+// Benchmarks of the scenes (scenes/torus.yaml, scenes/mandelbulb.yaml) at 1280x720: the
+// shaded and the depth-only render, and the throughput ceiling of the scene's distance function
+// (CeilingKernel: the march's own points replayed densely). Times are the kernels' own, from
 // OpenCL profiling events (manual time); counters give rays/s and distance evaluations/s.
 #include "bench/throughput.hpp"
 #include "scene/scene_loader.hpp"
 
 #include <benchmark/benchmark.h>
 
+#include <string>
+
 namespace clmarch {
 namespace {
 
-Scene torus_1280x720() {
-  Scene scene = load_scene_file(CLMARCH_SOURCE_DIR "/scenes/torus.yaml");
+Scene scene_1280x720(const std::string& name) {
+  Scene scene = load_scene_file(CLMARCH_SOURCE_DIR "/scenes/" + name + ".yaml");
   scene.render.width = 1280;
   scene.render.height = 720;
   return scene;
 }
 
 // Each iteration is one render; the program comes from the driver's cache after the first.
-void render_benchmark(benchmark::State& state, KernelPurpose purpose) {
-  const Scene scene = torus_1280x720();
+void render_benchmark(benchmark::State& state, const std::string& name, KernelPurpose purpose) {
+  const Scene scene = scene_1280x720(name);
   OpenClOptions options;
   options.purpose = purpose;
   render_opencl(scene, options);  // build and PoCL's work-group compile, not timed
@@ -33,11 +36,13 @@ void render_benchmark(benchmark::State& state, KernelPurpose purpose) {
   state.counters["evals/s"] = benchmark::Counter(steps, benchmark::Counter::kIsRate);
 }
 
-void BM_TorusShaded(benchmark::State& state) { render_benchmark(state, KernelPurpose::Shaded); }
-void BM_TorusDepthOnly(benchmark::State& state) { render_benchmark(state, KernelPurpose::DepthSteps); }
+void BM_Shaded(benchmark::State& state, const std::string& name) { render_benchmark(state, name, KernelPurpose::Shaded); }
+void BM_DepthOnly(benchmark::State& state, const std::string& name) {
+  render_benchmark(state, name, KernelPurpose::DepthSteps);
+}
 
-void BM_TorusCeiling(benchmark::State& state) {
-  CeilingKernel ceiling(torus_1280x720(), OpenClOptions{}, 16);
+void BM_Ceiling(benchmark::State& state, const std::string& name) {
+  CeilingKernel ceiling(scene_1280x720(name), OpenClOptions{});
   ceiling.run_ms();  // PoCL compiles the work-group function at the first enqueue
   double evaluations = 0.0;
   for (auto _ : state) {
@@ -47,9 +52,12 @@ void BM_TorusCeiling(benchmark::State& state) {
   state.counters["evals/s"] = benchmark::Counter(evaluations, benchmark::Counter::kIsRate);
 }
 
-BENCHMARK(BM_TorusShaded)->UseManualTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_TorusDepthOnly)->UseManualTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_TorusCeiling)->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Shaded, torus, std::string("torus"))->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_DepthOnly, torus, std::string("torus"))->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Ceiling, torus, std::string("torus"))->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Shaded, mandelbulb, std::string("mandelbulb"))->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_DepthOnly, mandelbulb, std::string("mandelbulb"))->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Ceiling, mandelbulb, std::string("mandelbulb"))->UseManualTime()->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace clmarch

@@ -1,0 +1,129 @@
+// The march kernel's dispatch: tiles of packets, chunks of rows, parameters and programs.
+#include "render/march_dispatch.hpp"
+
+#include "cl/cl_errors.hpp"
+#include "common/cancellation.hpp"
+#include "image/atomic_file.hpp"
+#include "scene/camera_model.hpp"
+#include "scene/scene_bounds.hpp"
+#include "scene/tiling_model.hpp"
+
+#include <algorithm>
+
+namespace clmarch {
+namespace {
+
+cl_float4 to_cl(const glm::dvec3& v) {
+  cl_float4 out;
+  out.s[0] = static_cast<float>(v.x);
+  out.s[1] = static_cast<float>(v.y);
+  out.s[2] = static_cast<float>(v.z);
+  out.s[3] = 0.0f;
+  return out;
+}
+
+/// Work-items per work-group: GPUs want many; PoCL loops over the items of a group on one core, and
+/// one fixed size keeps its per-size compile of the work-group function cached.
+std::size_t local_size(const DeviceEntry& device) { return device.is_gpu ? 64 : 8; }
+
+std::size_t round_up(std::size_t n, std::size_t multiple) { return (n + multiple - 1) / multiple * multiple; }
+
+}  // namespace
+
+PreparedProgram prepare_program(const Scene& scene, const OpenClOptions& options, KernelPurpose purpose) {
+  const DeviceEntry device = select_device(options.device);
+  KernelOptions kernel_options;
+  kernel_options.purpose = purpose;
+  kernel_options.lanes = options.lanes.value_or(default_lanes(device));
+  kernel_options.variant = options.variant;
+  const std::string source = generate_kernel_source(scene, kernel_options);
+  if (!options.dump_kernel_path.empty()) write_file_atomically(options.dump_kernel_path, source);
+  return {build_device_program(device, source, kernel_build_options(options.variant)), kernel_options.lanes};
+}
+
+int packet_width(int lanes) { return lanes == 1 ? 1 : lanes == 4 ? 2 : 4; }
+
+Dispatch plan_tile_dispatch(const DeviceEntry& device, int width, int height, std::size_t max_pixels, int lanes) {
+  const std::size_t tile_width = packet_width(lanes);
+  const std::size_t tile_height = packet_height(lanes);
+  const std::size_t row_pixels = static_cast<std::size_t>(width);
+  const std::size_t rows_allowed = std::max<std::size_t>(tile_height, max_pixels / row_pixels / tile_height * tile_height);
+  const std::size_t rows = std::min(round_up(static_cast<std::size_t>(height), tile_height), rows_allowed);
+  Dispatch d;
+  d.local_items = local_size(device);
+  d.chunk_rows = static_cast<int>(rows);
+  d.global_items = round_up(round_up(row_pixels, tile_width) / tile_width * (rows / tile_height), d.local_items);
+  d.plane_stride = rows * row_pixels;
+  return d;
+}
+
+Dispatch plan_point_dispatch(const DeviceEntry& device, std::size_t count, int lanes) {
+  Dispatch d;
+  d.local_items = local_size(device);
+  d.global_items = round_up((count + lanes - 1) / lanes, d.local_items);
+  d.plane_stride = d.global_items * lanes;
+  return d;
+}
+
+std::size_t chunk_pixels_for(const DeviceEntry& device) {
+  constexpr std::size_t kResponsiveChunk = std::size_t{1} << 22;
+  const std::size_t bytes_per_pixel = CLMARCH_CHANNEL_COUNT * sizeof(float);
+  const std::size_t max_alloc = device.device.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
+  const std::size_t global = device.device.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>() / 4;
+  return std::max<std::size_t>(1, std::min({kResponsiveChunk, max_alloc / bytes_per_pixel, global / bytes_per_pixel}));
+}
+
+MarchParams march_params(const Scene& scene, const Dispatch& dispatch) {
+  const int width = scene.render.width;
+  const int height = scene.render.height;
+  const CameraBasis basis = camera_basis(scene.camera, width, height);
+  MarchParams params{};
+  params.origin = to_cl(basis.origin - map_frame_origin(scene));
+  params.forward = to_cl(basis.forward);
+  params.right_extent = to_cl(basis.right_extent);
+  params.up_extent = to_cl(basis.up_extent);
+  params.width = width;
+  params.height = height;
+  params.chunk_rows = dispatch.chunk_rows;
+  params.plane_stride = static_cast<cl_int>(dispatch.plane_stride);
+  params.max_steps = scene.render.max_steps;
+  params.epsilon = static_cast<float>(scene.render.epsilon);
+  params.max_distance = static_cast<float>(scene.render.max_distance);
+  params.normal_epsilon = static_cast<float>(scene.render.normal_epsilon);
+  if (scene.tiling) params.origin_in_cell = to_cl(offset_in_cell(scene.camera.position, scene.tiling->cell));
+  params.camera_height = static_cast<float>(scene.camera.position.y);
+  params.over_relaxation = static_cast<float>(scene.render.over_relaxation);
+  params.hit_cone_slope = static_cast<float>(hit_cone_slope(scene.render, scene.camera));
+  if (const std::optional<BoundingSphere> bounds = camera_ray_bounds(scene)) {
+    params.bounds = to_cl(scene.camera.position - bounds->center);
+    params.bounds.s[3] = static_cast<float>(bounds->radius);
+  }
+  return params;
+}
+
+std::vector<cl_float4> light_data(const Scene& scene) {
+  std::vector<cl_float4> data;
+  for (const Light& light : scene.lights) {
+    cl_float4 where = light.kind == LightKind::Point ? to_cl(light.position - scene.camera.position) : to_cl(light.direction);
+    where.s[3] = light.kind == LightKind::Point ? 1.0f : 0.0f;
+    data.push_back(where);
+    data.push_back(to_cl(light.color * light.intensity));
+  }
+  if (data.empty()) data.push_back(to_cl(glm::dvec3(0.0)));  // a buffer may not be empty
+  return data;
+}
+
+void for_each_chunk(cl::CommandQueue& queue, cl::Kernel& kernel, MarchParams params, const Dispatch& dispatch, int height,
+                    const std::function<void(int first_row, int rows, const cl::Event& event)>& done) {
+  for (int first_row = 0; first_row < height; first_row += dispatch.chunk_rows) {
+    throw_if_cancelled();
+    params.first_row = first_row;
+    kernel.setArg(0, sizeof(MarchParams), &params);
+    cl::Event event;
+    queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(dispatch.global_items), cl::NDRange(dispatch.local_items),
+                               nullptr, &event);
+    done(first_row, std::min(dispatch.chunk_rows, height - first_row), event);
+  }
+}
+
+}  // namespace clmarch

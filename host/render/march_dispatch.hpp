@@ -1,0 +1,61 @@
+// How the march kernel is dispatched: programs, packet tiles, chunks of rows and the per-frame
+// parameters. Shared by the renderer and the benchmark's recording march, so both run the kernel
+// exactly alike.
+#pragma once
+
+#include "cl/device_program.hpp"
+#include "device_types.h"
+#include "render/opencl_renderer.hpp"
+#include "scene/scene.hpp"
+
+#include <functional>
+#include <vector>
+
+namespace clmarch {
+
+/// A program built for one purpose, with its packet width.
+struct PreparedProgram {
+  DeviceProgram program;
+  int lanes = 1;
+};
+
+/// Generates and builds the scene's program for purpose (writing it to options.dump_kernel_path
+/// first when set).
+PreparedProgram prepare_program(const Scene& scene, const OpenClOptions& options, KernelPurpose purpose);
+
+/// Columns of the tile a packet of `lanes` pixels covers (PACKET_WIDTH of kernels/lanes.cl).
+int packet_width(int lanes);
+/// Rows of that tile (PACKET_HEIGHT).
+inline int packet_height(int lanes) { return lanes / packet_width(lanes); }
+
+/// One packet per work-item. For the march kernel a dispatch covers chunk_rows image rows and
+/// its output planes hold those rows, width floats each; for point kernels, LANES consecutive
+/// points per work-item.
+struct Dispatch {
+  std::size_t global_items = 0;
+  std::size_t local_items = 0;
+  int chunk_rows = 0;
+  /// Floats per plane.
+  std::size_t plane_stride = 0;
+};
+
+/// The march kernel's dispatch of a width x height image in chunks of at most max_pixels (rounded
+/// to whole rows of tiles, at least one).
+Dispatch plan_tile_dispatch(const DeviceEntry& device, int width, int height, std::size_t max_pixels, int lanes);
+/// A point kernel's dispatch of count points.
+Dispatch plan_point_dispatch(const DeviceEntry& device, std::size_t count, int lanes);
+/// Pixels per dispatch that the device's allocation limits allow (capped so that progress and
+/// Ctrl-C stay responsive).
+std::size_t chunk_pixels_for(const DeviceEntry& device);
+
+/// The march kernel's parameters for the scene (first_row left at 0).
+MarchParams march_params(const Scene& scene, const Dispatch& dispatch);
+/// Lights as the kernel reads them (kernels/shading.cl): positions relative to the camera.
+std::vector<cl_float4> light_data(const Scene& scene);
+
+/// Enqueues kernel (its argument 0 is params) once per chunk of rows, and calls done(first_row,
+/// rows, event) after each dispatch was enqueued. Polls cancellation between chunks.
+void for_each_chunk(cl::CommandQueue& queue, cl::Kernel& kernel, MarchParams params, const Dispatch& dispatch, int height,
+                    const std::function<void(int first_row, int rows, const cl::Event& event)>& done);
+
+}  // namespace clmarch
