@@ -82,6 +82,18 @@ SDF_INLINE void store_tile(vfloat v, int at, int width, int columns, int rows, _
   }
 }
 
+/* Where the march records its points (RECORD_SAMPLES; kernels/replay.cl): per-pixel first indices
+ * and the x, y, z planes of samples. An empty record otherwise. */
+typedef struct {
+#if defined(RECORD_SAMPLES)
+  __global const int* sample_base;
+  __global float* samples;
+  int sample_stride;
+#else
+  int unused;
+#endif
+} MarchRecord;
+
 #if defined(RECORD_SAMPLES)
 /* The first sample index of each lane's ray (sample_base: one int per image pixel, row-major;
  * columns x rows of the tile at pixel `at` are inside the image, the others get -1). */
@@ -99,67 +111,78 @@ SDF_INLINE vint tile_sample_base(__global const int* sample_base, int at, int wi
 }
 #endif
 
-__kernel void march(const MarchParams params, __global float* out, __constant float4* lights
-#if defined(RECORD_SAMPLES)
-                    , __global const int* sample_base, __global float* samples, const int sample_stride
-#endif
-) {
-  const int tiles_per_row = (params.width + PACKET_WIDTH - 1) / PACKET_WIDTH;
-  const int item = (int)get_global_id(0);
-  const int tile_row = item / tiles_per_row;
-  const int x0 = (item - tile_row * tiles_per_row) * PACKET_WIDTH;
-  const int row0 = tile_row * PACKET_HEIGHT; /* within the chunk */
-  const int y0 = params.first_row + row0;
-  const int rows = min(min(PACKET_HEIGHT, params.chunk_rows - row0), params.height - y0);
-  if (rows <= 0) return; /* padding of the dispatch to whole work-groups */
-  const int columns = min(PACKET_WIDTH, params.width - x0);
-  const vint live = MASK(LANE_X < columns) & MASK(LANE_Y < rows);
-  const vec3v dir = camera_ray(&params, x0 + LANE_X, y0 + LANE_Y);
-#if defined(TILING_CELLS)
-  const vec3v origin = v3_from(params.origin_in_cell);
-#else
-  const vec3v origin = v3_from(params.origin);
-#endif
-  MarchLimits limits = {params.max_steps, params.epsilon, 0, 0.0f, params.over_relaxation, params.hit_cone_slope};
-#if defined(RECORD_SAMPLES)
-  limits.samples = samples;
-  limits.sample_stride = sample_stride;
-  limits.sample_base = tile_sample_base(sample_base, y0 * params.width + x0, params.width, columns, rows);
-#endif
-  vint marching = live;
-  vfloat t_start = (vfloat)(0.0f);
-  vfloat t_end = (vfloat)(params.max_distance);
-  if (params.bounds.w > 0.0f) {
-    clip_to_bounds(params.bounds, dir, &marching, &t_start, &t_end);
-  }
-  const MarchResult m = MARCH(origin, dir, marching, t_start, t_end, limits);
+/* A packet's tile and camera rays. */
+typedef struct {
+  int x0, row0;      /* its first pixel: column, and row within the dispatch's chunk */
+  int columns, rows; /* of its PACKET_WIDTH x PACKET_HEIGHT pixels, those inside the image */
+  vec3v dir;
+  vint marching;     /* lanes whose ray marches: inside the image and meeting the bounds */
+  vfloat t_start, t_end;
+} Packet;
 
-  const int stride = params.plane_stride;
-  const int at = row0 * params.width + x0;
-#define STORE_PLANE(channel, v) store_tile((v), at, params.width, columns, rows, out + (channel) * stride)
-  STORE_PLANE(CLMARCH_CHANNEL_DEPTH, select((vfloat)(INFINITY), m.t, m.hit));
-  STORE_PLANE(CLMARCH_CHANNEL_STEPS, m.steps);
+/* Packet number `index` of the chunk, tiles in row-major order; rows <= 0 past the chunk. */
+SDF_INLINE Packet packet_at(const MarchParams* params, int index) {
+  const int tiles_per_row = (params->width + PACKET_WIDTH - 1) / PACKET_WIDTH;
+  const int tile_row = index / tiles_per_row;
+  Packet k;
+  k.x0 = (index - tile_row * tiles_per_row) * PACKET_WIDTH;
+  k.row0 = tile_row * PACKET_HEIGHT;
+  const int y0 = params->first_row + k.row0;
+  k.rows = min(min(PACKET_HEIGHT, params->chunk_rows - k.row0), params->height - y0);
+  k.columns = min(PACKET_WIDTH, params->width - k.x0);
+  k.dir = camera_ray(params, k.x0 + LANE_X, y0 + LANE_Y);
+  k.marching = MASK(LANE_X < k.columns) & MASK(LANE_Y < k.rows);
+  k.t_start = (vfloat)(0.0f);
+  k.t_end = (vfloat)(params->max_distance);
+  if (params->bounds.w > 0.0f) clip_to_bounds(params->bounds, k.dir, &k.marching, &k.t_start, &k.t_end);
+  return k;
+}
+
+/* The march limits of camera rays; with RECORD_SAMPLES, where the packet's points go. */
+SDF_INLINE MarchLimits camera_limits(const MarchParams* params, const Packet* k, const MarchRecord* record) {
+  MarchLimits limits = {params->max_steps, params->epsilon, 0, 0.0f, params->over_relaxation, params->hit_cone_slope};
+#if defined(RECORD_SAMPLES)
+  limits.samples = record->samples;
+  limits.sample_stride = record->sample_stride;
+  limits.sample_base = tile_sample_base(record->sample_base, (params->first_row + k->row0) * params->width + k->x0,
+                                        params->width, k->columns, k->rows);
+#else
+  (void)k;
+  (void)record;
+#endif
+  return limits;
+}
+
+/* Writes what the march of packet k found: depth, steps (and wall steps), and as the program
+ * needs them the normal and the shaded color. */
+SDF_INLINE void finish_packet(const Packet* k, const MarchResult* m, const MarchParams* params, __global float* out,
+                              __constant float4* lights) {
+  const int stride = params->plane_stride;
+  const int at = k->row0 * params->width + k->x0;
+#define STORE_PLANE(channel, v) store_tile((v), at, params->width, k->columns, k->rows, out + (channel) * stride)
+  STORE_PLANE(CLMARCH_CHANNEL_DEPTH, select((vfloat)(INFINITY), m->t, m->hit));
+  STORE_PLANE(CLMARCH_CHANNEL_STEPS, m->steps);
 #if defined(TILING_CELLS)
-  STORE_PLANE(CLMARCH_CHANNEL_WALL_STEPS, m.wall_steps);
+  STORE_PLANE(CLMARCH_CHANNEL_WALL_STEPS, m->wall_steps);
 #endif
 
 #ifdef NEED_NORMALS
   vec3v normal = v3_splat(0.0f);
 #ifdef NEED_SHADING
-  vec3v color = miss_color(dir, m.closest);
+  vec3v color = miss_color(k->dir, m->closest);
 #endif
-  if (LANE_ANY(m.hit)) {
+  if (LANE_ANY(m->hit)) {
 #ifdef NEED_SHADING
-    const Hit hit = surface_at(&m, v3_splat(0.0f), dir, params.normal_epsilon);
-    normal = v3_select(normal, hit.normal, m.hit);
-    vec3v lit = shade(&hit, v3_scale(dir, -1.0f), m.hit, lights);
+    const Hit hit = surface_at(m, v3_splat(0.0f), k->dir, params->normal_epsilon);
+    normal = v3_select(normal, hit.normal, m->hit);
+    vec3v lit = shade(&hit, v3_scale(k->dir, -1.0f), m->hit, lights);
 #if defined(REFLECTION_BOUNCES)
-    lit = add_reflections(lit, hit, dir, m.hit, &params, lights);
+    lit = add_reflections(lit, hit, k->dir, m->hit, params, lights);
 #endif
-    lit = apply_fog(lit, dir, m.t, params.camera_height);
-    color = v3_select(color, lit, m.hit);
+    lit = apply_fog(lit, k->dir, m->t, params->camera_height);
+    color = v3_select(color, lit, m->hit);
 #else
-    normal = v3_select(normal, estimate_normal(m.local_point, params.normal_epsilon), m.hit);
+    normal = v3_select(normal, estimate_normal(m->local_point, params->normal_epsilon), m->hit);
 #endif
   }
   STORE_PLANE(CLMARCH_CHANNEL_NX, normal.x);
@@ -174,4 +197,42 @@ __kernel void march(const MarchParams params, __global float* out, __constant fl
 #endif
 #undef STORE_PLANE
   (void)lights;
+}
+
+/* Each work-item marches PACKETS_PER_ITEM consecutive packets of the chunk: two on CPUs, whose
+ * steps interleave (march_plain_pair), one on GPUs and under the cells tiling. */
+__kernel void march(const MarchParams params, __global float* out, __constant float4* lights
+#if defined(RECORD_SAMPLES)
+                    , __global const int* sample_base, __global float* samples, const int sample_stride
+#endif
+) {
+#if defined(RECORD_SAMPLES)
+  const MarchRecord record = {sample_base, samples, sample_stride};
+#else
+  const MarchRecord record = {0};
+#endif
+#if defined(TILING_CELLS)
+  const vec3v origin = v3_from(params.origin_in_cell);
+#else
+  const vec3v origin = v3_from(params.origin);
+#endif
+  const int first = (int)get_global_id(0) * PACKETS_PER_ITEM;
+  const Packet a = packet_at(&params, first);
+  if (a.rows <= 0) return; /* padding of the dispatch to whole work-groups */
+#if PACKETS_PER_ITEM == 2
+  const Packet b = packet_at(&params, first + 1);
+  PlainMarch march_a = plain_march_begin(origin, a.dir, a.marching, a.t_start, a.t_end, camera_limits(&params, &a, &record));
+  /* Past the chunk b has no lane marching, and its loop never runs. */
+  PlainMarch march_b = plain_march_begin(origin, b.dir, b.marching, b.t_start, b.t_end, camera_limits(&params, &b, &record));
+  march_plain_pair(&march_a, &march_b);
+  const MarchResult ma = plain_march_end(&march_a);
+  finish_packet(&a, &ma, &params, out, lights);
+  if (b.rows > 0) {
+    const MarchResult mb = plain_march_end(&march_b);
+    finish_packet(&b, &mb, &params, out, lights);
+  }
+#else
+  const MarchResult m = MARCH(origin, a.dir, a.marching, a.t_start, a.t_end, camera_limits(&params, &a, &record));
+  finish_packet(&a, &m, &params, out, lights);
+#endif
 }

@@ -94,51 +94,96 @@ SDF_INLINE void track_approach(MarchResult* m, vfloat h, vfloat previous, vint a
   }
 }
 
-/* Marches origin + t * dir for t from t_start; lanes stop at t_end (a miss).
+/* A plain march in progress: the result so far and what the next step needs. */
+typedef struct {
+  MarchResult m;
+  vec3v origin, dir;
+  vfloat t_end;
+  vint active;    /* lanes still marching */
+  vint relaxing;  /* lanes still stepping over-relaxed */
+  vfloat safe;    /* where plain sphere tracing would be: the fall-back of a relaxed step */
+  vfloat previous; /* the last sample's distance */
+  MarchLimits limits;
+} PlainMarch;
+
+SDF_INLINE PlainMarch plain_march_begin(vec3v origin, vec3v dir, vint live, vfloat t_start, vfloat t_end, MarchLimits limits) {
+  PlainMarch s;
+  s.m = march_result_init(t_start);
+  s.origin = origin;
+  s.dir = dir;
+  s.t_end = t_end;
+  s.active = live;
+  s.relaxing = relaxation_mask(&limits);
+  s.safe = (vfloat)(INFINITY); /* nothing to undo before the first step */
+  s.previous = (vfloat)(1e20f);
+  s.limits = limits;
+  return s;
+}
+
+/* One step of origin + t * dir for t from t_start; lanes stop at t_end (a miss).
  * Over-relaxation (Keinert et al. 2014, with the safe fall-back): a relaxing lane steps omega * d.
  * The unbounding spheres at the previous sample (radius d_prev) and at this one (radius d) cover
  * the segment between them unless t - d > t_prev + d_prev = safe, the point plain sphere tracing
  * would have reached; then the surface may have been crossed, so the sample is discarded (no hit
  * test: d may be negative inside the solid), the lane goes back to safe and marches plainly from
  * there. The test uses the signed d, so a step into the solid always falls back. */
-SDF_INLINE MarchResult march_plain(vec3v origin, vec3v dir, vint live, vfloat t_start, vfloat t_end, MarchLimits limits) {
-  MarchResult m = march_result_init(t_start);
-  vint active = live;
-  vint relaxing = relaxation_mask(&limits);
-  vfloat safe = (vfloat)(INFINITY); /* nothing to undo before the first step */
-  vfloat previous = (vfloat)(1e20f);
-  for (int step = 0; step < limits.max_steps && LANE_ANY(active); ++step) {
-    const vec3v p = v3_add(origin, v3_scale(dir, m.t));
-    const vfloat d = field(p);
+SDF_INLINE void plain_march_step(PlainMarch* s) {
+  MarchResult* m = &s->m;
+  const vec3v p = v3_add(s->origin, v3_scale(s->dir, m->t));
+  const vfloat d = field(p);
 #if defined(RECORD_SAMPLES)
-    record_samples(&limits, p, active, m.steps);
+  record_samples(&s->limits, p, s->active, m->steps);
 #endif
-    m.steps += select((vfloat)(0.0f), (vfloat)(1.0f), active);
-    track_approach(&m, d, previous, active, &limits);
-    previous = d;
-    /* Branches on whole packets keep plain sphere tracing (the default) as cheap as before. */
-    vint undo = (vint)(0);
-    if (LANE_ANY(relaxing)) {
-      undo = relaxing & MASK(d < m.t - safe);
-      relaxing &= ~undo;
-    }
-    const vint arrived = active & ~undo & MASK(d < hit_threshold(&limits, m.t));
-    m.hit |= arrived;
-    active &= ~arrived;
-    vfloat next = m.t + d;
-    if (LANE_ANY(relaxing | undo)) {
-      next = select(select(next, m.t + d * limits.over_relaxation, relaxing), safe, undo);
-      safe = m.t + d;
-    }
-    m.t = select(m.t, next, active);
-    active &= MASK(m.t < t_end);
-    relaxing &= active;
+  m->steps += select((vfloat)(0.0f), (vfloat)(1.0f), s->active);
+  track_approach(m, d, s->previous, s->active, &s->limits);
+  s->previous = d;
+  /* Branches on whole packets keep plain sphere tracing (the default) as cheap as before. */
+  vint undo = (vint)(0);
+  if (LANE_ANY(s->relaxing)) {
+    undo = s->relaxing & MASK(d < m->t - s->safe);
+    s->relaxing &= ~undo;
   }
-  m.local_point = v3_add(origin, v3_scale(dir, m.t));
+  const vint arrived = s->active & ~undo & MASK(d < hit_threshold(&s->limits, m->t));
+  m->hit |= arrived;
+  s->active &= ~arrived;
+  vfloat next = m->t + d;
+  if (LANE_ANY(s->relaxing | undo)) {
+    next = select(select(next, m->t + d * s->limits.over_relaxation, s->relaxing), s->safe, undo);
+    s->safe = m->t + d;
+  }
+  m->t = select(m->t, next, s->active);
+  s->active &= MASK(m->t < s->t_end);
+  s->relaxing &= s->active;
+}
+
+SDF_INLINE MarchResult plain_march_end(PlainMarch* s) {
+  MarchResult m = s->m;
+  m.local_point = v3_add(s->origin, v3_scale(s->dir, m.t));
 #if defined(TILING_MOD)
   m.local_point = wrap_to_cell(m.local_point);
 #endif
   return m;
+}
+
+/* Marches one packet: origin + t * dir for t from t_start until every lane hit, passed t_end or
+ * used max_steps. */
+SDF_INLINE MarchResult march_plain(vec3v origin, vec3v dir, vint live, vfloat t_start, vfloat t_end, MarchLimits limits) {
+  PlainMarch s = plain_march_begin(origin, dir, live, t_start, t_end, limits);
+  for (int step = 0; step < limits.max_steps && LANE_ANY(s.active); ++step) plain_march_step(&s);
+  return plain_march_end(&s);
+}
+
+/* Marches two independent packets in one loop, a step of each per iteration: a march is a chain
+ * of dependent steps, so the second packet's step runs while the first one's waits on its
+ * latencies (square roots, the loop's branch). Each packet takes exactly the steps it would take
+ * alone. */
+SDF_INLINE void march_plain_pair(PlainMarch* a, PlainMarch* b) {
+  for (int step = 0; step < a->limits.max_steps; ++step) {
+    const int a_marching = LANE_ANY(a->active), b_marching = LANE_ANY(b->active);
+    if (!(a_marching | b_marching)) break;
+    if (a_marching) plain_march_step(a);
+    if (b_marching) plain_march_step(b);
+  }
 }
 
 #if !defined(TILING_CELLS)

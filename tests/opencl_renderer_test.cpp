@@ -1,8 +1,12 @@
 // The OpenCL renderer's dispatch: images split into chunks give the same buffers as one dispatch.
 #include "render/opencl_renderer.hpp"
+
+#include "codegen/kernel_source.hpp"
 #include "support/test_support.hpp"
 
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 namespace clmarch {
 namespace {
@@ -21,6 +25,40 @@ TEST(OpenClRenderer, ChunkedDispatchEqualsOneDispatch) {
       EXPECT_EQ(a.buffers.planes[c], b.buffers.planes[c]) << kChannelNames[c] << " lanes " << lanes;
     }
   }
+}
+
+TEST(OpenClRenderer, CpuWorkItemsMarchPairsOfPacketsExceptUnderTheCellsTiling) {
+  const Scene plain = testing::scene_from_yaml("sdf: {torus: {}}\n");
+  const Scene cells = testing::scene_from_yaml("tiling: {cell: [1, 1, 1], method: cells}\nsdf: {sphere: {radius: 0.3}}\n");
+  EXPECT_EQ(packets_per_item(plain, 16), 2);
+  EXPECT_EQ(packets_per_item(plain, 4), 2);
+  EXPECT_EQ(packets_per_item(plain, 1), 1);
+  EXPECT_EQ(packets_per_item(cells, 16), 1);
+  EXPECT_NE(generate_kernel_source(plain, {KernelPurpose::Shaded, 16}).find("#define PACKETS_PER_ITEM 2\n"), std::string::npos);
+  EXPECT_NE(generate_kernel_source(cells, {KernelPurpose::Shaded, 16}).find("#define PACKETS_PER_ITEM 1\n"), std::string::npos);
+}
+
+TEST(OpenClRenderer, AnOddPacketAtTheEndOfARowOfWorkItemsIsMarchedAlone) {
+  // 20 x 7 pixels in 4 x 4 tiles: 5 tiles a row, two rows of tiles (the second cut by the image),
+  // so the pairs straddle rows and the last work-item holds one packet. Every pixel must match
+  // one pixel per work-item (lanes 1), which marches the same rays alone.
+  const Scene scene = testing::scene_from_yaml(
+      "camera: {position: [0, 2, 2.5], look_at: [0, 0, 0]}\nsdf: {torus: {minor_radius: 0.5}}\nrender: {width: 20, height: 7}\n");
+  OpenClOptions single, packets;
+  single.lanes = 1;
+  packets.lanes = 16;
+  const RenderResult a = render_opencl(scene, single);
+  const RenderResult b = render_opencl(scene, packets);
+  EXPECT_EQ(a.buffers.plane(Channel::Steps), b.buffers.plane(Channel::Steps));
+  int hits = 0;
+  for (std::size_t i = 0; i < a.buffers.plane(Channel::Depth).size(); ++i) {
+    const float da = a.buffers.plane(Channel::Depth)[i], db = b.buffers.plane(Channel::Depth)[i];
+    ASSERT_EQ(std::isinf(da), std::isinf(db)) << "pixel " << i;
+    if (std::isinf(da)) continue;
+    ++hits;
+    EXPECT_NEAR(da, db, 1e-5) << "pixel " << i;  // float rounding of the same steps
+  }
+  EXPECT_GT(hits, 20);
 }
 
 }  // namespace

@@ -13,10 +13,11 @@ namespace {
 /// Marches the scene's camera rays with the Ceiling program: each pixel's k-th evaluated point is
 /// stored at sample_base[pixel] + k of the x, y, z planes of samples (stride floats apart), and
 /// nothing for a base of -1. Returns the steps of every pixel.
-std::vector<int> record_march(const Scene& scene, DeviceProgram& dp, int lanes, const std::vector<cl_int>& sample_base,
+std::vector<int> record_march(const Scene& scene, PreparedProgram& prepared, const std::vector<cl_int>& sample_base,
                               cl::Buffer* samples, std::size_t stride) {
+  DeviceProgram& dp = prepared.program;
   const int width = scene.render.width, height = scene.render.height;
-  const Dispatch dispatch = plan_tile_dispatch(dp.device, width, height, chunk_pixels_for(dp.device), lanes);
+  const Dispatch dispatch = plan_tile_dispatch(prepared, width, height, chunk_pixels_for(dp.device));
   const std::vector<cl_float4> lights = light_data(scene);
   std::vector<float> steps(static_cast<std::size_t>(width) * height);
   const std::size_t bytes = dispatch.plane_stride * CLMARCH_CHANNEL_COUNT * sizeof(float);
@@ -71,47 +72,35 @@ double lane_use(const std::vector<float>& steps, int width, int height, int lane
   return executed > 0.0 ? used / executed : 1.0;
 }
 
-std::vector<double> time_renders(const Scene& scene, const OpenClOptions& options, int repeat, RenderResult* last) {
-  RenderResult result = render_opencl(scene, options);
-  std::vector<double> ms;
-  for (int i = 0; i < repeat; ++i) {
-    result = render_opencl(scene, options);
-    ms.push_back(result.stats.kernel_ms);
-  }
-  if (last) *last = std::move(result);
-  return ms;
-}
-
 CeilingKernel::CeilingKernel(const Scene& scene, const OpenClOptions& options, int repeats, std::uint64_t max_samples)
     : repeats_(repeats) {
-  PreparedProgram prepared = prepare_program(scene, options, KernelPurpose::Ceiling);
-  program_ = std::move(prepared.program);
-  lanes_ = prepared.lanes;
-  with_device_errors(program_.device, [&] {
+  prepared_ = prepare_program(scene, options, KernelPurpose::Ceiling);
+  DeviceProgram& program = prepared_.program;
+  with_device_errors(program.device, [&] {
     // First the steps of every pixel (recording nothing), then each kept pixel's points at offsets
     // from the running sum of its steps. Both marches run the same program, so they take the same steps.
     const std::size_t pixels = static_cast<std::size_t>(scene.render.width) * scene.render.height;
     std::vector<cl_int> sample_base(pixels, -1);
-    const std::vector<int> steps = record_march(scene, program_, lanes_, sample_base, nullptr, 0);
+    const std::vector<int> steps = record_march(scene, prepared_, sample_base, nullptr, 0);
     marched_steps_ = std::accumulate(steps.begin(), steps.end(), std::uint64_t{0});
     pixel_stride_ = std::max<std::uint64_t>(1, (marched_steps_ + max_samples - 1) / max_samples);
     for (std::size_t pixel = 0; pixel < pixels; pixel += pixel_stride_) {
       sample_base[pixel] = static_cast<cl_int>(samples_);
       samples_ += static_cast<std::uint64_t>(steps[pixel]);
     }
-    const Dispatch replay = plan_point_dispatch(program_.device, std::max<std::uint64_t>(samples_, 1), lanes_);
+    const Dispatch replay = plan_point_dispatch(program.device, std::max<std::uint64_t>(samples_, 1), prepared_.lanes);
     global_items_ = replay.global_items;
     local_items_ = replay.local_items;
     plane_ = replay.plane_stride;
     // Padding points past samples_ stay 0: the replay evaluates them in lanes it does not count.
     const std::size_t bytes = 3 * plane_ * sizeof(float);
-    samples_buffer_ = cl::Buffer(program_.context, CL_MEM_READ_WRITE, bytes);
-    program_.queue.enqueueFillBuffer(samples_buffer_, 0.0f, 0, bytes);
-    record_march(scene, program_, lanes_, sample_base, &samples_buffer_, plane_);
+    samples_buffer_ = cl::Buffer(program.context, CL_MEM_READ_WRITE, bytes);
+    program.queue.enqueueFillBuffer(samples_buffer_, 0.0f, 0, bytes);
+    record_march(scene, prepared_, sample_base, &samples_buffer_, plane_);
 
-    kernel_ = cl::Kernel(program_.program, "replay_samples");
-    sums_ = cl::Buffer(program_.context, CL_MEM_WRITE_ONLY, plane_ * sizeof(float));
-    evaluations_ = cl::Buffer(program_.context, CL_MEM_WRITE_ONLY, plane_ * sizeof(cl_int));
+    kernel_ = cl::Kernel(program.program, "replay_samples");
+    sums_ = cl::Buffer(program.context, CL_MEM_WRITE_ONLY, plane_ * sizeof(float));
+    evaluations_ = cl::Buffer(program.context, CL_MEM_WRITE_ONLY, plane_ * sizeof(cl_int));
     kernel_.setArg(0, samples_buffer_);
     kernel_.setArg(1, static_cast<cl_int>(samples_));
     kernel_.setArg(2, static_cast<cl_int>(plane_));
@@ -123,8 +112,8 @@ CeilingKernel::CeilingKernel(const Scene& scene, const OpenClOptions& options, i
 
 std::vector<glm::vec3> CeilingKernel::read_samples() {
   std::vector<float> planes(3 * plane_);
-  with_device_errors(program_.device, [&] {
-    program_.queue.enqueueReadBuffer(samples_buffer_, CL_TRUE, 0, planes.size() * sizeof(float), planes.data());
+  with_device_errors(prepared_.program.device, [&] {
+    prepared_.program.queue.enqueueReadBuffer(samples_buffer_, CL_TRUE, 0, planes.size() * sizeof(float), planes.data());
   });
   std::vector<glm::vec3> points(samples_);
   for (std::size_t i = 0; i < points.size(); ++i) points[i] = {planes[i], planes[plane_ + i], planes[2 * plane_ + i]};
@@ -132,12 +121,12 @@ std::vector<glm::vec3> CeilingKernel::read_samples() {
 }
 
 double CeilingKernel::run_ms() {
-  return with_device_errors(program_.device, [&] {
+  return with_device_errors(prepared_.program.device, [&] {
     cl::Event done;
-    program_.queue.enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(global_items_), cl::NDRange(local_items_),
+    prepared_.program.queue.enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(global_items_), cl::NDRange(local_items_),
                                         nullptr, &done);
     std::vector<cl_int> counts(plane_);
-    program_.queue.enqueueReadBuffer(evaluations_, CL_TRUE, 0, plane_ * sizeof(cl_int), counts.data());
+    prepared_.program.queue.enqueueReadBuffer(evaluations_, CL_TRUE, 0, plane_ * sizeof(cl_int), counts.data());
     counted_ = std::accumulate(counts.begin(), counts.end(), std::uint64_t{0},
                                [](std::uint64_t sum, cl_int c) { return sum + static_cast<std::uint64_t>(c); });
     return event_milliseconds(done);

@@ -1,8 +1,9 @@
-// Measuring blocks of the benchmarks: kernel times of repeated OpenCL renders, and the throughput
-// ceiling of a scene's distance function (the replay_samples kernel of kernels/replay.cl).
+// Measuring blocks of the benchmarks: medians, lane use, and the throughput ceiling of a scene's
+// distance function (the replay_samples kernel of kernels/replay.cl).
 #pragma once
 
 #include "cl/device_program.hpp"
+#include "render/march_dispatch.hpp"
 #include "render/opencl_renderer.hpp"
 #include "scene/scene.hpp"
 
@@ -15,11 +16,6 @@ namespace clmarch {
 
 /// The median of values (the mean of the middle two for an even count); 0 for none.
 double median(std::vector<double> values);
-
-/// Kernel milliseconds (from profiling events) of repeat renders of scene with options, after one
-/// render that is not counted (it pays the program build and PoCL's work-group compile). The
-/// last render's result is kept in last when given.
-std::vector<double> time_renders(const Scene& scene, const OpenClOptions& options, int repeat, RenderResult* last = nullptr);
 
 /// Lane-steps that evaluated a marching ray over lane-steps executed, from a render's steps plane
 /// (width x height, row-major): a packet of `lanes` pixels (a tile, kernels/lanes.cl) runs as many
@@ -56,12 +52,11 @@ class CeilingKernel {
   std::vector<glm::vec3> read_samples();
   /// Evaluations the kernel counted in the last run (equal to points()).
   std::uint64_t counted_evaluations() const { return counted_; }
-  int lanes() const { return lanes_; }
-  const DeviceProgram& program() const { return program_; }
+  int lanes() const { return prepared_.lanes; }
+  const DeviceProgram& program() const { return prepared_.program; }
 
  private:
-  DeviceProgram program_;
-  int lanes_ = 1;
+  PreparedProgram prepared_;
   int repeats_ = 1;
   std::uint64_t samples_ = 0;
   std::uint64_t marched_steps_ = 0;

@@ -80,6 +80,9 @@ std::string atmosphere_defines(const Shading& s) {
 std::string feature_defines(const Scene& scene, const KernelOptions& options) {
   std::string out = fmt::format("#define LANES {}\n", options.lanes);
   if (options.purpose == KernelPurpose::Ceiling) out += "#define RECORD_SAMPLES\n";
+  if (options.purpose != KernelPurpose::EvalPoints) {
+    out += fmt::format("#define PACKETS_PER_ITEM {}\n", packets_per_item(scene, options.lanes));
+  }
   if (options.variant.precision == Precision::Double) out += "#define DOUBLE_PRECISION\n";
   if (options.variant.native_math) out += "#define NATIVE_MATH\n";
   const bool normals = options.purpose == KernelPurpose::Normals || options.purpose == KernelPurpose::Shaded;
@@ -124,6 +127,11 @@ bool uses_kind(const Node& node, std::initializer_list<NodeKind> kinds) {
 }
 
 }  // namespace
+
+int packets_per_item(const Scene& scene, int lanes) {
+  const bool cells = scene.tiling && scene.tiling->method == TilingMethod::Cells;
+  return lanes > 1 && !cells ? 2 : 1;
+}
 
 std::string generate_kernel_source(const Scene& scene, const KernelOptions& options) {
   if (options.variant.native_math && options.variant.precision == Precision::Double) {

@@ -50,6 +50,11 @@ struct KernelOptions {
   KernelVariant variant;
 };
 
+/// Packets each work-item of the march kernel marches (PACKETS_PER_ITEM): two, interleaved, with
+/// vector lanes (CPUs), except under the cells tiling, whose traversal marches one; one with a
+/// single lane (GPUs, where work-items already run in lock-step and registers are scarce).
+int packets_per_item(const Scene& scene, int lanes);
+
 /// Why double precision needs LANES 4, 8 or 16: the kernels pass float literals to builtins
 /// (fmax(x, 0.0f)), which for a scalar double x matches fmax(double, double) and fmax(float, float)
 /// equally well; for vectors only the double overload is viable.

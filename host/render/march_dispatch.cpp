@@ -38,21 +38,24 @@ PreparedProgram prepare_program(const Scene& scene, const OpenClOptions& options
   kernel_options.variant = options.variant;
   const std::string source = generate_kernel_source(scene, kernel_options);
   if (!options.dump_kernel_path.empty()) write_file_atomically(options.dump_kernel_path, source);
-  return {build_device_program(device, source, kernel_build_options(options.variant)), kernel_options.lanes};
+  return {build_device_program(device, source, kernel_build_options(options.variant)), kernel_options.lanes,
+          purpose == KernelPurpose::EvalPoints ? 1 : packets_per_item(scene, kernel_options.lanes)};
 }
 
 int packet_width(int lanes) { return lanes == 1 ? 1 : lanes == 4 ? 2 : 4; }
 
-Dispatch plan_tile_dispatch(const DeviceEntry& device, int width, int height, std::size_t max_pixels, int lanes) {
-  const std::size_t tile_width = packet_width(lanes);
-  const std::size_t tile_height = packet_height(lanes);
+Dispatch plan_tile_dispatch(const PreparedProgram& program, int width, int height, std::size_t max_pixels) {
+  const std::size_t tile_width = packet_width(program.lanes);
+  const std::size_t tile_height = packet_height(program.lanes);
   const std::size_t row_pixels = static_cast<std::size_t>(width);
   const std::size_t rows_allowed = std::max<std::size_t>(tile_height, max_pixels / row_pixels / tile_height * tile_height);
   const std::size_t rows = std::min(round_up(static_cast<std::size_t>(height), tile_height), rows_allowed);
   Dispatch d;
-  d.local_items = local_size(device);
+  d.local_items = local_size(program.program.device);
   d.chunk_rows = static_cast<int>(rows);
-  d.global_items = round_up(round_up(row_pixels, tile_width) / tile_width * (rows / tile_height), d.local_items);
+  const std::size_t packets = round_up(row_pixels, tile_width) / tile_width * (rows / tile_height);
+  const std::size_t per_item = static_cast<std::size_t>(program.packets_per_item);
+  d.global_items = round_up((packets + per_item - 1) / per_item, d.local_items);
   d.plane_stride = rows * row_pixels;
   return d;
 }

@@ -13,10 +13,11 @@
 
 namespace clmarch {
 
-/// A program built for one purpose, with its packet width.
+/// A program built for one purpose, with its packet width and packets per work-item.
 struct PreparedProgram {
   DeviceProgram program;
   int lanes = 1;
+  int packets_per_item = 1;
 };
 
 /// Generates and builds the scene's program for purpose (writing it to options.dump_kernel_path
@@ -28,9 +29,9 @@ int packet_width(int lanes);
 /// Rows of that tile (PACKET_HEIGHT).
 inline int packet_height(int lanes) { return lanes / packet_width(lanes); }
 
-/// One packet per work-item. For the march kernel a dispatch covers chunk_rows image rows and
-/// its output planes hold those rows, width floats each; for point kernels, LANES consecutive
-/// points per work-item.
+/// For the march kernel a dispatch covers chunk_rows image rows, packets_per_item packets per
+/// work-item, and its output planes hold those rows, width floats each; for point kernels, LANES
+/// consecutive points per work-item.
 struct Dispatch {
   std::size_t global_items = 0;
   std::size_t local_items = 0;
@@ -40,8 +41,8 @@ struct Dispatch {
 };
 
 /// The march kernel's dispatch of a width x height image in chunks of at most max_pixels (rounded
-/// to whole rows of tiles, at least one).
-Dispatch plan_tile_dispatch(const DeviceEntry& device, int width, int height, std::size_t max_pixels, int lanes);
+/// to whole rows of tiles, at least one) for program.
+Dispatch plan_tile_dispatch(const PreparedProgram& program, int width, int height, std::size_t max_pixels);
 /// A point kernel's dispatch of count points.
 Dispatch plan_point_dispatch(const DeviceEntry& device, std::size_t count, int lanes);
 /// Pixels per dispatch that the device's allocation limits allow (capped so that progress and

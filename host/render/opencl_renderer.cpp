@@ -26,7 +26,7 @@ RenderResult render_opencl(const Scene& scene, const OpenClOptions& options) {
   const int height = scene.render.height;
   const std::size_t pixels = static_cast<std::size_t>(width) * height;
   const std::size_t chunk_limit = options.max_chunk_pixels ? options.max_chunk_pixels : chunk_pixels_for(dp.device);
-  const Dispatch dispatch = plan_tile_dispatch(dp.device, width, height, chunk_limit, prepared.lanes);
+  const Dispatch dispatch = plan_tile_dispatch(prepared, width, height, chunk_limit);
   const std::vector<cl_float4> lights = light_data(scene);
 
   RenderResult result;
