@@ -1,8 +1,9 @@
-/* The sphere-tracing kernel: each work-item marches one packet, a tile of PACKET_WIDTH x
- * PACKET_HEIGHT pixels, in lock-step (the loops: march_loop.cl, tiling.cl), then writes depth (+inf
- * on a miss), steps and wall steps, and with NEED_NORMALS / NEED_SHADING the normal and the final
- * color, into planes of out (CLMARCH_CHANNEL_*), plane_stride floats each. A dispatch covers the
- * image rows first_row .. first_row + chunk_rows - 1; a plane holds them row by row. */
+/* The sphere-tracing kernel: each work-item marches PACKETS_PER_ITEM packets, each a tile of
+ * PACKET_WIDTH x PACKET_HEIGHT pixels in lock-step (the loops: march_loop.cl, tiling.cl), then
+ * writes depth (+inf on a miss), steps and wall steps, and with NEED_NORMALS / NEED_SHADING the
+ * normal and the final color, into planes of out (CLMARCH_CHANNEL_*), plane_stride floats each. A
+ * dispatch covers the image rows first_row .. first_row + chunk_rows - 1; a plane holds them row
+ * by row. */
 
 #if defined(NEED_SHADING)
 /* The surface met by a ray from the camera-relative point relative_origin, marched in map()'s

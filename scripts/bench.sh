@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds the Google Benchmark program (CLMARCH_BENCHMARKS=ON, in build-bench/) and runs it: the
-# 1280x720 torus shaded and depth-only, and its distance function's throughput ceiling. Extra
+# 1280x720 torus and Mandelbulb, shaded and depth-only, and their distance functions' throughput
+# ceilings. Extra
 # arguments go to the program (e.g. --benchmark_repetitions=5 --benchmark_format=json).
 # The figures of docs/performance.md come from `clmarch bench` (run at the end).
 set -euo pipefail
