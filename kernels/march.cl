@@ -116,12 +116,38 @@ SDF_INLINE vint tile_sample_base(__global const int* sample_base, int at, int wi
 typedef struct {
   int x0, row0;      /* its first pixel: column, and row within the dispatch's chunk */
   int columns, rows; /* of its PACKET_WIDTH x PACKET_HEIGHT pixels, those inside the image */
+  int skipped;       /* no ray of the tile meets the bounding sphere and nothing is left to write */
   vec3v dir;
   vint marching;     /* lanes whose ray marches: inside the image and meeting the bounds */
   vfloat t_start, t_end;
 } Packet;
 
-/* Packet number `index` of the chunk, tiles in row-major order; rows <= 0 past the chunk. */
+/* Whether no ray through the tile whose top-left pixel is (x0, y0) can meet the bounding sphere,
+ * by one scalar test for the tile. The rays' directions are the image-plane points
+ * q = f + sx r + sy u normalised; |q| >= 1, where normalising is 1-Lipschitz, so they lie within
+ * spread = |q - q_centre| <= (PACKET_WIDTH / width) |r| + (PACKET_HEIGHT / height) |u| of the
+ * centre ray's. A ray's line passes the sphere's centre c at |c x dir| >= |c x centre| - |c| spread,
+ * so the whole tile misses when that exceeds the radius (with a margin for float rounding). */
+SDF_INLINE int tile_misses_bounds(const MarchParams* params, int x0, int y0) {
+  const float4 c = params->bounds; /* xyz = camera - centre; |c x dir| is the same for -c */
+  const float sx = ((float)x0 + 0.5f * PACKET_WIDTH) * (2.0f / (float)params->width) - 1.0f;
+  const float sy = 1.0f - ((float)y0 + 0.5f * PACKET_HEIGHT) * (2.0f / (float)params->height);
+  const float4 f = params->forward, r = params->right_extent, u = params->up_extent;
+  const float qx = f.x + sx * r.x + sy * u.x, qy = f.y + sx * r.y + sy * u.y, qz = f.z + sx * r.z + sy * u.z;
+  const float inverse_length = rsqrt(qx * qx + qy * qy + qz * qz);
+  const float dx = qx * inverse_length, dy = qy * inverse_length, dz = qz * inverse_length;
+  const float cross_x = c.y * dz - c.z * dy, cross_y = c.z * dx - c.x * dz, cross_z = c.x * dy - c.y * dx;
+  const float distance = sqrt(c.x * c.x + c.y * c.y + c.z * c.z);
+  const float spread = (float)PACKET_WIDTH / (float)params->width * sqrt(r.x * r.x + r.y * r.y + r.z * r.z) +
+                       (float)PACKET_HEIGHT / (float)params->height * sqrt(u.x * u.x + u.y * u.y + u.z * u.z);
+  const float passes_at = sqrt(cross_x * cross_x + cross_y * cross_y + cross_z * cross_z) - distance * spread;
+  return passes_at > c.w + 1e-5f * distance;
+}
+
+/* Packet number `index` of the chunk, tiles in row-major order; rows <= 0 past the chunk. Without
+ * shading, a tile that misses the bounding sphere is skipped whole: its pixels are misses with no
+ * step, which the host wrote into the planes beforehand (clear_march_output); a shaded miss still
+ * needs its ray for the sky. */
 SDF_INLINE Packet packet_at(const MarchParams* params, int index) {
   const int tiles_per_row = (params->width + PACKET_WIDTH - 1) / PACKET_WIDTH;
   const int tile_row = index / tiles_per_row;
@@ -131,10 +157,20 @@ SDF_INLINE Packet packet_at(const MarchParams* params, int index) {
   const int y0 = params->first_row + k.row0;
   k.rows = min(min(PACKET_HEIGHT, params->chunk_rows - k.row0), params->height - y0);
   k.columns = min(PACKET_WIDTH, params->width - k.x0);
-  k.dir = camera_ray(params, k.x0 + LANE_X, y0 + LANE_Y);
-  k.marching = MASK(LANE_X < k.columns) & MASK(LANE_Y < k.rows);
   k.t_start = (vfloat)(0.0f);
   k.t_end = (vfloat)(params->max_distance);
+#if !defined(NEED_SHADING)
+  k.skipped = params->bounds.w > 0.0f && tile_misses_bounds(params, k.x0, y0);
+  if (k.skipped) {
+    k.dir = v3_splat(0.0f);
+    k.marching = (vint)(0);
+    return k;
+  }
+#else
+  k.skipped = 0;
+#endif
+  k.dir = camera_ray(params, k.x0 + LANE_X, y0 + LANE_Y);
+  k.marching = MASK(LANE_X < k.columns) & MASK(LANE_Y < k.rows);
   if (params->bounds.w > 0.0f) clip_to_bounds(params->bounds, k.dir, &k.marching, &k.t_start, &k.t_end);
   return k;
 }
@@ -158,6 +194,7 @@ SDF_INLINE MarchLimits camera_limits(const MarchParams* params, const Packet* k,
  * needs them the normal and the shaded color. */
 SDF_INLINE void finish_packet(const Packet* k, const MarchResult* m, const MarchParams* params, __global float* out,
                               __constant float4* lights) {
+  if (k->skipped) return;
   const int stride = params->plane_stride;
   const int at = k->row0 * params->width + k->x0;
 #define STORE_PLANE(channel, v) store_tile((v), at, params->width, k->columns, k->rows, out + (channel) * stride)

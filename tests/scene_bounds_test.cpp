@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <random>
 
@@ -162,6 +164,32 @@ TEST(CameraRayBounds, OpenClRenderEqualsTheUnclippedOne) {
   const FrameBuffers clipped = render_opencl(scene, options).buffers;
   scene.render.bounds = SceneBounds::None;
   expect_clipping_keeps_the_image(clipped, render_opencl(scene, options).buffers, scene.render.epsilon);
+}
+
+TEST(CameraRayBounds, TilesSkippedWholeByDepthProgramsAreMissesOfTheShadedOnes) {
+  // Programs without shading skip a 4x4 tile when one scalar test shows none of its rays meets the
+  // bounding sphere, leaving its pixels to the cleared planes. The shaded program marches every
+  // tile, so its depth and steps must be the same pixel for pixel: from close (the sphere fills
+  // the view) to far (the sphere covers a few pixels, where a tile's spread matters most), and
+  // with chunks of 8 rows, so that tiles of later chunks cannot keep an earlier chunk's values.
+  const std::vector<std::pair<std::string, std::string>> cameras = {
+      {"[0, 0.5, 2.2]", "50"}, {"[-2, 4, 4]", "50"}, {"[30, 12, -25]", "20"}, {"[150, 40, 90]", "4"}};
+  for (const auto& [position, fov] : cameras) {
+    Scene scene = scene_from_yaml("camera: {position: " + position + ", look_at: [0.3, 0, 0.1], fov: " + fov + "}\n"
+                                  "render: {width: 61, height: 45, max_distance: 1000}\nsdf: {torus: {}}\n");
+    OpenClOptions shaded, depth;
+    shaded.purpose = KernelPurpose::Shaded;
+    depth.purpose = KernelPurpose::DepthSteps;
+    depth.max_chunk_pixels = 61 * 8;
+    const FrameBuffers a = render_opencl(scene, shaded).buffers;
+    const FrameBuffers b = render_opencl(scene, depth).buffers;
+    EXPECT_EQ(a.plane(Channel::Steps), b.plane(Channel::Steps)) << position;
+    EXPECT_EQ(a.plane(Channel::Depth), b.plane(Channel::Depth)) << position;
+    EXPECT_GT(std::count_if(a.plane(Channel::Depth).begin(), a.plane(Channel::Depth).end(),
+                            [](float d) { return std::isfinite(d); }),
+              0)
+        << position;
+  }
 }
 
 }  // namespace

@@ -20,8 +20,7 @@ std::vector<int> record_march(const Scene& scene, PreparedProgram& prepared, con
   const Dispatch dispatch = plan_tile_dispatch(prepared, width, height, chunk_pixels_for(dp.device));
   const std::vector<cl_float4> lights = light_data(scene);
   std::vector<float> steps(static_cast<std::size_t>(width) * height);
-  const std::size_t bytes = dispatch.plane_stride * CLMARCH_CHANNEL_COUNT * sizeof(float);
-  cl::Buffer out(dp.context, CL_MEM_WRITE_ONLY | CL_MEM_HOST_READ_ONLY, bytes);
+  cl::Buffer out(dp.context, CL_MEM_WRITE_ONLY | CL_MEM_HOST_READ_ONLY, march_output_bytes(dispatch));
   cl::Buffer light_buffer(dp.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, lights.size() * sizeof(cl_float4),
                           const_cast<cl_float4*>(lights.data()));
   cl::Buffer bases(dp.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sample_base.size() * sizeof(cl_int),
@@ -36,7 +35,7 @@ std::vector<int> record_march(const Scene& scene, PreparedProgram& prepared, con
     kernel.setArg(4, sizeof(cl_mem), nullptr);  // a NULL pointer: the march records nothing
   }
   kernel.setArg(5, static_cast<cl_int>(stride));
-  for_each_chunk(dp.queue, kernel, march_params(scene, dispatch), dispatch, height, [&](int first_row, int rows, const cl::Event&) {
+  for_each_chunk(dp.queue, kernel, out, march_params(scene, dispatch), dispatch, height, [&](int first_row, int rows, const cl::Event&) {
     dp.queue.enqueueReadBuffer(out, CL_TRUE, CLMARCH_CHANNEL_STEPS * dispatch.plane_stride * sizeof(float),
                                static_cast<std::size_t>(rows) * width * sizeof(float),
                                steps.data() + static_cast<std::size_t>(first_row) * width);

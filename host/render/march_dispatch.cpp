@@ -9,6 +9,7 @@
 #include "scene/tiling_model.hpp"
 
 #include <algorithm>
+#include <limits>
 
 namespace clmarch {
 namespace {
@@ -116,10 +117,22 @@ std::vector<cl_float4> light_data(const Scene& scene) {
   return data;
 }
 
-void for_each_chunk(cl::CommandQueue& queue, cl::Kernel& kernel, MarchParams params, const Dispatch& dispatch, int height,
+std::size_t march_output_bytes(const Dispatch& dispatch) {
+  return dispatch.plane_stride * CLMARCH_CHANNEL_COUNT * sizeof(float);
+}
+
+void clear_march_output(cl::CommandQueue& queue, const cl::Buffer& out, const Dispatch& dispatch) {
+  const std::size_t plane_bytes = dispatch.plane_stride * sizeof(float);
+  queue.enqueueFillBuffer(out, 0.0f, 0, march_output_bytes(dispatch));
+  queue.enqueueFillBuffer(out, std::numeric_limits<float>::infinity(), CLMARCH_CHANNEL_DEPTH * plane_bytes, plane_bytes);
+}
+
+void for_each_chunk(cl::CommandQueue& queue, cl::Kernel& kernel, const cl::Buffer& out, MarchParams params,
+                    const Dispatch& dispatch, int height,
                     const std::function<void(int first_row, int rows, const cl::Event& event)>& done) {
   for (int first_row = 0; first_row < height; first_row += dispatch.chunk_rows) {
     throw_if_cancelled();
+    clear_march_output(queue, out, dispatch);
     params.first_row = first_row;
     kernel.setArg(0, sizeof(MarchParams), &params);
     cl::Event event;

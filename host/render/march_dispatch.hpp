@@ -54,9 +54,18 @@ MarchParams march_params(const Scene& scene, const Dispatch& dispatch);
 /// Lights as the kernel reads them (kernels/shading.cl): positions relative to the camera.
 std::vector<cl_float4> light_data(const Scene& scene);
 
-/// Enqueues kernel (its argument 0 is params) once per chunk of rows, and calls done(first_row,
-/// rows, event) after each dispatch was enqueued. Polls cancellation between chunks.
-void for_each_chunk(cl::CommandQueue& queue, cl::Kernel& kernel, MarchParams params, const Dispatch& dispatch, int height,
+/// Bytes of the march kernel's output buffer for dispatch (every plane, kernels/device_types.h).
+std::size_t march_output_bytes(const Dispatch& dispatch);
+/// Enqueues writing a miss into every pixel of the march kernel's output: depth +inf, every other
+/// plane 0. The kernel leaves some planes to this (normals and color when the program has none,
+/// wall steps without the cells tiling), and whole tiles that miss the bounding sphere.
+void clear_march_output(cl::CommandQueue& queue, const cl::Buffer& out, const Dispatch& dispatch);
+
+/// Enqueues kernel (its argument 0 is params, its output buffer out) once per chunk of rows, each
+/// after clearing out, and calls done(first_row, rows, event) after each dispatch was enqueued.
+/// Polls cancellation between chunks.
+void for_each_chunk(cl::CommandQueue& queue, cl::Kernel& kernel, const cl::Buffer& out, MarchParams params,
+                    const Dispatch& dispatch, int height,
                     const std::function<void(int first_row, int rows, const cl::Event& event)>& done);
 
 }  // namespace clmarch

@@ -36,16 +36,13 @@ RenderResult render_opencl(const Scene& scene, const OpenClOptions& options) {
                         static_cast<double>(pixels) / static_cast<double>(chunk_count));
   double kernel_ms = 0.0;
   with_device_errors(dp.device, [&] {
-    const std::size_t bytes = dispatch.plane_stride * CLMARCH_CHANNEL_COUNT * sizeof(float);
-    cl::Buffer out(dp.context, CL_MEM_WRITE_ONLY | CL_MEM_HOST_READ_ONLY, bytes);
-    // Planes the kernel does not write (no shading, no normals, no tiling) must read back as zeros.
-    dp.queue.enqueueFillBuffer(out, 0.0f, 0, bytes);
+    cl::Buffer out(dp.context, CL_MEM_WRITE_ONLY | CL_MEM_HOST_READ_ONLY, march_output_bytes(dispatch));
     cl::Buffer light_buffer(dp.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, lights.size() * sizeof(cl_float4),
                             const_cast<cl_float4*>(lights.data()));
     cl::Kernel kernel(dp.program, "march");
     kernel.setArg(1, out);
     kernel.setArg(2, light_buffer);
-    for_each_chunk(dp.queue, kernel, march_params(scene, dispatch), dispatch, height,
+    for_each_chunk(dp.queue, kernel, out, march_params(scene, dispatch), dispatch, height,
                    [&](int first_row, int rows, const cl::Event& done) {
                      const std::size_t first = static_cast<std::size_t>(first_row) * width;
                      const std::size_t count = static_cast<std::size_t>(rows) * width;
