@@ -123,25 +123,18 @@ typedef struct {
 } Packet;
 
 /* Whether no ray through the tile whose top-left pixel is (x0, y0) can meet the bounding sphere,
- * by one scalar test for the tile. The rays' directions are the image-plane points
- * q = f + sx r + sy u normalised; |q| >= 1, where normalising is 1-Lipschitz, so they lie within
- * spread = |q - q_centre| <= (PACKET_WIDTH / width) |r| + (PACKET_HEIGHT / height) |u| of the
- * centre ray's. A ray's line passes the sphere's centre c at |c x dir| >= |c x centre| - |c| spread,
- * so the whole tile misses when that exceeds the radius (with a margin for float rounding). */
+ * by one scalar test for the tile, without a square root: the host's tile_cull.z is reach^2
+ * (host/render/march_dispatch.cpp: the sphere's radius plus how far the tile's rays spread from its
+ * centre ray, times |c|), and the centre ray q = f + sx r + sy u passes the sphere's centre c at
+ * |c x q| / |q|. */
 SDF_INLINE int tile_misses_bounds(const MarchParams* params, int x0, int y0) {
-  const float4 c = params->bounds; /* xyz = camera - centre; |c x dir| is the same for -c */
-  const float sx = ((float)x0 + 0.5f * PACKET_WIDTH) * (2.0f / (float)params->width) - 1.0f;
-  const float sy = 1.0f - ((float)y0 + 0.5f * PACKET_HEIGHT) * (2.0f / (float)params->height);
+  const float4 c = params->bounds; /* xyz = camera - centre; |c x q| is the same for -c */
+  const float sx = ((float)x0 + 0.5f * PACKET_WIDTH) * params->tile_cull.x - 1.0f;
+  const float sy = 1.0f - ((float)y0 + 0.5f * PACKET_HEIGHT) * params->tile_cull.y;
   const float4 f = params->forward, r = params->right_extent, u = params->up_extent;
   const float qx = f.x + sx * r.x + sy * u.x, qy = f.y + sx * r.y + sy * u.y, qz = f.z + sx * r.z + sy * u.z;
-  const float inverse_length = rsqrt(qx * qx + qy * qy + qz * qz);
-  const float dx = qx * inverse_length, dy = qy * inverse_length, dz = qz * inverse_length;
-  const float cross_x = c.y * dz - c.z * dy, cross_y = c.z * dx - c.x * dz, cross_z = c.x * dy - c.y * dx;
-  const float distance = sqrt(c.x * c.x + c.y * c.y + c.z * c.z);
-  const float spread = (float)PACKET_WIDTH / (float)params->width * sqrt(r.x * r.x + r.y * r.y + r.z * r.z) +
-                       (float)PACKET_HEIGHT / (float)params->height * sqrt(u.x * u.x + u.y * u.y + u.z * u.z);
-  const float passes_at = sqrt(cross_x * cross_x + cross_y * cross_y + cross_z * cross_z) - distance * spread;
-  return passes_at > c.w + 1e-5f * distance;
+  const float cross_x = c.y * qz - c.z * qy, cross_y = c.z * qx - c.x * qz, cross_z = c.x * qy - c.y * qx;
+  return cross_x * cross_x + cross_y * cross_y + cross_z * cross_z > params->tile_cull.z * (qx * qx + qy * qy + qz * qz);
 }
 
 /* Packet number `index` of the chunk, tiles in row-major order; rows <= 0 past the chunk. Without

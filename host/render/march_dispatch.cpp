@@ -53,6 +53,8 @@ Dispatch plan_tile_dispatch(const PreparedProgram& program, int width, int heigh
   const std::size_t rows = std::min(round_up(static_cast<std::size_t>(height), tile_height), rows_allowed);
   Dispatch d;
   d.local_items = local_size(program.program.device);
+  d.tile_width = static_cast<int>(tile_width);
+  d.tile_height = static_cast<int>(tile_height);
   d.chunk_rows = static_cast<int>(rows);
   const std::size_t packets = round_up(row_pixels, tile_width) / tile_width * (rows / tile_height);
   const std::size_t per_item = static_cast<std::size_t>(program.packets_per_item);
@@ -98,9 +100,21 @@ MarchParams march_params(const Scene& scene, const Dispatch& dispatch) {
   params.camera_height = static_cast<float>(scene.camera.position.y);
   params.over_relaxation = static_cast<float>(scene.render.over_relaxation);
   params.hit_cone_slope = static_cast<float>(hit_cone_slope(scene.render, scene.camera));
+  params.tile_cull.s[0] = static_cast<float>(2.0 / width);
+  params.tile_cull.s[1] = static_cast<float>(2.0 / height);
   if (const std::optional<BoundingSphere> bounds = camera_ray_bounds(scene)) {
-    params.bounds = to_cl(scene.camera.position - bounds->center);
+    const glm::dvec3 c = scene.camera.position - bounds->center;
+    params.bounds = to_cl(c);
     params.bounds.s[3] = static_cast<float>(bounds->radius);
+    // The rays of a tile are q / |q| with q = f + sx r + sy u, |q| >= 1, where normalising is
+    // 1-Lipschitz: they lie within spread of the centre ray's direction, so each passes the centre
+    // no nearer than |c x centre| - |c| spread. Beyond reach = radius + |c| spread no ray of the tile
+    // meets the sphere; the margin covers the float arithmetic of the test.
+    const double spread = dispatch.tile_width / static_cast<double>(width) * glm::length(basis.right_extent) +
+                          dispatch.tile_height / static_cast<double>(height) * glm::length(basis.up_extent);
+    const double distance = glm::length(c);
+    const double reach = bounds->radius + distance * spread + 1e-5 * (distance + bounds->radius);
+    params.tile_cull.s[2] = static_cast<float>(reach * reach);
   }
   return params;
 }

@@ -35,6 +35,9 @@ inline int packet_height(int lanes) { return lanes / packet_width(lanes); }
 struct Dispatch {
   std::size_t global_items = 0;
   std::size_t local_items = 0;
+  /// Pixels of a packet's tile (march kernel).
+  int tile_width = 1;
+  int tile_height = 1;
   int chunk_rows = 0;
   /// Floats per plane.
   std::size_t plane_stride = 0;
