@@ -1,6 +1,15 @@
 /* The camera contract (docs/scene-format.md) on the device: the basis comes from the host
  * (host/scene/camera_model.cpp, double precision); each lane builds its pixel's ray from it. */
 
+/* The unnormalised direction through the image point (x, y) in pixel units (pixel centres at
+ * i + 0.5), one per work-item: f + sx r + sy u, whose length is at least 1. camera_ray is the same
+ * per lane. */
+SDF_INLINE float4 camera_plane_point(const MarchParams* params, float x, float y) {
+  const float sx = x * (2.0f / (float)params->width) - 1.0f;
+  const float sy = 1.0f - y * (2.0f / (float)params->height);
+  return params->forward + sx * params->right_extent + sy * params->up_extent;
+}
+
 SDF_INLINE vec3v camera_ray(const MarchParams* params, vint i, vint j) {
   /* Reciprocals once per packet: a division per lane is the slowest vector operation here. */
   const float x_scale = 2.0f / (float)params->width;

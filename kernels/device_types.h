@@ -40,8 +40,8 @@ typedef struct MarchParams {
   float4 origin_in_cell; /* tiling (cells): xyz = camera offset inside its cell, 0 <= x < cell */
   float4 bounds;         /* xyz = camera position - centre of the sphere camera rays are clipped to,
                             w = its radius; w = 0: rays are not clipped */
-  float4 tile_cull;      /* x, y = 2 / width, 2 / height; z = reach^2: a tile whose centre ray q
-                            (unnormalised) has |c x q|^2 > reach^2 |q|^2 misses the bounds (kernels/march.cl) */
+  float4 tile_reach;     /* x = reach^2: a tile whose centre ray q (unnormalised) has
+                            |c x q|^2 > reach^2 |q|^2 misses the bounds (kernels/march.cl); y, z, w = 0 */
   CLMARCH_INT width;
   CLMARCH_INT height;
   CLMARCH_INT first_row;    /* first image row of this dispatch (images render in chunks of rows) */

@@ -123,18 +123,14 @@ typedef struct {
 } Packet;
 
 /* Whether no ray through the tile whose top-left pixel is (x0, y0) can meet the bounding sphere,
- * by one scalar test for the tile, without a square root: the host's tile_cull.z is reach^2
+ * by one scalar test for the tile, without a square root: the host's tile_reach.x is reach^2
  * (host/render/march_dispatch.cpp: the sphere's radius plus how far the tile's rays spread from its
- * centre ray, times |c|), and the centre ray q = f + sx r + sy u passes the sphere's centre c at
- * |c x q| / |q|. */
+ * centre ray, times |c|), and the centre ray q passes the sphere's centre c at |c x q| / |q|. */
 SDF_INLINE int tile_misses_bounds(const MarchParams* params, int x0, int y0) {
   const float4 c = params->bounds; /* xyz = camera - centre; |c x q| is the same for -c */
-  const float sx = ((float)x0 + 0.5f * PACKET_WIDTH) * params->tile_cull.x - 1.0f;
-  const float sy = 1.0f - ((float)y0 + 0.5f * PACKET_HEIGHT) * params->tile_cull.y;
-  const float4 f = params->forward, r = params->right_extent, u = params->up_extent;
-  const float qx = f.x + sx * r.x + sy * u.x, qy = f.y + sx * r.y + sy * u.y, qz = f.z + sx * r.z + sy * u.z;
-  const float cross_x = c.y * qz - c.z * qy, cross_y = c.z * qx - c.x * qz, cross_z = c.x * qy - c.y * qx;
-  return cross_x * cross_x + cross_y * cross_y + cross_z * cross_z > params->tile_cull.z * (qx * qx + qy * qy + qz * qz);
+  const float4 q = camera_plane_point(params, (float)x0 + 0.5f * PACKET_WIDTH, (float)y0 + 0.5f * PACKET_HEIGHT);
+  const float cross_x = c.y * q.z - c.z * q.y, cross_y = c.z * q.x - c.x * q.z, cross_z = c.x * q.y - c.y * q.x;
+  return cross_x * cross_x + cross_y * cross_y + cross_z * cross_z > params->tile_reach.x * (q.x * q.x + q.y * q.y + q.z * q.z);
 }
 
 /* Packet number `index` of the chunk, tiles in row-major order; rows <= 0 past the chunk. Without

@@ -100,8 +100,6 @@ MarchParams march_params(const Scene& scene, const Dispatch& dispatch) {
   params.camera_height = static_cast<float>(scene.camera.position.y);
   params.over_relaxation = static_cast<float>(scene.render.over_relaxation);
   params.hit_cone_slope = static_cast<float>(hit_cone_slope(scene.render, scene.camera));
-  params.tile_cull.s[0] = static_cast<float>(2.0 / width);
-  params.tile_cull.s[1] = static_cast<float>(2.0 / height);
   if (const std::optional<BoundingSphere> bounds = camera_ray_bounds(scene)) {
     const glm::dvec3 c = scene.camera.position - bounds->center;
     params.bounds = to_cl(c);
@@ -114,7 +112,7 @@ MarchParams march_params(const Scene& scene, const Dispatch& dispatch) {
                           dispatch.tile_height / static_cast<double>(height) * glm::length(basis.up_extent);
     const double distance = glm::length(c);
     const double reach = bounds->radius + distance * spread + 1e-5 * (distance + bounds->radius);
-    params.tile_cull.s[2] = static_cast<float>(reach * reach);
+    params.tile_reach.s[0] = static_cast<float>(reach * reach);
   }
   return params;
 }
@@ -137,8 +135,11 @@ std::size_t march_output_bytes(const Dispatch& dispatch) {
 
 void clear_march_output(cl::CommandQueue& queue, const cl::Buffer& out, const Dispatch& dispatch) {
   const std::size_t plane_bytes = dispatch.plane_stride * sizeof(float);
-  queue.enqueueFillBuffer(out, 0.0f, 0, march_output_bytes(dispatch));
-  queue.enqueueFillBuffer(out, std::numeric_limits<float>::infinity(), CLMARCH_CHANNEL_DEPTH * plane_bytes, plane_bytes);
+  const std::size_t depth_at = CLMARCH_CHANNEL_DEPTH * plane_bytes;
+  const std::size_t after_depth = depth_at + plane_bytes;
+  queue.enqueueFillBuffer(out, 0.0f, 0, depth_at);
+  queue.enqueueFillBuffer(out, std::numeric_limits<float>::infinity(), depth_at, plane_bytes);
+  queue.enqueueFillBuffer(out, 0.0f, after_depth, march_output_bytes(dispatch) - after_depth);
 }
 
 void for_each_chunk(cl::CommandQueue& queue, cl::Kernel& kernel, const cl::Buffer& out, MarchParams params,
