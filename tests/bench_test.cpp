@@ -2,6 +2,7 @@
 // claims (counts and ratios, never timings: the machine is shared), and the ceiling kernel
 // evaluates exactly the points it is given.
 #include "bench/throughput.hpp"
+#include "cl/devices.hpp"
 #include "common/errors.hpp"
 #include "scene/scene_loader.hpp"
 #include "support/test_support.hpp"
@@ -10,6 +11,8 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstdlib>
+#include <string>
 
 namespace clmarch {
 namespace {
@@ -23,6 +26,22 @@ TEST(Bench, MedianOfOddAndEvenCounts) {
   EXPECT_EQ(median({}), 0.0);
   EXPECT_EQ(median({3.0, 1.0, 2.0}), 2.0);
   EXPECT_EQ(median({4.0, 1.0, 3.0, 2.0}), 2.5);
+}
+
+TEST(Bench, PinsPoclThreadsUnlessTheEnvironmentChooses) {
+  const char* before = std::getenv("POCL_AFFINITY");
+  const std::string saved = before ? before : "";
+  setenv("POCL_AFFINITY", "0", 1);
+  pin_pocl_threads_for_timing();
+  EXPECT_STREQ(std::getenv("POCL_AFFINITY"), "0");
+  unsetenv("POCL_AFFINITY");
+  pin_pocl_threads_for_timing();
+  EXPECT_STREQ(std::getenv("POCL_AFFINITY"), "1");
+  if (before) {
+    setenv("POCL_AFFINITY", saved.c_str(), 1);
+  } else {
+    unsetenv("POCL_AFFINITY");
+  }
 }
 
 TEST(Bench, LaneUseCountsIdleLanesOfEachTile) {

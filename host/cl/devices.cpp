@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include <cstdlib>
+
 namespace clmarch {
 
 std::string DeviceEntry::label() const { return fmt::format("{} ({})", name, platform_name); }
@@ -67,5 +69,7 @@ DeviceEntry select_device(std::optional<int> index) {
 int default_lanes(const DeviceEntry& device) { return device.is_gpu ? 1 : 16; }
 
 std::size_t default_local_size(const DeviceEntry& device) { return device.is_gpu ? 64 : 8; }
+
+void pin_pocl_threads_for_timing() { setenv("POCL_AFFINITY", "1", /*overwrite=*/0); }
 
 }  // namespace clmarch

@@ -41,4 +41,11 @@ int default_lanes(const DeviceEntry& device);
 /// one fixed size keeps its per-size compile of the work-group function cached.
 std::size_t default_local_size(const DeviceEntry& device);
 
+/// For timings: asks PoCL to pin its worker threads to cores (POCL_AFFINITY=1) unless the
+/// environment already sets POCL_AFFINITY. Call before the first OpenCL call of the process.
+/// Unpinned, about half the processes on the 2-vCPU test machine ran the torus's ceiling kernel
+/// 1.7x slower for their whole life, while the march kernels kept their times
+/// (docs/performance.md); other OpenCL platforms ignore the variable.
+void pin_pocl_threads_for_timing();
+
 }  // namespace clmarch

@@ -2,6 +2,7 @@
 #include "cli/bench_command.hpp"
 
 #include "bench/bench_report.hpp"
+#include "cl/devices.hpp"
 #include "cli/bench_sweep.hpp"
 #include "common/errors.hpp"
 
@@ -43,6 +44,7 @@ CLI::App* add_bench_command(CLI::App& app, BenchCommandOptions& options) {
 }
 
 int run_bench_command(const BenchCommandOptions& options) {
+  pin_pocl_threads_for_timing();
   if (!options.sweeps.empty()) return run_bench_sweep(options);
   if (!options.csv.empty() || options.append || options.one_at_a_time) {
     throw InputError("--csv, --append and --one-at-a-time need --sweep");

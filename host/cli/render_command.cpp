@@ -130,8 +130,7 @@ RenderResult render_scene(const RenderCommandOptions& options, const Scene& scen
   cl.purpose = purpose_for(scene, !files.buffers.empty());
   cl.dump_kernel_path = files.dump_kernel;
   RenderResult result = render_opencl(scene, cl);
-  // RenderStats does not carry the local size yet; default_local_size is the rule the renderer's
-  // own local_size() follows (they must agree until the renderer reports the size it used).
+  // The renderer's dispatch takes default_local_size for its work-groups (render/march_dispatch.cpp).
   log_verbose(fmt::format("lanes {} (pixels per work-item), local size {}, {} chunk{}, kernel {:.1f} ms",
                           result.stats.lanes, default_local_size(select_device(options.scene.device)),
                           result.stats.chunks, result.stats.chunks == 1 ? "" : "s", result.stats.kernel_ms));

@@ -23,10 +23,6 @@ cl_float4 to_cl(const glm::dvec3& v) {
   return out;
 }
 
-/// Work-items per work-group: GPUs want many; PoCL loops over the items of a group on one core, and
-/// one fixed size keeps its per-size compile of the work-group function cached.
-std::size_t local_size(const DeviceEntry& device) { return device.is_gpu ? 64 : 8; }
-
 std::size_t round_up(std::size_t n, std::size_t multiple) { return (n + multiple - 1) / multiple * multiple; }
 
 }  // namespace
@@ -52,7 +48,7 @@ Dispatch plan_tile_dispatch(const PreparedProgram& program, int width, int heigh
   const std::size_t rows_allowed = std::max<std::size_t>(tile_height, max_pixels / row_pixels / tile_height * tile_height);
   const std::size_t rows = std::min(round_up(static_cast<std::size_t>(height), tile_height), rows_allowed);
   Dispatch d;
-  d.local_items = local_size(program.program.device);
+  d.local_items = default_local_size(program.program.device);
   d.tile_width = static_cast<int>(tile_width);
   d.tile_height = static_cast<int>(tile_height);
   d.chunk_rows = static_cast<int>(rows);
@@ -65,7 +61,7 @@ Dispatch plan_tile_dispatch(const PreparedProgram& program, int width, int heigh
 
 Dispatch plan_point_dispatch(const DeviceEntry& device, std::size_t count, int lanes) {
   Dispatch d;
-  d.local_items = local_size(device);
+  d.local_items = default_local_size(device);
   d.global_items = round_up((count + lanes - 1) / lanes, d.local_items);
   d.plane_stride = d.global_items * lanes;
   return d;

@@ -3,6 +3,7 @@
 // (CeilingKernel: the march's own points replayed densely). Times are the kernels' own, from
 // OpenCL profiling events (manual time); counters give rays/s and distance evaluations/s.
 #include "bench/throughput.hpp"
+#include "cl/devices.hpp"
 #include "scene/scene_loader.hpp"
 
 #include <benchmark/benchmark.h>
@@ -62,4 +63,11 @@ BENCHMARK_CAPTURE(BM_Ceiling, mandelbulb, std::string("mandelbulb"))->UseManualT
 }  // namespace
 }  // namespace clmarch
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  clmarch::pin_pocl_threads_for_timing();
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
