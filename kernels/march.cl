@@ -1,9 +1,10 @@
 /* The sphere-tracing kernel: each work-item marches PACKETS_PER_ITEM packets, each a tile of
  * PACKET_WIDTH x PACKET_HEIGHT pixels in lock-step (the loops: march_loop.cl, tiling.cl), then
- * writes depth (+inf on a miss), steps and wall steps, and with NEED_NORMALS / NEED_SHADING the
- * normal and the final color, into planes of out (CLMARCH_CHANNEL_*), plane_stride floats each. A
- * dispatch covers the image rows first_row .. first_row + chunk_rows - 1; a plane holds them row
- * by row. */
+ * writes depth (+inf on a miss), steps, wall steps under the cells tiling, and with NEED_NORMALS /
+ * NEED_SHADING the normal and the final color, into planes of out (CLMARCH_CHANNEL_*),
+ * plane_stride floats each, for every pixel: the host reads these planes back as they are
+ * (host/codegen/kernel_source.cpp, MarchOutputs). A dispatch covers the image rows first_row ..
+ * first_row + chunk_rows - 1; a plane holds them row by row. */
 
 #if defined(NEED_SHADING)
 /* The surface met by a ray from the camera-relative point relative_origin, marched in map()'s
@@ -116,7 +117,6 @@ SDF_INLINE vint tile_sample_base(__global const int* sample_base, int at, int wi
 typedef struct {
   int x0, row0;      /* its first pixel: column, and row within the dispatch's chunk */
   int columns, rows; /* of its PACKET_WIDTH x PACKET_HEIGHT pixels, those inside the image */
-  int skipped;       /* no ray of the tile meets the bounding sphere and nothing is left to write */
   vec3v dir;
   vint marching;     /* lanes whose ray marches: inside the image and meeting the bounds */
   vfloat t_start, t_end;
@@ -134,9 +134,8 @@ SDF_INLINE int tile_misses_bounds(const MarchParams* params, int x0, int y0) {
 }
 
 /* Packet number `index` of the chunk, tiles in row-major order; rows <= 0 past the chunk. Without
- * shading, a tile that misses the bounding sphere is skipped whole: its pixels are misses with no
- * step, which the host wrote into the planes beforehand (clear_march_output); a shaded miss still
- * needs its ray for the sky. */
+ * shading, a tile that misses the bounding sphere gets no rays: no lane marches, and its pixels
+ * are written as misses with no step; a shaded miss still needs its ray for the sky. */
 SDF_INLINE Packet packet_at(const MarchParams* params, int index) {
   const int tiles_per_row = (params->width + PACKET_WIDTH - 1) / PACKET_WIDTH;
   const int tile_row = index / tiles_per_row;
@@ -149,14 +148,11 @@ SDF_INLINE Packet packet_at(const MarchParams* params, int index) {
   k.t_start = (vfloat)(0.0f);
   k.t_end = (vfloat)(params->max_distance);
 #if !defined(NEED_SHADING)
-  k.skipped = params->bounds.w > 0.0f && tile_misses_bounds(params, k.x0, y0);
-  if (k.skipped) {
+  if (params->bounds.w > 0.0f && tile_misses_bounds(params, k.x0, y0)) {
     k.dir = v3_splat(0.0f);
     k.marching = (vint)(0);
     return k;
   }
-#else
-  k.skipped = 0;
 #endif
   k.dir = camera_ray(params, k.x0 + LANE_X, y0 + LANE_Y);
   k.marching = MASK(LANE_X < k.columns) & MASK(LANE_Y < k.rows);
@@ -183,7 +179,6 @@ SDF_INLINE MarchLimits camera_limits(const MarchParams* params, const Packet* k,
  * needs them the normal and the shaded color. */
 SDF_INLINE void finish_packet(const Packet* k, const MarchResult* m, const MarchParams* params, __global float* out,
                               __constant float4* lights) {
-  if (k->skipped) return;
   const int stride = params->plane_stride;
   const int at = k->row0 * params->width + k->x0;
 #define STORE_PLANE(channel, v) store_tile((v), at, params->width, k->columns, k->rows, out + (channel) * stride)

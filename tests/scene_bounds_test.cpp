@@ -168,23 +168,40 @@ TEST(CameraRayBounds, OpenClRenderEqualsTheUnclippedOne) {
 
 TEST(CameraRayBounds, TilesSkippedWholeByDepthProgramsAreMissesOfTheShadedOnes) {
   // Programs without shading skip a 4x4 tile when one scalar test shows none of its rays meets the
-  // bounding sphere, leaving its pixels to the cleared planes. The shaded program marches every
-  // tile, so its depth and steps must be the same pixel for pixel: from close (the sphere fills
-  // the view) to far (the sphere covers a few pixels, where a tile's spread matters most), and
-  // with chunks of 8 rows, so that tiles of later chunks cannot keep an earlier chunk's values.
+  // bounding sphere, and write its pixels as misses without marching. The shaded program marches
+  // every tile, so depth, steps and normals must be the same pixel for pixel: from close (the
+  // sphere fills the view) to far (the sphere covers a few pixels, where a tile's spread matters
+  // most), and with chunks of 8 rows in one buffer, so that a tile left unwritten would keep an
+  // earlier chunk's values. Planes a program does not compute read back as 0.
   const std::vector<std::pair<std::string, std::string>> cameras = {
       {"[0, 0.5, 2.2]", "50"}, {"[-2, 4, 4]", "50"}, {"[30, 12, -25]", "20"}, {"[150, 40, 90]", "4"}};
+  const auto all_zero = [](const std::vector<float>& plane) {
+    return std::all_of(plane.begin(), plane.end(), [](float v) { return v == 0.0f; });
+  };
   for (const auto& [position, fov] : cameras) {
     Scene scene = scene_from_yaml("camera: {position: " + position + ", look_at: [0.3, 0, 0.1], fov: " + fov + "}\n"
                                   "render: {width: 61, height: 45, max_distance: 1000}\nsdf: {torus: {}}\n");
-    OpenClOptions shaded, depth;
+    OpenClOptions shaded, depth, normals;
     shaded.purpose = KernelPurpose::Shaded;
     depth.purpose = KernelPurpose::DepthSteps;
     depth.max_chunk_pixels = 61 * 8;
+    normals.purpose = KernelPurpose::Normals;
+    normals.max_chunk_pixels = 61 * 8;
     const FrameBuffers a = render_opencl(scene, shaded).buffers;
     const FrameBuffers b = render_opencl(scene, depth).buffers;
+    const FrameBuffers n = render_opencl(scene, normals).buffers;
     EXPECT_EQ(a.plane(Channel::Steps), b.plane(Channel::Steps)) << position;
     EXPECT_EQ(a.plane(Channel::Depth), b.plane(Channel::Depth)) << position;
+    EXPECT_EQ(a.plane(Channel::Steps), n.plane(Channel::Steps)) << position;
+    EXPECT_EQ(a.plane(Channel::Depth), n.plane(Channel::Depth)) << position;
+    for (Channel c : {Channel::NX, Channel::NY, Channel::NZ}) {
+      EXPECT_EQ(a.plane(c), n.plane(c)) << position;
+      EXPECT_TRUE(all_zero(b.plane(c))) << position;
+    }
+    for (Channel c : {Channel::R, Channel::G, Channel::B, Channel::WallSteps}) {
+      EXPECT_TRUE(all_zero(b.plane(c))) << position;
+      EXPECT_TRUE(all_zero(n.plane(c))) << position;
+    }
     EXPECT_GT(std::count_if(a.plane(Channel::Depth).begin(), a.plane(Channel::Depth).end(),
                             [](float d) { return std::isfinite(d); }),
               0)

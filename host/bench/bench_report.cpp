@@ -23,16 +23,19 @@ BenchReport run_bench(const Scene& scene, const OpenClOptions& options, const Be
   OpenClOptions depth = options;
   depth.purpose = KernelPurpose::DepthSteps;
   CeilingKernel ceiling(scene, options);
-  // One untimed round pays the builds and PoCL's work-group compiles; then the three kernels take
-  // turns, so that a change in the machine's load touches all of them and not their ratios.
-  RenderResult last_shaded = render_opencl(scene, shaded);
-  RenderResult last_depth = render_opencl(scene, depth);
+  OpenClRenderer shaded_renderer(scene, shaded);
+  OpenClRenderer depth_renderer(scene, depth);
+  // One untimed round pays PoCL's work-group compiles and the first touch of the buffers; then the
+  // three kernels take turns, so that a change in the machine's load touches all of them and not
+  // their ratios.
+  RenderResult last_shaded = shaded_renderer.render();
+  RenderResult last_depth = depth_renderer.render();
   ceiling.run_ms();
   std::vector<double> shaded_ms, depth_ms, ceiling_ms;
   for (int i = 0; i < settings.repeat; ++i) {
-    last_shaded = render_opencl(scene, shaded);
+    last_shaded = shaded_renderer.render();
     shaded_ms.push_back(last_shaded.stats.kernel_ms);
-    last_depth = render_opencl(scene, depth);
+    last_depth = depth_renderer.render();
     depth_ms.push_back(last_depth.stats.kernel_ms);
     ceiling_ms.push_back(ceiling.run_ms());
   }

@@ -35,7 +35,7 @@ std::vector<int> record_march(const Scene& scene, PreparedProgram& prepared, con
     kernel.setArg(4, sizeof(cl_mem), nullptr);  // a NULL pointer: the march records nothing
   }
   kernel.setArg(5, static_cast<cl_int>(stride));
-  for_each_chunk(dp.queue, kernel, out, march_params(scene, dispatch), dispatch, height, [&](int first_row, int rows, const cl::Event&) {
+  for_each_chunk(dp.queue, kernel, march_params(scene, dispatch), dispatch, height, [&](int first_row, int rows, const cl::Event&) {
     dp.queue.enqueueReadBuffer(out, CL_TRUE, CLMARCH_CHANNEL_STEPS * dispatch.plane_stride * sizeof(float),
                                static_cast<std::size_t>(rows) * width * sizeof(float),
                                steps.data() + static_cast<std::size_t>(first_row) * width);

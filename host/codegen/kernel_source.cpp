@@ -5,6 +5,7 @@
 #include "codegen/cl_literals.hpp"
 #include "codegen/embedded_kernels.hpp"
 #include "codegen/sdf_codegen.hpp"
+#include "device_types.h"
 #include "scene/camera_model.hpp"
 
 #include <fmt/format.h>
@@ -85,14 +86,13 @@ std::string feature_defines(const Scene& scene, const KernelOptions& options) {
   }
   if (options.variant.precision == Precision::Double) out += "#define DOUBLE_PRECISION\n";
   if (options.variant.native_math) out += "#define NATIVE_MATH\n";
-  const bool normals = options.purpose == KernelPurpose::Normals || options.purpose == KernelPurpose::Shaded;
-  const bool shading = options.purpose == KernelPurpose::Shaded;
-  if (normals) {
+  const MarchOutputs outputs = march_outputs(scene, options.purpose);
+  if (outputs.normals) {
     out += "#define NEED_NORMALS\n";
     if (scene.render.normal_method == NormalMethod::Tetrahedral) out += "#define NORMAL_TETRAHEDRAL\n";
     if (scene.render.normal_method == NormalMethod::Forward) out += "#define NORMAL_FORWARD\n";
   }
-  if (shading) {
+  if (outputs.color) {
     const Shading& s = scene.shading;
     out += "#define NEED_SHADING\n";
     if (s.model == ShadingModel::Phong) out += "#define SHADING_MODEL_PHONG\n";
@@ -128,6 +128,22 @@ bool uses_kind(const Node& node, std::initializer_list<NodeKind> kinds) {
 
 }  // namespace
 
+std::vector<int> MarchOutputs::planes() const {
+  std::vector<int> planes = {CLMARCH_CHANNEL_DEPTH, CLMARCH_CHANNEL_STEPS};
+  if (color) planes.insert(planes.end(), {CLMARCH_CHANNEL_R, CLMARCH_CHANNEL_G, CLMARCH_CHANNEL_B});
+  if (normals) planes.insert(planes.end(), {CLMARCH_CHANNEL_NX, CLMARCH_CHANNEL_NY, CLMARCH_CHANNEL_NZ});
+  if (wall_steps) planes.push_back(CLMARCH_CHANNEL_WALL_STEPS);
+  return planes;
+}
+
+MarchOutputs march_outputs(const Scene& scene, KernelPurpose purpose) {
+  MarchOutputs outputs;
+  outputs.normals = purpose == KernelPurpose::Normals || purpose == KernelPurpose::Shaded;
+  outputs.color = purpose == KernelPurpose::Shaded;
+  outputs.wall_steps = scene.tiling && scene.tiling->method == TilingMethod::Cells;
+  return outputs;
+}
+
 int packets_per_item(const Scene& scene, int lanes) {
   const bool cells = scene.tiling && scene.tiling->method == TilingMethod::Cells;
   return lanes > 1 && !cells ? 2 : 1;
@@ -140,7 +156,6 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
   if (options.variant.precision == Precision::Double && options.lanes == 1) {
     throw std::invalid_argument(kDoubleNeedsVectorLanes);
   }
-  const bool shading = options.purpose == KernelPurpose::Shaded;
   std::string src = fmt::format("/* clmarch program for {} */\n", scene.source_name);
   src += feature_defines(scene, options);
   src += kernel_file("device_types.h");
@@ -161,9 +176,9 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
   src += kernel_file("camera.cl");
   src += kernel_file("march_loop.cl");
   if (scene.tiling && scene.tiling->method == TilingMethod::Cells) src += kernel_file("tiling.cl");
-  const bool depth_only = options.purpose == KernelPurpose::DepthSteps || options.purpose == KernelPurpose::Ceiling;
-  if (!depth_only) src += kernel_file("normals.cl");
-  if (shading) {
+  const MarchOutputs outputs = march_outputs(scene, options.purpose);
+  if (outputs.normals) src += kernel_file("normals.cl");
+  if (outputs.color) {
     src += kernel_file("shading.cl");
     src += kernel_file("atmosphere.cl");
   }

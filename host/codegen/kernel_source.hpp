@@ -5,6 +5,7 @@
 #include "scene/scene.hpp"
 
 #include <string>
+#include <vector>
 
 namespace clmarch {
 
@@ -49,6 +50,18 @@ struct KernelOptions {
   int lanes = 1;
   KernelVariant variant;
 };
+
+/// What a march program computes beyond depth and steps, and so which planes of the output buffer
+/// its kernel writes (kernels/march.cl; channel numbers of kernels/device_types.h).
+struct MarchOutputs {
+  bool normals = false;     ///< NEED_NORMALS: N.x, N.y, N.z
+  bool color = false;       ///< NEED_SHADING: R, G, B
+  bool wall_steps = false;  ///< the cells tiling: wall steps
+
+  /// The planes the kernel writes for every pixel of a dispatch; the others it never touches.
+  std::vector<int> planes() const;
+};
+MarchOutputs march_outputs(const Scene& scene, KernelPurpose purpose);
 
 /// Packets each work-item of the march kernel marches (PACKETS_PER_ITEM): two, interleaved, with
 /// vector lanes (CPUs), except under the cells tiling, whose traversal marches one; one with a

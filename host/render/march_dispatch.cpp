@@ -9,7 +9,6 @@
 #include "scene/tiling_model.hpp"
 
 #include <algorithm>
-#include <limits>
 
 namespace clmarch {
 namespace {
@@ -35,8 +34,10 @@ PreparedProgram prepare_program(const Scene& scene, const OpenClOptions& options
   kernel_options.variant = options.variant;
   const std::string source = generate_kernel_source(scene, kernel_options);
   if (!options.dump_kernel_path.empty()) write_file_atomically(options.dump_kernel_path, source);
+  const bool march = purpose != KernelPurpose::EvalPoints;
   return {build_device_program(device, source, kernel_build_options(options.variant)), kernel_options.lanes,
-          purpose == KernelPurpose::EvalPoints ? 1 : packets_per_item(scene, kernel_options.lanes)};
+          march ? packets_per_item(scene, kernel_options.lanes) : 1,
+          march ? march_outputs(scene, purpose).planes() : std::vector<int>{}};
 }
 
 int packet_width(int lanes) { return lanes == 1 ? 1 : lanes == 4 ? 2 : 4; }
@@ -129,21 +130,10 @@ std::size_t march_output_bytes(const Dispatch& dispatch) {
   return dispatch.plane_stride * CLMARCH_CHANNEL_COUNT * sizeof(float);
 }
 
-void clear_march_output(cl::CommandQueue& queue, const cl::Buffer& out, const Dispatch& dispatch) {
-  const std::size_t plane_bytes = dispatch.plane_stride * sizeof(float);
-  const std::size_t depth_at = CLMARCH_CHANNEL_DEPTH * plane_bytes;
-  const std::size_t after_depth = depth_at + plane_bytes;
-  queue.enqueueFillBuffer(out, 0.0f, 0, depth_at);
-  queue.enqueueFillBuffer(out, std::numeric_limits<float>::infinity(), depth_at, plane_bytes);
-  queue.enqueueFillBuffer(out, 0.0f, after_depth, march_output_bytes(dispatch) - after_depth);
-}
-
-void for_each_chunk(cl::CommandQueue& queue, cl::Kernel& kernel, const cl::Buffer& out, MarchParams params,
-                    const Dispatch& dispatch, int height,
+void for_each_chunk(cl::CommandQueue& queue, cl::Kernel& kernel, MarchParams params, const Dispatch& dispatch, int height,
                     const std::function<void(int first_row, int rows, const cl::Event& event)>& done) {
   for (int first_row = 0; first_row < height; first_row += dispatch.chunk_rows) {
     throw_if_cancelled();
-    clear_march_output(queue, out, dispatch);
     params.first_row = first_row;
     kernel.setArg(0, sizeof(MarchParams), &params);
     cl::Event event;

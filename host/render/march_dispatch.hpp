@@ -13,11 +13,13 @@
 
 namespace clmarch {
 
-/// A program built for one purpose, with its packet width and packets per work-item.
+/// A program built for one purpose, with its packet width, packets per work-item and the output
+/// planes its march kernel writes.
 struct PreparedProgram {
   DeviceProgram program;
   int lanes = 1;
   int packets_per_item = 1;
+  std::vector<int> planes;
 };
 
 /// Generates and builds the scene's program for purpose (writing it to options.dump_kernel_path
@@ -59,16 +61,10 @@ std::vector<cl_float4> light_data(const Scene& scene);
 
 /// Bytes of the march kernel's output buffer for dispatch (every plane, kernels/device_types.h).
 std::size_t march_output_bytes(const Dispatch& dispatch);
-/// Enqueues writing a miss into every pixel of the march kernel's output: depth +inf, every other
-/// plane 0. The kernel leaves some planes to this (normals and color when the program has none,
-/// wall steps without the cells tiling), and whole tiles that miss the bounding sphere.
-void clear_march_output(cl::CommandQueue& queue, const cl::Buffer& out, const Dispatch& dispatch);
-
-/// Enqueues kernel (its argument 0 is params, its output buffer out) once per chunk of rows, each
-/// after clearing out, and calls done(first_row, rows, event) after each dispatch was enqueued.
-/// Polls cancellation between chunks.
-void for_each_chunk(cl::CommandQueue& queue, cl::Kernel& kernel, const cl::Buffer& out, MarchParams params,
-                    const Dispatch& dispatch, int height,
+/// Enqueues kernel (its argument 0 is params) once per chunk of rows and calls done(first_row, rows,
+/// event) after each dispatch was enqueued. Each dispatch writes the program's planes (PreparedProgram::
+/// planes) for every pixel of its rows. Polls cancellation between chunks.
+void for_each_chunk(cl::CommandQueue& queue, cl::Kernel& kernel, MarchParams params, const Dispatch& dispatch, int height,
                     const std::function<void(int first_row, int rows, const cl::Event& event)>& done);
 
 }  // namespace clmarch

@@ -19,46 +19,67 @@ std::uint64_t plane_total(const std::vector<float>& plane) {
 
 }  // namespace
 
-RenderResult render_opencl(const Scene& scene, const OpenClOptions& options) {
-  PreparedProgram prepared = prepare_program(scene, options, options.purpose);
-  DeviceProgram& dp = prepared.program;
-  const int width = scene.render.width;
-  const int height = scene.render.height;
-  const std::size_t pixels = static_cast<std::size_t>(width) * height;
-  const std::size_t chunk_limit = options.max_chunk_pixels ? options.max_chunk_pixels : chunk_pixels_for(dp.device);
-  const Dispatch dispatch = plan_tile_dispatch(prepared, width, height, chunk_limit);
-  const std::vector<cl_float4> lights = light_data(scene);
+struct OpenClRenderer::State {
+  Scene scene;
+  PreparedProgram prepared;
+  Dispatch dispatch;
+  MarchParams params;
+  cl::Buffer out;
+  cl::Buffer lights;
+  cl::Kernel kernel;
+};
 
+OpenClRenderer::OpenClRenderer(const Scene& scene, const OpenClOptions& options) : state_(std::make_unique<State>()) {
+  State& s = *state_;
+  s.scene = scene;
+  s.prepared = prepare_program(scene, options, options.purpose);
+  DeviceProgram& dp = s.prepared.program;
+  const std::size_t chunk_limit = options.max_chunk_pixels ? options.max_chunk_pixels : chunk_pixels_for(dp.device);
+  s.dispatch = plan_tile_dispatch(s.prepared, scene.render.width, scene.render.height, chunk_limit);
+  s.params = march_params(scene, s.dispatch);
+  const std::vector<cl_float4> lights = light_data(scene);
+  with_device_errors(dp.device, [&] {
+    s.out = cl::Buffer(dp.context, CL_MEM_WRITE_ONLY | CL_MEM_HOST_READ_ONLY, march_output_bytes(s.dispatch));
+    s.lights = cl::Buffer(dp.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, lights.size() * sizeof(cl_float4),
+                          const_cast<cl_float4*>(lights.data()));
+    s.kernel = cl::Kernel(dp.program, "march");
+    s.kernel.setArg(1, s.out);
+    s.kernel.setArg(2, s.lights);
+  });
+}
+
+OpenClRenderer::~OpenClRenderer() = default;
+
+RenderResult OpenClRenderer::render() {
+  State& s = *state_;
+  DeviceProgram& dp = s.prepared.program;
+  const int width = s.scene.render.width;
+  const int height = s.scene.render.height;
+  const std::size_t pixels = static_cast<std::size_t>(width) * height;
   RenderResult result;
   result.buffers = FrameBuffers(width, height);
-  const std::size_t chunk_count = (static_cast<std::size_t>(height) + dispatch.chunk_rows - 1) / dispatch.chunk_rows;
+  const std::size_t chunk_count = (static_cast<std::size_t>(height) + s.dispatch.chunk_rows - 1) / s.dispatch.chunk_rows;
   ProgressLine progress("OpenCL chunks", static_cast<long long>(chunk_count),
                         static_cast<double>(pixels) / static_cast<double>(chunk_count));
   double kernel_ms = 0.0;
   with_device_errors(dp.device, [&] {
-    cl::Buffer out(dp.context, CL_MEM_WRITE_ONLY | CL_MEM_HOST_READ_ONLY, march_output_bytes(dispatch));
-    cl::Buffer light_buffer(dp.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, lights.size() * sizeof(cl_float4),
-                            const_cast<cl_float4*>(lights.data()));
-    cl::Kernel kernel(dp.program, "march");
-    kernel.setArg(1, out);
-    kernel.setArg(2, light_buffer);
-    for_each_chunk(dp.queue, kernel, out, march_params(scene, dispatch), dispatch, height,
-                   [&](int first_row, int rows, const cl::Event& done) {
-                     const std::size_t first = static_cast<std::size_t>(first_row) * width;
-                     const std::size_t count = static_cast<std::size_t>(rows) * width;
-                     for (int c = 0; c < kChannelCount; ++c) {
-                       dp.queue.enqueueReadBuffer(out, CL_FALSE, c * dispatch.plane_stride * sizeof(float),
-                                                  count * sizeof(float), result.buffers.planes[c].data() + first);
-                     }
-                     dp.queue.finish();
-                     kernel_ms += event_milliseconds(done);
-                     progress.advance();
-                   });
+    // Planes the program does not write stay as FrameBuffers made them: 0.
+    for_each_chunk(dp.queue, s.kernel, s.params, s.dispatch, height, [&](int first_row, int rows, const cl::Event& done) {
+      const std::size_t first = static_cast<std::size_t>(first_row) * width;
+      const std::size_t count = static_cast<std::size_t>(rows) * width;
+      for (int c : s.prepared.planes) {
+        dp.queue.enqueueReadBuffer(s.out, CL_FALSE, c * s.dispatch.plane_stride * sizeof(float), count * sizeof(float),
+                                   result.buffers.planes[c].data() + first);
+      }
+      dp.queue.finish();
+      kernel_ms += event_milliseconds(done);
+      progress.advance();
+    });
   });
 
   RenderStats& stats = result.stats;
   stats.device = dp.device.label();
-  stats.lanes = prepared.lanes;
+  stats.lanes = s.prepared.lanes;
   stats.build_ms = dp.build_ms;
   stats.kernel_ms = kernel_ms;
   stats.chunks = static_cast<int>(chunk_count);
@@ -67,6 +88,8 @@ RenderResult render_opencl(const Scene& scene, const OpenClOptions& options) {
   stats.rays_per_s = kernel_ms > 0.0 ? static_cast<double>(pixels) / (kernel_ms * 1e-3) : 0.0;
   return result;
 }
+
+RenderResult render_opencl(const Scene& scene, const OpenClOptions& options) { return OpenClRenderer(scene, options).render(); }
 
 PointSamples eval_points_opencl(const Scene& scene, const std::vector<glm::dvec3>& points, const OpenClOptions& options) {
   PreparedProgram prepared = prepare_program(scene, options, KernelPurpose::EvalPoints);

@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -54,6 +55,23 @@ struct RenderResult {
 /// what the device allocates at once. Without shading in the purpose, R, G, B stay 0; without
 /// normals, N stays 0. Polls cancellation between chunks.
 RenderResult render_opencl(const Scene& scene, const OpenClOptions& options);
+
+/// render_opencl for one scene again and again (benchmarks): the program, the kernel and the output
+/// buffer are made once, so later renders time the march alone, not the build or the first touch
+/// of fresh buffer pages.
+class OpenClRenderer {
+ public:
+  OpenClRenderer(const Scene& scene, const OpenClOptions& options);
+  ~OpenClRenderer();
+  OpenClRenderer(const OpenClRenderer&) = delete;
+  OpenClRenderer& operator=(const OpenClRenderer&) = delete;
+
+  RenderResult render();
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 /// The scene's generated map() and map_color() evaluated at points on the device.
 struct PointSamples {
