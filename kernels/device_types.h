@@ -27,6 +27,9 @@ typedef cl_float4 float4;
 #define CLMARCH_CHANNEL_WALL_STEPS 8
 #define CLMARCH_CHANNEL_COUNT 9
 
+/* Pixels per side of a block of the coarse cone pass (kernels/coarse.cl). */
+#define CLMARCH_COARSE_BLOCK 8
+
 /* Lights, two float4 each, positions relative to the camera (computed on the host in double). */
 #define CLMARCH_LIGHT_FLOAT4S 2
 

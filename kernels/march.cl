@@ -135,8 +135,10 @@ SDF_INLINE int tile_misses_bounds(const MarchParams* params, int x0, int y0) {
 
 /* Packet number `index` of the chunk, tiles in row-major order; rows <= 0 past the chunk. Without
  * shading, a tile that misses the bounding sphere gets no rays: no lane marches, and its pixels
- * are written as misses with no step; a shaded miss still needs its ray for the sky. */
-SDF_INLINE Packet packet_at(const MarchParams* params, int index) {
+ * are written as misses with no step; a shaded miss still needs its ray for the sky. With the
+ * coarse pass its rays start no earlier than their block's cone stopped (coarse_starts, one per
+ * block; a tile lies inside one block, since its sides divide CLMARCH_COARSE_BLOCK). */
+SDF_INLINE Packet packet_at(const MarchParams* params, int index, __global const float* coarse_starts) {
   const int tiles_per_row = (params->width + PACKET_WIDTH - 1) / PACKET_WIDTH;
   const int tile_row = index / tiles_per_row;
   Packet k;
@@ -157,6 +159,14 @@ SDF_INLINE Packet packet_at(const MarchParams* params, int index) {
   k.dir = camera_ray(params, k.x0 + LANE_X, y0 + LANE_Y);
   k.marching = MASK(LANE_X < k.columns) & MASK(LANE_Y < k.rows);
   if (params->bounds.w > 0.0f) clip_to_bounds(params->bounds, k.dir, &k.marching, &k.t_start, &k.t_end);
+#if defined(COARSE_PASS)
+  const int blocks_x = (params->width + CLMARCH_COARSE_BLOCK - 1) / CLMARCH_COARSE_BLOCK;
+  const real cone_start = coarse_starts[(y0 / CLMARCH_COARSE_BLOCK) * blocks_x + k.x0 / CLMARCH_COARSE_BLOCK];
+  k.t_start = fmax(k.t_start, cone_start);
+  k.marching &= MASK(k.t_start < k.t_end);
+#else
+  (void)coarse_starts;
+#endif
   return k;
 }
 
@@ -224,6 +234,9 @@ SDF_INLINE void finish_packet(const Packet* k, const MarchResult* m, const March
 /* Each work-item marches PACKETS_PER_ITEM consecutive packets of the chunk: two on CPUs, whose
  * steps interleave (march_plain_pair), one on GPUs and under the cells tiling. */
 __kernel void march(const MarchParams params, __global float* out, __constant float4* lights
+#if defined(COARSE_PASS)
+                    , __global const float* coarse_starts
+#endif
 #if defined(RECORD_SAMPLES)
                     , __global const int* sample_base, __global float* samples, const int sample_stride
 #endif
@@ -238,11 +251,14 @@ __kernel void march(const MarchParams params, __global float* out, __constant fl
 #else
   const vec3v origin = v3_from(params.origin);
 #endif
+#if !defined(COARSE_PASS)
+  __global const float* coarse_starts = 0;
+#endif
   const int first = (int)get_global_id(0) * PACKETS_PER_ITEM;
-  const Packet a = packet_at(&params, first);
+  const Packet a = packet_at(&params, first, coarse_starts);
   if (a.rows <= 0) return; /* padding of the dispatch to whole work-groups */
 #if PACKETS_PER_ITEM == 2
-  const Packet b = packet_at(&params, first + 1);
+  const Packet b = packet_at(&params, first + 1, coarse_starts);
   PlainMarch march_a = plain_march_begin(origin, a.dir, a.marching, a.t_start, a.t_end, camera_limits(&params, &a, &record));
   /* Past the chunk b has no lane marching, and its loop never runs. */
   PlainMarch march_b = plain_march_begin(origin, b.dir, b.marching, b.t_start, b.t_end, camera_limits(&params, &b, &record));

@@ -45,10 +45,11 @@ BenchReport run_bench(const Scene& scene, const OpenClOptions& options, const Be
   r.build_ms = last_shaded.stats.build_ms;
   r.rays_per_s = pixels / (r.shaded_ms * 1e-3);
 
-  // Only the march runs in the depth-only kernel, so its steps are all its distance evaluations.
+  // Only the march (and the coarse cone pass, if any: one evaluation per block and step) runs in the
+  // depth-only program, so its steps are all its distance evaluations.
   r.depth_ms = median(depth_ms);
   r.steps_per_pixel = static_cast<double>(last_depth.stats.steps) / pixels;
-  r.evals_per_s = static_cast<double>(last_depth.stats.steps) / (r.depth_ms * 1e-3);
+  r.evals_per_s = static_cast<double>(last_depth.stats.steps + last_depth.stats.coarse_steps) / (r.depth_ms * 1e-3);
   r.lane_use = lane_use(last_depth.buffers.plane(Channel::Steps), r.width, r.height, r.lanes);
   r.depth_to_shaded = r.depth_ms / r.shaded_ms;
 

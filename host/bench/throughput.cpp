@@ -26,16 +26,18 @@ std::vector<int> record_march(const Scene& scene, PreparedProgram& prepared, con
   cl::Buffer bases(dp.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sample_base.size() * sizeof(cl_int),
                    const_cast<cl_int*>(sample_base.data()));
   cl::Kernel kernel(dp.program, "march");
-  kernel.setArg(1, out);
-  kernel.setArg(2, light_buffer);
-  kernel.setArg(3, bases);
+  std::optional<ConePass> cones = make_cone_pass(prepared, scene);
+  const int record_arg = bind_march_inputs(kernel, out, light_buffer, cones);
+  kernel.setArg(record_arg, bases);
   if (samples) {
-    kernel.setArg(4, *samples);
+    kernel.setArg(record_arg + 1, *samples);
   } else {
-    kernel.setArg(4, sizeof(cl_mem), nullptr);  // a NULL pointer: the march records nothing
+    kernel.setArg(record_arg + 1, sizeof(cl_mem), nullptr);  // a NULL pointer: the march records nothing
   }
-  kernel.setArg(5, static_cast<cl_int>(stride));
-  for_each_chunk(dp.queue, kernel, march_params(scene, dispatch), dispatch, height, [&](int first_row, int rows, const cl::Event&) {
+  kernel.setArg(record_arg + 2, static_cast<cl_int>(stride));
+  const MarchParams params = march_params(scene, dispatch);
+  if (cones) enqueue_cone_pass(dp.queue, *cones, params);
+  for_each_chunk(dp.queue, kernel, params, dispatch, height, [&](int first_row, int rows, const cl::Event&) {
     dp.queue.enqueueReadBuffer(out, CL_TRUE, CLMARCH_CHANNEL_STEPS * dispatch.plane_stride * sizeof(float),
                                static_cast<std::size_t>(rows) * width * sizeof(float),
                                steps.data() + static_cast<std::size_t>(first_row) * width);

@@ -10,8 +10,10 @@
 #include "common/progress.hpp"
 #include "image/atomic_file.hpp"
 #include "image/image_writer.hpp"
+#include "reference/reference_cones.hpp"
 #include "reference/reference_renderer.hpp"
 #include "render/views.hpp"
+#include "scene/scene_bounds.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -123,6 +125,9 @@ RenderResult render_scene(const RenderCommandOptions& options, const Scene& scen
     result.stats.kernel_ms = ms;
     for (float s : result.buffers.plane(Channel::Steps)) result.stats.steps += static_cast<std::uint64_t>(s);
     for (float s : result.buffers.plane(Channel::WallSteps)) result.stats.wall_steps += static_cast<std::uint64_t>(s);
+    if (uses_cone_pass(scene)) {
+      for (int s : reference_cone_starts(scene).steps) result.stats.coarse_steps += static_cast<std::uint64_t>(s);
+    }
     result.stats.rays_per_s = static_cast<double>(scene.render.width) * scene.render.height / (ms * 1e-3);
     return result;
   }
@@ -154,7 +159,8 @@ void render_image(const RenderCommandOptions& options, const Scene& scene, const
     nlohmann::json line = {{"backend", options.backend}, {"device", s.device},         {"lanes", s.lanes},
                            {"width", scene.render.width}, {"height", scene.render.height}, {"build_ms", s.build_ms},
                            {"kernel_ms", s.kernel_ms},  {"steps", s.steps},            {"rays_per_s", s.rays_per_s},
-                           {"chunks", s.chunks}, {"surface_steps", s.steps - s.wall_steps}, {"wall_steps", s.wall_steps}};
+                           {"chunks", s.chunks}, {"surface_steps", s.steps - s.wall_steps}, {"wall_steps", s.wall_steps},
+                           {"coarse_steps", s.coarse_steps}};
     if (frame) {
       line["frame"] = *frame;
       line["time"] = scene.time;

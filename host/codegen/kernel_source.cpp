@@ -7,6 +7,7 @@
 #include "codegen/sdf_codegen.hpp"
 #include "device_types.h"
 #include "scene/camera_model.hpp"
+#include "scene/scene_bounds.hpp"
 
 #include <fmt/format.h>
 
@@ -112,6 +113,10 @@ std::string feature_defines(const Scene& scene, const KernelOptions& options) {
     out += atmosphere_defines(s);
     out += surface_effect_defines(scene);
   }
+  if (uses_cone_pass(scene) && options.purpose != KernelPurpose::EvalPoints) {
+    out += "#define COARSE_PASS\n";
+    out += fmt::format("#define COARSE_MARGIN {}\n", cl_float(scene.shading.glow ? scene.shading.glow->radius : 0.0));
+  }
   if (scene.tiling && options.purpose != KernelPurpose::EvalPoints) {
     out += scene.tiling->method == TilingMethod::Cells ? "#define TILING_CELLS\n" : "#define TILING_MOD\n";
     out += fmt::format("#define TILING_CELL {}\n", cl_float4(scene.tiling->cell));
@@ -176,6 +181,7 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
   src += kernel_file("camera.cl");
   src += kernel_file("march_loop.cl");
   if (scene.tiling && scene.tiling->method == TilingMethod::Cells) src += kernel_file("tiling.cl");
+  if (uses_cone_pass(scene)) src += kernel_file("coarse.cl");
   const MarchOutputs outputs = march_outputs(scene, options.purpose);
   if (outputs.normals) src += kernel_file("normals.cl");
   if (outputs.color) {

@@ -4,11 +4,12 @@
 
 #include "common/cancellation.hpp"
 #include "common/progress.hpp"
+#include "reference/reference_cones.hpp"
 #include "reference/reference_march.hpp"
 #include "reference/reference_sdf.hpp"
-#include "scene/scene_bounds.hpp"
 #include "reference/reference_shading.hpp"
 #include "scene/camera_model.hpp"
+#include "scene/scene_bounds.hpp"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -89,9 +90,10 @@ glm::dvec3 reference_normal(const Node& root, const glm::dvec3& p, NormalMethod 
 
 namespace {
 
-// The trace of a camera ray clipped to bounds (camera_ray_bounds(scene), computed once per image).
+// The trace of a camera ray clipped to bounds (camera_ray_bounds(scene), computed once per image),
+// starting no nearer than t_min (its block's cone start under the coarse pass).
 RayResult trace_within(const Scene& scene, const std::optional<BoundingSphere>& bounds, const glm::dvec3& origin,
-                       const glm::dvec3& direction) {
+                       const glm::dvec3& direction, double t_min = 0.0) {
   const MarchLimits limits = camera_march_limits(scene);
   // Under the cells tiling the march runs in the camera's cell; origin is the world position.
   const bool cells = scene.tiling && scene.tiling->method == TilingMethod::Cells;
@@ -108,6 +110,8 @@ RayResult trace_within(const Scene& scene, const std::optional<BoundingSphere>& 
     }
     marching = span && t_end > t_start;
   }
+  t_start = std::max(t_start, t_min);
+  marching = marching && t_end > t_start;
   MarchEnd end;
   if (marching) end = reference_march(scene, frame_origin, direction, t_start, t_end, limits);
   RayResult r;
@@ -140,6 +144,7 @@ FrameBuffers render_reference(const Scene& scene) {
   const int height = scene.render.height;
   const CameraBasis basis = camera_basis(scene.camera, width, height);
   const std::optional<BoundingSphere> bounds = camera_ray_bounds(scene);
+  const std::optional<ConeStarts> cones = uses_cone_pass(scene) ? std::optional(reference_cone_starts(scene)) : std::nullopt;
   FrameBuffers fb(width, height);
   ProgressLine progress("reference rows", height, scene.render.width);
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
@@ -148,7 +153,7 @@ FrameBuffers render_reference(const Scene& scene) {
       // after its row; keep both).
       throw_if_cancelled();
       for (int i = 0; i < width; ++i) {
-        const RayResult r = trace_within(scene, bounds, basis.origin, pixel_ray_direction(basis, i, j));
+        const RayResult r = trace_within(scene, bounds, basis.origin, pixel_ray_direction(basis, i, j), cones ? cones->at_pixel(i, j) : 0.0);
         fb.at(Channel::R, i, j) = static_cast<float>(r.color.r);
         fb.at(Channel::G, i, j) = static_cast<float>(r.color.g);
         fb.at(Channel::B, i, j) = static_cast<float>(r.color.b);

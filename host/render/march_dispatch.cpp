@@ -130,6 +130,46 @@ std::size_t march_output_bytes(const Dispatch& dispatch) {
   return dispatch.plane_stride * CLMARCH_CHANNEL_COUNT * sizeof(float);
 }
 
+std::optional<ConePass> make_cone_pass(const PreparedProgram& program, const Scene& scene) {
+  if (!uses_cone_pass(scene)) return std::nullopt;
+  const DeviceProgram& dp = program.program;
+  const std::size_t blocks_x = (static_cast<std::size_t>(scene.render.width) + CLMARCH_COARSE_BLOCK - 1) / CLMARCH_COARSE_BLOCK;
+  const std::size_t blocks_y = (static_cast<std::size_t>(scene.render.height) + CLMARCH_COARSE_BLOCK - 1) / CLMARCH_COARSE_BLOCK;
+  ConePass cones;
+  cones.blocks = blocks_x * blocks_y;
+  cones.dispatch = plan_point_dispatch(dp.device, cones.blocks, program.lanes);
+  // The kernel stores whole vectors of lanes, padding included.
+  const std::size_t bytes = cones.dispatch.plane_stride * sizeof(float);
+  cones.starts = cl::Buffer(dp.context, CL_MEM_READ_WRITE, bytes);
+  cones.steps = cl::Buffer(dp.context, CL_MEM_WRITE_ONLY | CL_MEM_HOST_READ_ONLY, bytes);
+  cones.kernel = cl::Kernel(dp.program, "coarse_cones");
+  cones.kernel.setArg(1, cones.starts);
+  cones.kernel.setArg(2, cones.steps);
+  return cones;
+}
+
+cl::Event enqueue_cone_pass(cl::CommandQueue& queue, ConePass& cones, const MarchParams& params) {
+  cones.kernel.setArg(0, sizeof(MarchParams), &params);
+  cl::Event event;
+  queue.enqueueNDRangeKernel(cones.kernel, cl::NullRange, cl::NDRange(cones.dispatch.global_items),
+                             cl::NDRange(cones.dispatch.local_items), nullptr, &event);
+  return event;
+}
+
+std::vector<float> read_cone_plane(cl::CommandQueue& queue, const ConePass& cones, const cl::Buffer& plane) {
+  std::vector<float> values(cones.blocks);
+  queue.enqueueReadBuffer(plane, CL_TRUE, 0, values.size() * sizeof(float), values.data());
+  return values;
+}
+
+int bind_march_inputs(cl::Kernel& march, const cl::Buffer& out, const cl::Buffer& lights, const std::optional<ConePass>& cones) {
+  march.setArg(1, out);
+  march.setArg(2, lights);
+  if (!cones) return 3;
+  march.setArg(3, cones->starts);
+  return 4;
+}
+
 void for_each_chunk(cl::CommandQueue& queue, cl::Kernel& kernel, MarchParams params, const Dispatch& dispatch, int height,
                     const std::function<void(int first_row, int rows, const cl::Event& event)>& done) {
   for (int first_row = 0; first_row < height; first_row += dispatch.chunk_rows) {

@@ -9,6 +9,7 @@
 #include "scene/scene.hpp"
 
 #include <functional>
+#include <optional>
 #include <vector>
 
 namespace clmarch {
@@ -61,6 +62,26 @@ std::vector<cl_float4> light_data(const Scene& scene);
 
 /// Bytes of the march kernel's output buffer for dispatch (every plane, kernels/device_types.h).
 std::size_t march_output_bytes(const Dispatch& dispatch);
+/// The coarse cone pass of a program built with it (uses_cone_pass, kernels/coarse.cl): its kernel
+/// and, per block of CLMARCH_COARSE_BLOCK^2 pixels, where the block's rays start and the cone's
+/// steps. The march kernel reads the starts (bind_march_inputs).
+struct ConePass {
+  cl::Kernel kernel;
+  Dispatch dispatch;
+  std::size_t blocks = 0;
+  cl::Buffer starts;
+  cl::Buffer steps;
+};
+/// The cone pass of program for scene, or nothing when the scene has none.
+std::optional<ConePass> make_cone_pass(const PreparedProgram& program, const Scene& scene);
+/// Enqueues the cone pass with params (before the march's chunks, which read its starts).
+cl::Event enqueue_cone_pass(cl::CommandQueue& queue, ConePass& cones, const MarchParams& params);
+/// One value per block of the cone pass's starts or steps (a blocking read).
+std::vector<float> read_cone_plane(cl::CommandQueue& queue, const ConePass& cones, const cl::Buffer& plane);
+/// Sets the march kernel's arguments after params: out, lights, and the cone pass's starts when
+/// there is one. Returns the index of the next argument.
+int bind_march_inputs(cl::Kernel& march, const cl::Buffer& out, const cl::Buffer& lights, const std::optional<ConePass>& cones);
+
 /// Enqueues kernel (its argument 0 is params) once per chunk of rows and calls done(first_row, rows,
 /// event) after each dispatch was enqueued. Each dispatch writes the program's planes (PreparedProgram::
 /// planes) for every pixel of its rows. Polls cancellation between chunks.

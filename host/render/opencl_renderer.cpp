@@ -27,6 +27,7 @@ struct OpenClRenderer::State {
   cl::Buffer out;
   cl::Buffer lights;
   cl::Kernel kernel;
+  std::optional<ConePass> cones;
 };
 
 OpenClRenderer::OpenClRenderer(const Scene& scene, const OpenClOptions& options) : state_(std::make_unique<State>()) {
@@ -43,8 +44,8 @@ OpenClRenderer::OpenClRenderer(const Scene& scene, const OpenClOptions& options)
     s.lights = cl::Buffer(dp.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, lights.size() * sizeof(cl_float4),
                           const_cast<cl_float4*>(lights.data()));
     s.kernel = cl::Kernel(dp.program, "march");
-    s.kernel.setArg(1, s.out);
-    s.kernel.setArg(2, s.lights);
+    s.cones = make_cone_pass(s.prepared, scene);
+    bind_march_inputs(s.kernel, s.out, s.lights, s.cones);
   });
 }
 
@@ -62,7 +63,10 @@ RenderResult OpenClRenderer::render() {
   ProgressLine progress("OpenCL chunks", static_cast<long long>(chunk_count),
                         static_cast<double>(pixels) / static_cast<double>(chunk_count));
   double kernel_ms = 0.0;
+  std::uint64_t coarse_steps = 0;
   with_device_errors(dp.device, [&] {
+    std::optional<cl::Event> cones_done;
+    if (s.cones) cones_done = enqueue_cone_pass(dp.queue, *s.cones, s.params);
     // Planes the program does not write stay as FrameBuffers made them: 0.
     for_each_chunk(dp.queue, s.kernel, s.params, s.dispatch, height, [&](int first_row, int rows, const cl::Event& done) {
       const std::size_t first = static_cast<std::size_t>(first_row) * width;
@@ -75,6 +79,10 @@ RenderResult OpenClRenderer::render() {
       kernel_ms += event_milliseconds(done);
       progress.advance();
     });
+    if (cones_done) {
+      for (float steps : read_cone_plane(dp.queue, *s.cones, s.cones->steps)) coarse_steps += static_cast<std::uint64_t>(steps);
+      kernel_ms += event_milliseconds(*cones_done);
+    }
   });
 
   RenderStats& stats = result.stats;
@@ -85,6 +93,7 @@ RenderResult OpenClRenderer::render() {
   stats.chunks = static_cast<int>(chunk_count);
   stats.steps = plane_total(result.buffers.plane(Channel::Steps));
   stats.wall_steps = plane_total(result.buffers.plane(Channel::WallSteps));
+  stats.coarse_steps = coarse_steps;
   stats.rays_per_s = kernel_ms > 0.0 ? static_cast<double>(pixels) / (kernel_ms * 1e-3) : 0.0;
   return result;
 }

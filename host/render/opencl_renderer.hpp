@@ -35,12 +35,14 @@ struct RenderStats {
   std::string device;
   int lanes = 1;
   double build_ms = 0.0;
-  /// From the march kernel's profiling event.
+  /// From the profiling events of the march kernel (and of the coarse cone pass).
   double kernel_ms = 0.0;
   /// Sum of the steps buffer: march iterations over all pixels.
   std::uint64_t steps = 0;
   /// The part of steps that stepped to a cell wall (tiling's cell traversal).
   std::uint64_t wall_steps = 0;
+  /// Steps of the coarse cone pass, one cone per block of pixels (not part of steps).
+  std::uint64_t coarse_steps = 0;
   double rays_per_s = 0.0;
   /// Dispatches the image was split into.
   int chunks = 1;

@@ -145,6 +145,11 @@ inline constexpr const char* kHitThresholdNames[] = {"fixed", "pixel_cone"};
 enum class SceneBounds { None, Sphere };
 inline constexpr const char* kSceneBoundsNames[] = {"none", "sphere"};
 
+/// A coarse pass before the camera rays' march: none, or a cone per block of pixels
+/// (CLMARCH_COARSE_BLOCK in kernels/device_types.h) that gives the block's rays a safe start.
+enum class CoarsePass { None, Cone };
+inline constexpr const char* kCoarsePassNames[] = {"none", "cone"};
+
 /// Settings of the march itself.
 struct RenderSettings {
   int width = 640;
@@ -166,6 +171,8 @@ struct RenderSettings {
   /// sphere: unions and subtractions skip an expensive bounded subtree wherever its bounding sphere
   /// shows it cannot change the result (host/codegen/sdf_codegen.cpp).
   SceneBounds subtree_bounds = SceneBounds::Sphere;
+  /// cone: camera rays start where their block's cone march stopped (docs/scene-format.md).
+  CoarsePass coarse_pass = CoarsePass::None;
 
   bool operator==(const RenderSettings&) const = default;
 };

@@ -114,6 +114,11 @@ std::optional<BoundingSphere> camera_ray_bounds(const Scene& scene) {
   return b;
 }
 
+bool uses_cone_pass(const Scene& scene) {
+  const bool cells = scene.tiling && scene.tiling->method == TilingMethod::Cells;
+  return scene.render.coarse_pass == CoarsePass::Cone && !cells;
+}
+
 std::optional<RaySpan> ray_sphere_span(const glm::dvec3& origin, const glm::dvec3& dir, const BoundingSphere& sphere) {
   const glm::dvec3 offset = origin - sphere.center;
   const double b = glm::dot(offset, dir);

@@ -26,6 +26,10 @@ std::optional<BoundingSphere> node_bounds(const Node& node);
 /// Nothing when render.bounds is none, the tree is unbounded, or the scene is tiled.
 std::optional<BoundingSphere> camera_ray_bounds(const Scene& scene);
 
+/// Whether camera rays start where their block's cone stopped (render.coarse_pass: cone; the
+/// loader refuses it with the cells tiling, whose march keeps to one cell at a time).
+bool uses_cone_pass(const Scene& scene);
+
 /// The part [t_enter, t_exit] of the ray origin + t dir (dir unit) inside sphere; nothing if the
 /// ray's line misses it. t_enter may be negative (origin inside).
 struct RaySpan {

@@ -40,7 +40,14 @@ class SceneReader {
     scene.sdf = read_node(yaml_.required(root, "sdf", "sdf (the distance field tree)"), "sdf", 1);
     if (const YAML::Node lights = root["lights"]) scene.lights = read_lights(lights);
     if (const YAML::Node shading = root["shading"]) scene.shading = read_shading(shading);
-    if (const YAML::Node tiling = root["tiling"]) scene.tiling = read_tiling(tiling);
+    if (const YAML::Node tiling = root["tiling"]) {
+      scene.tiling = read_tiling(tiling);
+      if (scene.tiling->method == TilingMethod::Cells && scene.render.coarse_pass == CoarsePass::Cone) {
+        yaml_.fail(root["render"]["coarse_pass"],
+                   "render.coarse_pass: cone does not combine with tiling.method: cells (its march keeps to one cell at a time); "
+                   "use method: mod or coarse_pass: none");
+      }
+    }
     return scene;
   }
 
@@ -64,7 +71,8 @@ class SceneReader {
   RenderSettings read_render(const YAML::Node& node) {
     RenderSettings render;
     yaml_.expect_map(node, "render", {"width", "height", "max_steps", "epsilon", "max_distance", "normal_method", "normal_epsilon",
-                                      "over_relaxation", "hit_threshold", "cone_factor", "bounds", "subtree_bounds"});
+                                      "over_relaxation", "hit_threshold", "cone_factor", "bounds", "subtree_bounds",
+                                      "coarse_pass"});
     const Range side = Range::closed(1, kMaxImageSide);
     if (node["width"]) render.width = yaml_.integer(node["width"], "render.width", side);
     if (node["height"]) render.height = yaml_.integer(node["height"], "render.height", side);
@@ -80,6 +88,9 @@ class SceneReader {
     if (node["subtree_bounds"]) {
       render.subtree_bounds =
           static_cast<SceneBounds>(yaml_.choice(node["subtree_bounds"], "render.subtree_bounds", kSceneBoundsNames));
+    }
+    if (node["coarse_pass"]) {
+      render.coarse_pass = static_cast<CoarsePass>(yaml_.choice(node["coarse_pass"], "render.coarse_pass", kCoarsePassNames));
     }
     if (!image_size_fits(render.width, render.height)) {
       yaml_.fail(node, fmt::format("render.width x render.height = {} x {} exceeds {} pixels (got {}, expected at most {})",
