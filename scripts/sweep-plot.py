@@ -70,7 +70,8 @@ def pareto_front(points, larger_is_better):
 def plot(rows, title, output, time_column):
     fig, axes = plt.subplots(2, 2, figsize=(12, 9))
     groups = sorted({axis_of(r) for r in rows}, key=lambda g: (g != "base", g))
-    colors = {g: plt.cm.tab10(i % 10) for i, g in enumerate(groups)}
+    # tab20 keeps up to 20 swept settings apart (tab10 repeated its colours past 10).
+    colors = {g: plt.cm.tab20(i % 20) for i, g in enumerate(groups)}
     for ax, (column, label, larger_is_better) in zip(axes.flat, MEASURES):
         values = [r[column] for r in rows]
         finite = [v for v in values if math.isfinite(v)]
