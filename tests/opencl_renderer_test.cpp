@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace clmarch {
@@ -25,6 +26,31 @@ TEST(OpenClRenderer, ChunkedDispatchEqualsOneDispatch) {
       EXPECT_EQ(a.buffers.planes[c], b.buffers.planes[c]) << kChannelNames[c] << " lanes " << lanes;
     }
   }
+}
+
+// A color image alone (Color) writes what the full shaded program writes but the normal planes,
+// which stay 0; the program still computes normals for the shading. A scene with a reflection
+// and occlusion, so that every use of the normal shows in the color.
+TEST(OpenClRenderer, ColorProgramEqualsTheShadedOneWithoutNormalPlanes) {
+  const Scene scene = testing::scene_from_yaml(
+      "sdf:\n  union:\n    - torus: {color: [0.9, 0.3, 0.2], reflectivity: 0.5}\n    - plane: {normal: [0, 1, 0], offset: -0.5}\n"
+      "render: {width: 61, height: 37}\nlights:\n  - point: {position: [2, 3, 1]}\n"
+      "shading: {model: blinn_phong, step_ao: 200, reflections: 1, ambient_occlusion: {}, shadows: {mode: soft}}\n");
+  OpenClOptions shaded, color;
+  shaded.purpose = KernelPurpose::Shaded;
+  color.purpose = KernelPurpose::Color;
+  const FrameBuffers a = render_opencl(scene, shaded).buffers;
+  const FrameBuffers b = render_opencl(scene, color).buffers;
+  for (Channel c : {Channel::R, Channel::G, Channel::B, Channel::Depth, Channel::Steps}) {
+    EXPECT_EQ(a.plane(c), b.plane(c)) << kChannelNames[static_cast<int>(c)];
+  }
+  const auto zero = [](const std::vector<float>& plane) {
+    return std::all_of(plane.begin(), plane.end(), [](float v) { return v == 0.0f; });
+  };
+  for (Channel c : {Channel::NX, Channel::NY, Channel::NZ}) EXPECT_TRUE(zero(b.plane(c)));
+  EXPECT_FALSE(zero(a.plane(Channel::NY)));
+  EXPECT_EQ(generate_kernel_source(scene, {KernelPurpose::Color, 16}).find("#define WRITE_NORMALS"), std::string::npos);
+  EXPECT_NE(generate_kernel_source(scene, {KernelPurpose::Shaded, 16}).find("#define WRITE_NORMALS"), std::string::npos);
 }
 
 TEST(OpenClRenderer, CpuWorkItemsMarchPairsOfPacketsExceptUnderTheCellsTiling) {

@@ -31,7 +31,7 @@ namespace {
 /// The kernel work the outputs need: buffers include normals, the image needs what its view shows.
 KernelPurpose purpose_for(const Scene& scene, bool want_buffers) {
   switch (scene.shading.view) {
-    case View::Shaded: return KernelPurpose::Shaded;
+    case View::Shaded: return want_buffers ? KernelPurpose::Shaded : KernelPurpose::Color;
     case View::Normals: return KernelPurpose::Normals;
     default: return want_buffers ? KernelPurpose::Normals : KernelPurpose::DepthSteps;
   }

@@ -88,7 +88,9 @@ std::string feature_defines(const Scene& scene, const KernelOptions& options) {
   if (options.variant.precision == Precision::Double) out += "#define DOUBLE_PRECISION\n";
   if (options.variant.native_math) out += "#define NATIVE_MATH\n";
   const MarchOutputs outputs = march_outputs(scene, options.purpose);
-  if (outputs.normals) {
+  // Shading needs the normal whether or not its planes are written.
+  if (outputs.normals) out += "#define WRITE_NORMALS\n";
+  if (outputs.normals || outputs.color) {
     out += "#define NEED_NORMALS\n";
     if (scene.render.normal_method == NormalMethod::Tetrahedral) out += "#define NORMAL_TETRAHEDRAL\n";
     if (scene.render.normal_method == NormalMethod::Forward) out += "#define NORMAL_FORWARD\n";
@@ -144,7 +146,7 @@ std::vector<int> MarchOutputs::planes() const {
 MarchOutputs march_outputs(const Scene& scene, KernelPurpose purpose) {
   MarchOutputs outputs;
   outputs.normals = purpose == KernelPurpose::Normals || purpose == KernelPurpose::Shaded;
-  outputs.color = purpose == KernelPurpose::Shaded;
+  outputs.color = purpose == KernelPurpose::Shaded || purpose == KernelPurpose::Color;
   outputs.wall_steps = scene.tiling && scene.tiling->method == TilingMethod::Cells;
   return outputs;
 }
@@ -183,7 +185,7 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
   if (scene.tiling && scene.tiling->method == TilingMethod::Cells) src += kernel_file("tiling.cl");
   if (uses_cone_pass(scene)) src += kernel_file("coarse.cl");
   const MarchOutputs outputs = march_outputs(scene, options.purpose);
-  if (outputs.normals) src += kernel_file("normals.cl");
+  if (outputs.normals || outputs.color) src += kernel_file("normals.cl");
   if (outputs.color) {
     src += kernel_file("shading.cl");
     src += kernel_file("atmosphere.cl");

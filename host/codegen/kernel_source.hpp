@@ -17,6 +17,9 @@ enum class KernelPurpose {
   Normals,
   /// The march kernel with normals and the lit color.
   Shaded,
+  /// The lit color without the normal planes (a color image alone: the shading still computes
+  /// normals, the kernel does not store them).
+  Color,
   /// The eval_points kernel (tests against closed forms).
   EvalPoints,
   /// The benchmark's ceiling: the depth-only march kernel recording every point it evaluates
@@ -54,7 +57,7 @@ struct KernelOptions {
 /// What a march program computes beyond depth and steps, and so which planes of the output buffer
 /// its kernel writes (kernels/march.cl; channel numbers of kernels/device_types.h).
 struct MarchOutputs {
-  bool normals = false;     ///< NEED_NORMALS: N.x, N.y, N.z
+  bool normals = false;     ///< WRITE_NORMALS: N.x, N.y, N.z
   bool color = false;       ///< NEED_SHADING: R, G, B
   bool wall_steps = false;  ///< the cells tiling: wall steps
 
