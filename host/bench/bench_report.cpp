@@ -29,6 +29,7 @@ BenchReport run_bench(const Scene& scene, const OpenClOptions& options, const Be
   // three kernels take turns, so that a change in the machine's load touches all of them and not
   // their ratios.
   RenderResult last_shaded = shaded_renderer.render();
+  r.build_ms = last_shaded.stats.build_ms;
   RenderResult last_depth = depth_renderer.render();
   ceiling.run_ms();
   std::vector<double> shaded_ms, depth_ms, ceiling_ms;
@@ -42,7 +43,6 @@ BenchReport run_bench(const Scene& scene, const OpenClOptions& options, const Be
   r.shaded_ms = median(shaded_ms);
   r.device = last_shaded.stats.device;
   r.lanes = last_shaded.stats.lanes;
-  r.build_ms = last_shaded.stats.build_ms;
   r.rays_per_s = pixels / (r.shaded_ms * 1e-3);
 
   // Only the march (and the coarse cone pass, if any: one evaluation per block and step) runs in the

@@ -113,7 +113,11 @@ struct FrameFiles {
   std::string dump_kernel;
 };
 
-RenderResult render_scene(const RenderCommandOptions& options, const Scene& scene, const FrameFiles& files) {
+/// Renders scene with the options' backend. The frames of a sequence pass renderer: the OpenCL
+/// renderer of the previous frame, kept when this frame's program is the same (a moving camera or
+/// light), replaced when it is not (an animated shape is baked into the program).
+RenderResult render_scene(const RenderCommandOptions& options, const Scene& scene, const FrameFiles& files,
+                          std::optional<OpenClRenderer>* renderer = nullptr) {
   if (options.backend == "reference") {
     log_verbose(fmt::format("rendering on the CPU reference (double precision, {} threads)",
                             tbb::this_task_arena::max_concurrency()));
@@ -134,7 +138,16 @@ RenderResult render_scene(const RenderCommandOptions& options, const Scene& scen
   OpenClOptions cl = opencl_options(options.scene);
   cl.purpose = purpose_for(scene, !files.buffers.empty());
   cl.dump_kernel_path = files.dump_kernel;
-  RenderResult result = render_opencl(scene, cl);
+  std::optional<OpenClRenderer> single;
+  if (!renderer) renderer = &single;
+  if (*renderer && (*renderer)->can_render(scene, cl)) {
+    log_verbose("same program as the previous frame: no build");
+    if (!files.dump_kernel.empty()) write_file_atomically(files.dump_kernel, (*renderer)->source());
+    (*renderer)->set_scene(scene);
+  } else {
+    renderer->emplace(scene, cl);
+  }
+  RenderResult result = (*renderer)->render();
   // The renderer's dispatch takes default_local_size for its work-groups (render/march_dispatch.cpp).
   log_verbose(fmt::format("lanes {} (pixels per work-item), local size {}, {} chunk{}, kernel {:.1f} ms",
                           result.stats.lanes, default_local_size(select_device(options.scene.device)),
@@ -144,8 +157,8 @@ RenderResult render_scene(const RenderCommandOptions& options, const Scene& scen
 
 /// Renders and writes one image (and its buffers); frame is set for sequences.
 void render_image(const RenderCommandOptions& options, const Scene& scene, const FrameFiles& files,
-                  std::optional<int> frame) {
-  RenderResult result = render_scene(options, scene, files);
+                  std::optional<int> frame, std::optional<OpenClRenderer>* renderer = nullptr) {
+  RenderResult result = render_scene(options, scene, files, renderer);
   // A Ctrl-C that came too late for the renderer's own checks still writes nothing.
   throw_if_cancelled();
   apply_view(result.buffers, scene.shading.view, scene.render);
@@ -174,6 +187,7 @@ void render_image(const RenderCommandOptions& options, const Scene& scene, const
 void render_sequence(const RenderCommandOptions& options, const std::string& output) {
   const FrameRange range = parse_frame_range(options.frames, options.fps);
   std::optional<ProgressLine> progress;
+  std::optional<OpenClRenderer> renderer;
   for (int frame = range.first; frame <= range.last; ++frame) {
     const Scene scene = load_scene_with_options(options.scene, range.time_of(frame));
     if (!progress) progress.emplace("frames", range.count(), static_cast<double>(scene.render.width) * scene.render.height);
@@ -181,7 +195,7 @@ void render_sequence(const RenderCommandOptions& options, const std::string& out
     if (!options.buffers.empty()) files.buffers = frame_path(options.buffers, frame, range);
     if (!options.dump_kernel.empty()) files.dump_kernel = frame_path(options.dump_kernel, frame, range);
     log_verbose(fmt::format("frame {} at t = {} s", frame, scene.time));
-    render_image(options, scene, files, frame);
+    render_image(options, scene, files, frame, &renderer);
     progress->advance();
   }
 }

@@ -37,7 +37,7 @@ PreparedProgram prepare_program(const Scene& scene, const OpenClOptions& options
   const bool march = purpose != KernelPurpose::EvalPoints;
   return {build_device_program(device, source, kernel_build_options(options.variant)), kernel_options.lanes,
           march ? packets_per_item(scene, kernel_options.lanes) : 1,
-          march ? march_outputs(scene, purpose).planes() : std::vector<int>{}};
+          march ? march_outputs(scene, purpose).planes() : std::vector<int>{}, source};
 }
 
 int packet_width(int lanes) { return lanes == 1 ? 1 : lanes == 4 ? 2 : 4; }

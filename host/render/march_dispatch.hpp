@@ -10,6 +10,7 @@
 
 #include <functional>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace clmarch {
@@ -21,6 +22,8 @@ struct PreparedProgram {
   int lanes = 1;
   int packets_per_item = 1;
   std::vector<int> planes;
+  /// The generated OpenCL C it was built from.
+  std::string source;
 };
 
 /// Generates and builds the scene's program for purpose (writing it to options.dump_kernel_path

@@ -21,6 +21,8 @@ std::uint64_t plane_total(const std::vector<float>& plane) {
 
 struct OpenClRenderer::State {
   Scene scene;
+  OpenClOptions options;
+  bool rendered = false;
   PreparedProgram prepared;
   Dispatch dispatch;
   MarchParams params;
@@ -33,6 +35,7 @@ struct OpenClRenderer::State {
 OpenClRenderer::OpenClRenderer(const Scene& scene, const OpenClOptions& options) : state_(std::make_unique<State>()) {
   State& s = *state_;
   s.scene = scene;
+  s.options = options;
   s.prepared = prepare_program(scene, options, options.purpose);
   DeviceProgram& dp = s.prepared.program;
   const std::size_t chunk_limit = options.max_chunk_pixels ? options.max_chunk_pixels : chunk_pixels_for(dp.device);
@@ -50,6 +53,34 @@ OpenClRenderer::OpenClRenderer(const Scene& scene, const OpenClOptions& options)
 }
 
 OpenClRenderer::~OpenClRenderer() = default;
+
+bool OpenClRenderer::can_render(const Scene& scene, const OpenClOptions& options) const {
+  const State& s = *state_;
+  const OpenClOptions& mine = s.options;
+  if (scene.render.width != s.scene.render.width || scene.render.height != s.scene.render.height) return false;
+  if (options.device != mine.device || options.lanes != mine.lanes || options.purpose != mine.purpose ||
+      !(options.variant == mine.variant) || options.max_chunk_pixels != mine.max_chunk_pixels) {
+    return false;
+  }
+  KernelOptions kernel_options;
+  kernel_options.purpose = options.purpose;
+  kernel_options.lanes = s.prepared.lanes;
+  kernel_options.variant = options.variant;
+  return generate_kernel_source(scene, kernel_options) == s.prepared.source;
+}
+
+void OpenClRenderer::set_scene(const Scene& scene) {
+  State& s = *state_;
+  s.scene = scene;
+  s.params = march_params(scene, s.dispatch);
+  // The same source has the same LIGHT_COUNT, so the buffer keeps its size.
+  const std::vector<cl_float4> lights = light_data(scene);
+  with_device_errors(s.prepared.program.device, [&] {
+    s.prepared.program.queue.enqueueWriteBuffer(s.lights, CL_TRUE, 0, lights.size() * sizeof(cl_float4), lights.data());
+  });
+}
+
+const std::string& OpenClRenderer::source() const { return state_->prepared.source; }
 
 RenderResult OpenClRenderer::render() {
   State& s = *state_;
@@ -88,7 +119,8 @@ RenderResult OpenClRenderer::render() {
   RenderStats& stats = result.stats;
   stats.device = dp.device.label();
   stats.lanes = s.prepared.lanes;
-  stats.build_ms = dp.build_ms;
+  stats.build_ms = s.rendered ? 0.0 : dp.build_ms;
+  s.rendered = true;
   stats.kernel_ms = kernel_ms;
   stats.chunks = static_cast<int>(chunk_count);
   stats.steps = plane_total(result.buffers.plane(Channel::Steps));

@@ -58,9 +58,9 @@ struct RenderResult {
 /// normals, N stays 0. Polls cancellation between chunks.
 RenderResult render_opencl(const Scene& scene, const OpenClOptions& options);
 
-/// render_opencl for one scene again and again (benchmarks): the program, the kernel and the output
-/// buffer are made once, so later renders time the march alone, not the build or the first touch
-/// of fresh buffer pages.
+/// render_opencl again and again (benchmarks, the frames of an animation): the program, the kernel
+/// and the output buffer are made once, so later renders neither build nor touch fresh buffer
+/// pages, and time the march alone.
 class OpenClRenderer {
  public:
   OpenClRenderer(const Scene& scene, const OpenClOptions& options);
@@ -68,7 +68,17 @@ class OpenClRenderer {
   OpenClRenderer(const OpenClRenderer&) = delete;
   OpenClRenderer& operator=(const OpenClRenderer&) = delete;
 
+  /// Renders the current scene. Its build_ms is the build's on the first render, 0 after.
   RenderResult render();
+
+  /// Whether scene can be rendered with this program and buffers: the same image size, options
+  /// (but dump_kernel_path) and generated source, so only what the kernel takes as arguments
+  /// differs (the camera and lights, march limits).
+  bool can_render(const Scene& scene, const OpenClOptions& options) const;
+  /// Makes scene the current one; can_render(scene, ...) must hold.
+  void set_scene(const Scene& scene);
+  /// The generated source of the program.
+  const std::string& source() const;
 
  private:
   struct State;
