@@ -140,7 +140,9 @@ TEST(ConePass, SameImageFewerSteps) {
     const CheckReport report = cross_check(c.scene, b, a);
     EXPECT_EQ(report.mask_mismatch_interior, 0) << name;
     EXPECT_LE(report.mask_mismatch_silhouette, report.tolerances.mask_mismatch_silhouette) << name;
-    if (c.exact_field) EXPECT_LE(report.depth_in_tolerances.max, 1.0) << name;
+    if (c.exact_field) {
+      EXPECT_LE(report.depth_in_tolerances.max, 1.0) << name;
+    }
     EXPECT_GT(report.both_hit, 1000) << name;
   }
 }

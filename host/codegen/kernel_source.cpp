@@ -147,13 +147,12 @@ MarchOutputs march_outputs(const Scene& scene, KernelPurpose purpose) {
   MarchOutputs outputs;
   outputs.normals = purpose == KernelPurpose::Normals || purpose == KernelPurpose::Shaded;
   outputs.color = purpose == KernelPurpose::Shaded || purpose == KernelPurpose::Color;
-  outputs.wall_steps = scene.tiling && scene.tiling->method == TilingMethod::Cells;
+  outputs.wall_steps = uses_cells_tiling(scene);
   return outputs;
 }
 
 int packets_per_item(const Scene& scene, int lanes) {
-  const bool cells = scene.tiling && scene.tiling->method == TilingMethod::Cells;
-  return lanes > 1 && !cells ? 2 : 1;
+  return lanes > 1 && !uses_cells_tiling(scene) ? 2 : 1;
 }
 
 std::string generate_kernel_source(const Scene& scene, const KernelOptions& options) {
@@ -182,7 +181,7 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
   src += kernel_file("field.cl");
   src += kernel_file("camera.cl");
   src += kernel_file("march_loop.cl");
-  if (scene.tiling && scene.tiling->method == TilingMethod::Cells) src += kernel_file("tiling.cl");
+  if (uses_cells_tiling(scene)) src += kernel_file("tiling.cl");
   if (uses_cone_pass(scene)) src += kernel_file("coarse.cl");
   const MarchOutputs outputs = march_outputs(scene, options.purpose);
   if (outputs.normals || outputs.color) src += kernel_file("normals.cl");

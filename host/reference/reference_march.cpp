@@ -140,7 +140,7 @@ Field scene_field(const Scene& scene) {
 
 MarchEnd reference_march(const Scene& scene, const glm::dvec3& origin, const glm::dvec3& direction, double t_start,
                          double t_end, const MarchLimits& limits) {
-  if (scene.tiling && scene.tiling->method == TilingMethod::Cells) {
+  if (uses_cells_tiling(scene)) {
     return march_cells(scene, origin, direction, t_start, t_end, limits);
   }
   MarchEnd end = march_plain(scene_field(scene), origin, direction, t_start, t_end, limits);
@@ -149,7 +149,7 @@ MarchEnd reference_march(const Scene& scene, const glm::dvec3& origin, const glm
 }
 
 glm::dvec3 camera_origin_in_frame(const Scene& scene) {
-  if (scene.tiling && scene.tiling->method == TilingMethod::Cells) return offset_in_cell(scene.camera.position, scene.tiling->cell);
+  if (uses_cells_tiling(scene)) return offset_in_cell(scene.camera.position, scene.tiling->cell);
   return scene.camera.position;
 }
 

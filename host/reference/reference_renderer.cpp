@@ -96,8 +96,7 @@ RayResult trace_within(const Scene& scene, const std::optional<BoundingSphere>& 
                        const glm::dvec3& direction, double t_min = 0.0) {
   const MarchLimits limits = camera_march_limits(scene);
   // Under the cells tiling the march runs in the camera's cell; origin is the world position.
-  const bool cells = scene.tiling && scene.tiling->method == TilingMethod::Cells;
-  const glm::dvec3 frame_origin = cells ? origin - scene.camera.position + camera_origin_in_frame(scene) : origin;
+  const glm::dvec3 frame_origin = uses_cells_tiling(scene) ? origin - scene.camera.position + camera_origin_in_frame(scene) : origin;
   // Camera rays march only inside the scene's bounding sphere, if it has one (scene_bounds.hpp).
   double t_start = 0.0;
   double t_end = scene.render.max_distance;

@@ -28,10 +28,7 @@ std::size_t round_up(std::size_t n, std::size_t multiple) { return (n + multiple
 
 PreparedProgram prepare_program(const Scene& scene, const OpenClOptions& options, KernelPurpose purpose) {
   const DeviceEntry device = select_device(options.device);
-  KernelOptions kernel_options;
-  kernel_options.purpose = purpose;
-  kernel_options.lanes = options.lanes.value_or(default_lanes(device));
-  kernel_options.variant = options.variant;
+  const KernelOptions kernel_options{purpose, options.lanes.value_or(default_lanes(device)), options.variant};
   const std::string source = generate_kernel_source(scene, kernel_options);
   if (!options.dump_kernel_path.empty()) write_file_atomically(options.dump_kernel_path, source);
   const bool march = purpose != KernelPurpose::EvalPoints;

@@ -62,11 +62,7 @@ bool OpenClRenderer::can_render(const Scene& scene, const OpenClOptions& options
       !(options.variant == mine.variant) || options.max_chunk_pixels != mine.max_chunk_pixels) {
     return false;
   }
-  KernelOptions kernel_options;
-  kernel_options.purpose = options.purpose;
-  kernel_options.lanes = s.prepared.lanes;
-  kernel_options.variant = options.variant;
-  return generate_kernel_source(scene, kernel_options) == s.prepared.source;
+  return generate_kernel_source(scene, {options.purpose, s.prepared.lanes, options.variant}) == s.prepared.source;
 }
 
 void OpenClRenderer::set_scene(const Scene& scene) {

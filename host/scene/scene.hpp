@@ -329,4 +329,7 @@ struct Scene {
   std::string size_origin;
 };
 
+/// Whether camera rays walk the unit cells (tiling.method: cells) rather than a plain march.
+inline bool uses_cells_tiling(const Scene& scene) { return scene.tiling && scene.tiling->method == TilingMethod::Cells; }
+
 }  // namespace clmarch

@@ -115,8 +115,7 @@ std::optional<BoundingSphere> camera_ray_bounds(const Scene& scene) {
 }
 
 bool uses_cone_pass(const Scene& scene) {
-  const bool cells = scene.tiling && scene.tiling->method == TilingMethod::Cells;
-  return scene.render.coarse_pass == CoarsePass::Cone && !cells;
+  return scene.render.coarse_pass == CoarsePass::Cone && !uses_cells_tiling(scene);
 }
 
 std::optional<RaySpan> ray_sphere_span(const glm::dvec3& origin, const glm::dvec3& dir, const BoundingSphere& sphere) {

@@ -42,7 +42,7 @@ class SceneReader {
     if (const YAML::Node shading = root["shading"]) scene.shading = read_shading(shading);
     if (const YAML::Node tiling = root["tiling"]) {
       scene.tiling = read_tiling(tiling);
-      if (scene.tiling->method == TilingMethod::Cells && scene.render.coarse_pass == CoarsePass::Cone) {
+      if (uses_cells_tiling(scene) && scene.render.coarse_pass == CoarsePass::Cone) {
         yaml_.fail(root["render"]["coarse_pass"],
                    "render.coarse_pass: cone does not combine with tiling.method: cells (its march keeps to one cell at a time); "
                    "use method: mod or coarse_pass: none");
