@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <string>
@@ -125,6 +126,19 @@ TEST(Bench, RecordedPointsAreTheMarchsSamples) {
   }
 }
 
+TEST(Bench, OutputFloorStoresEveryFloatOfEachRun) {
+  OpenClOptions options;
+  // 1000 floats round up to 63 whole rows of 16.
+  OutputFloorKernel output_floor(options, 1000);
+  EXPECT_EQ(output_floor.floats(), 1008u);
+  for (float run : {1.0f, 2.0f}) {
+    EXPECT_GE(output_floor.run_ms(), 0.0);
+    const std::vector<float> values = output_floor.read_back();
+    ASSERT_EQ(values.size(), 1008u);
+    EXPECT_EQ(std::count(values.begin(), values.end(), run), 1008) << "run " << run;
+  }
+}
+
 TEST(Bench, JsonHasEveryFigureAndTheyAreConsistent) {
   const testing::CommandResult r =
       run_clmarch({"bench", testing::source_path("scenes/torus.yaml").string(), "--size", "64x36", "--repeat", "2", "--json"});
@@ -133,7 +147,7 @@ TEST(Bench, JsonHasEveryFigureAndTheyAreConsistent) {
   for (const char* key : {"scene", "device", "lanes", "width", "height", "repeat", "build_ms", "kernel_ms", "depth_kernel_ms",
                           "rays_per_s", "steps_per_pixel", "evals_per_s", "ceiling_evals_per_s", "ceiling_kernel_ms",
                           "ceiling_points", "ceiling_samples", "ceiling_pixel_stride", "lane_use", "ceiling_ratio", "depth_to_shaded_ratio", "reference_ms",
-                          "opencl_to_reference_ratio"}) {
+                          "opencl_to_reference_ratio", "output_floor_ms", "output_floor_share", "output_floor_planes"}) {
     EXPECT_TRUE(j.contains(key)) << key << " missing in " << r.out;
   }
   const double pixels = 64.0 * 36.0;
@@ -155,6 +169,10 @@ TEST(Bench, JsonHasEveryFigureAndTheyAreConsistent) {
   EXPECT_TRUE(near(j["ceiling_ratio"], j["evals_per_s"].get<double>() / j["ceiling_evals_per_s"].get<double>())) << r.out;
   EXPECT_TRUE(near(j["depth_to_shaded_ratio"], depth / shaded)) << r.out;
   EXPECT_TRUE(near(j["opencl_to_reference_ratio"], shaded / reference)) << r.out;
+  // The torus's depth-only program stores depth and steps.
+  EXPECT_EQ(j["output_floor_planes"], 2);
+  EXPECT_GT(j["output_floor_ms"].get<double>(), 0.0);
+  EXPECT_TRUE(near(j["output_floor_share"], j["output_floor_ms"].get<double>() / depth)) << r.out;
 
   // Steps per pixel are the march's own count, as `render --stats` reports it.
   testing::TempDir dir;
@@ -174,7 +192,7 @@ TEST(Bench, NoReferenceAndText) {
   EXPECT_TRUE(j["opencl_to_reference_ratio"].is_null());
   const testing::CommandResult text = run_clmarch({"bench", torus, "--size", "32x18", "--repeat", "1"});
   ASSERT_EQ(text.exit_code, kExitOk) << text.err;
-  for (const char* part : {"shaded kernel", "depth-only kernel", "per pixel", "of the ceiling", "CPU reference"}) {
+  for (const char* part : {"shaded kernel", "depth-only kernel", "per pixel", "of the ceiling", "output floor", "CPU reference"}) {
     EXPECT_NE(text.out.find(part), std::string::npos) << part << " missing in:\n" << text.out;
   }
 }

@@ -3,6 +3,7 @@
 #include "bench/bench_report.hpp"
 
 #include "bench/throughput.hpp"
+#include "codegen/kernel_source.hpp"
 #include "reference/reference_renderer.hpp"
 
 #include <fmt/format.h>
@@ -23,22 +24,26 @@ BenchReport run_bench(const Scene& scene, const OpenClOptions& options, const Be
   OpenClOptions depth = options;
   depth.purpose = KernelPurpose::DepthSteps;
   CeilingKernel ceiling(scene, options);
+  r.output_floor_planes = static_cast<int>(march_outputs(scene, KernelPurpose::DepthSteps).planes().size());
+  OutputFloorKernel output_floor(options, static_cast<std::size_t>(r.output_floor_planes) * r.width * r.height);
   OpenClRenderer shaded_renderer(scene, shaded);
   OpenClRenderer depth_renderer(scene, depth);
   // One untimed round pays PoCL's work-group compiles and the first touch of the buffers; then the
-  // three kernels take turns, so that a change in the machine's load touches all of them and not
+  // four kernels take turns, so that a change in the machine's load touches all of them and not
   // their ratios.
   RenderResult last_shaded = shaded_renderer.render();
   r.build_ms = last_shaded.stats.build_ms;
   RenderResult last_depth = depth_renderer.render();
   ceiling.run_ms();
-  std::vector<double> shaded_ms, depth_ms, ceiling_ms;
+  output_floor.run_ms();
+  std::vector<double> shaded_ms, depth_ms, ceiling_ms, floor_ms;
   for (int i = 0; i < settings.repeat; ++i) {
     last_shaded = shaded_renderer.render();
     shaded_ms.push_back(last_shaded.stats.kernel_ms);
     last_depth = depth_renderer.render();
     depth_ms.push_back(last_depth.stats.kernel_ms);
     ceiling_ms.push_back(ceiling.run_ms());
+    floor_ms.push_back(output_floor.run_ms());
   }
   r.shaded_ms = median(shaded_ms);
   r.device = last_shaded.stats.device;
@@ -52,6 +57,8 @@ BenchReport run_bench(const Scene& scene, const OpenClOptions& options, const Be
   r.evals_per_s = static_cast<double>(last_depth.stats.steps + last_depth.stats.coarse_steps) / (r.depth_ms * 1e-3);
   r.lane_use = lane_use(last_depth.buffers.plane(Channel::Steps), r.width, r.height, r.lanes);
   r.depth_to_shaded = r.depth_ms / r.shaded_ms;
+  r.output_floor_ms = median(floor_ms);
+  r.output_floor_share = r.output_floor_ms / r.depth_ms;
 
   r.ceiling_ms = median(ceiling_ms);
   r.ceiling_points = ceiling.points();
@@ -91,6 +98,9 @@ nlohmann::json BenchReport::to_json() const {
           {"ceiling_points", ceiling_points},
           {"ceiling_ratio", ceiling_ratio},
           {"depth_to_shaded_ratio", depth_to_shaded},
+          {"output_floor_ms", output_floor_ms},
+          {"output_floor_share", output_floor_share},
+          {"output_floor_planes", output_floor_planes},
           {"reference_ms", or_null(reference_ms)},
           {"opencl_to_reference_ratio", or_null(opencl_to_reference)}};
 }
@@ -105,6 +115,8 @@ std::string BenchReport::to_text() const {
   out += fmt::format("  ceiling            {:9.3g} /s  ({} evaluations of {} march points{} in {:.2f} ms)\n", ceiling_evals_per_s,
                      ceiling_points, ceiling_samples,
                      ceiling_pixel_stride > 1 ? fmt::format(", every {}th pixel's", ceiling_pixel_stride) : "", ceiling_ms);
+  out += fmt::format("  output floor       {:9.2f} ms   {:.2f} of the depth-only time (storing its {} planes, nothing else)\n",
+                     output_floor_ms, output_floor_share, output_floor_planes);
   if (reference_ms) {
     out += fmt::format("  CPU reference      {:9.1f} ms   OpenCL shaded takes {:.3f} of it\n", *reference_ms, *opencl_to_reference);
   }

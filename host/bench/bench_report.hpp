@@ -53,6 +53,11 @@ struct BenchReport {
   double ceiling_ratio = 0.0;
   /// depth_ms / shaded_ms.
   double depth_to_shaded = 0.0;
+  /// Median time of the output floor (OutputFloorKernel) storing the floats of the depth-only
+  /// program's planes, and its share of depth_ms.
+  double output_floor_ms = 0.0;
+  double output_floor_share = 0.0;
+  int output_floor_planes = 0;
   /// Wall time of one CPU reference render, and shaded_ms / reference_ms.
   std::optional<double> reference_ms;
   std::optional<double> opencl_to_reference;

@@ -2,6 +2,7 @@
 #include "bench/throughput.hpp"
 
 #include "cl/cl_errors.hpp"
+#include "codegen/kernel_source.hpp"
 #include "render/march_dispatch.hpp"
 
 #include <algorithm>
@@ -132,6 +133,36 @@ double CeilingKernel::run_ms() {
                                [](std::uint64_t sum, cl_int c) { return sum + static_cast<std::uint64_t>(c); });
     return event_milliseconds(done);
   });
+}
+
+OutputFloorKernel::OutputFloorKernel(const OpenClOptions& options, std::size_t floats)
+    : program_(build_device_program(select_device(options.device), output_floor_source())),
+      floats_((std::max<std::size_t>(floats, 1) + 15) / 16 * 16) {
+  with_device_errors(program_.device, [&] {
+    planes_ = cl::Buffer(program_.context, CL_MEM_WRITE_ONLY, floats_ * sizeof(float));
+    kernel_ = cl::Kernel(program_.program, "fill_planes");
+    kernel_.setArg(0, planes_);
+  });
+}
+
+double OutputFloorKernel::run_ms() {
+  return with_device_errors(program_.device, [&] {
+    value_ += 1.0f;
+    kernel_.setArg(1, value_);
+    cl::Event done;
+    // The driver picks the work-group size: the floor is the fastest store, not the march's shape.
+    program_.queue.enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(floats_ / 16), cl::NullRange, nullptr, &done);
+    done.wait();
+    return event_milliseconds(done);
+  });
+}
+
+std::vector<float> OutputFloorKernel::read_back() {
+  std::vector<float> values(floats_);
+  with_device_errors(program_.device, [&] {
+    program_.queue.enqueueReadBuffer(planes_, CL_TRUE, 0, floats_ * sizeof(float), values.data());
+  });
+  return values;
 }
 
 }  // namespace clmarch

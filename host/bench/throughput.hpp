@@ -1,5 +1,5 @@
-// Measuring blocks of the benchmarks: medians, lane use, and the throughput ceiling of a scene's
-// distance function (the replay_samples kernel of kernels/replay.cl).
+// Measuring blocks of the benchmarks: medians, lane use, the throughput ceiling of a scene's
+// distance function (the replay_samples kernel of kernels/replay.cl) and the output floor.
 #pragma once
 
 #include "cl/device_program.hpp"
@@ -69,6 +69,27 @@ class CeilingKernel {
   cl::Buffer sums_;
   cl::Buffer evaluations_;
   std::uint64_t counted_ = 0;
+};
+
+/// The output floor: the device storing as many floats as a march program writes per frame and
+/// doing nothing else (fill_planes of kernels/output_floor.cl, 16 floats per work-item, the count
+/// rounded up to whole rows of 16). Built once, run often; each run stores a new value.
+class OutputFloorKernel {
+ public:
+  OutputFloorKernel(const OpenClOptions& options, std::size_t floats);
+  /// Fills the buffer once; returns its milliseconds from the profiling event.
+  double run_ms();
+  /// Floats stored per run.
+  std::size_t floats() const { return floats_; }
+  /// The buffer as the last run left it.
+  std::vector<float> read_back();
+
+ private:
+  DeviceProgram program_;
+  std::size_t floats_ = 0;
+  cl::Kernel kernel_;
+  cl::Buffer planes_;
+  float value_ = 0.0f;
 };
 
 }  // namespace clmarch

@@ -17,7 +17,8 @@ CLI::App* add_bench_command(CLI::App& app, BenchCommandOptions& options) {
       "bench", "Measure a scene's kernel times, rays/s, steps and distance evaluations/s against the device's ceiling");
   bench->footer(
       "Kernel times are medians of --repeat runs from OpenCL profiling events. The ceiling is the scene's\n"
-      "distance function evaluated without divergence (docs/performance.md).\n"
+      "distance function evaluated without divergence; the output floor, a kernel that only stores as many\n"
+      "floats as the depth-only frame (docs/performance.md).\n"
       "Examples:\n"
       "  clmarch bench scenes/torus.yaml --size 1280x720\n"
       "  clmarch bench scenes/torus.yaml --set render.over_relaxation=1.2 --repeat 9 --json\n"

@@ -194,6 +194,8 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
   return src;
 }
 
+std::string output_floor_source() { return kernel_file("output_floor.cl"); }
+
 std::string kernel_build_options(const KernelVariant& variant) {
   std::string options = kBuildOptions;
   if (variant.fast_math) options += " -cl-fast-relaxed-math";

@@ -82,6 +82,9 @@ inline constexpr const char* kDoubleNeedsVectorLanes =
 /// and for double precision with 1 lane.
 std::string generate_kernel_source(const Scene& scene, const KernelOptions& options);
 
+/// The output floor's program (kernels/output_floor.cl): fill_planes, which only stores.
+std::string output_floor_source();
+
 /// The build options of a variant: kBuildOptions, plus -cl-fast-relaxed-math when asked. They key
 /// the driver's program cache together with the source (PoCL hashes both).
 std::string kernel_build_options(const KernelVariant& variant);

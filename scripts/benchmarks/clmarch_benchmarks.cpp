@@ -1,9 +1,11 @@
 // Benchmarks of the scenes (scenes/torus.yaml, scenes/mandelbulb.yaml) at 1280x720: the
-// shaded and the depth-only render, and the throughput ceiling of the scene's distance function
-// (CeilingKernel: the march's own points replayed densely). Times are the kernels' own, from
-// OpenCL profiling events (manual time); counters give rays/s and distance evaluations/s.
+// shaded and the depth-only render, the throughput ceiling of the scene's distance function
+// (CeilingKernel: the march's own points replayed densely) and the output floor of its depth-only
+// frame (OutputFloorKernel: its planes stored, nothing else). Times are the kernels' own, from
+// OpenCL profiling events (manual time); counters give rays/s, distance evaluations/s and bytes/s.
 #include "bench/throughput.hpp"
 #include "cl/devices.hpp"
+#include "codegen/kernel_source.hpp"
 #include "scene/scene_loader.hpp"
 
 #include <benchmark/benchmark.h>
@@ -54,9 +56,23 @@ void BM_Ceiling(benchmark::State& state, const std::string& name) {
   state.counters["evals/s"] = benchmark::Counter(evaluations, benchmark::Counter::kIsRate);
 }
 
+void BM_OutputFloor(benchmark::State& state, const std::string& name) {
+  const Scene scene = scene_1280x720(name);
+  const std::size_t planes = march_outputs(scene, KernelPurpose::DepthSteps).planes().size();
+  OutputFloorKernel output_floor(OpenClOptions{}, planes * scene.render.width * scene.render.height);
+  output_floor.run_ms();  // PoCL compiles the work-group function at the first enqueue
+  double bytes = 0.0;
+  for (auto _ : state) {
+    state.SetIterationTime(output_floor.run_ms() * 1e-3);
+    bytes += static_cast<double>(output_floor.floats() * sizeof(float));
+  }
+  state.counters["bytes/s"] = benchmark::Counter(bytes, benchmark::Counter::kIsRate);
+}
+
 BENCHMARK_CAPTURE(BM_Shaded, torus, std::string("torus"))->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_DepthOnly, torus, std::string("torus"))->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Ceiling, torus, std::string("torus"))->UseManualTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_OutputFloor, torus, std::string("torus"))->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Shaded, mandelbulb, std::string("mandelbulb"))->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_DepthOnly, mandelbulb, std::string("mandelbulb"))->UseManualTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Ceiling, mandelbulb, std::string("mandelbulb"))->UseManualTime()->Unit(benchmark::kMillisecond);
