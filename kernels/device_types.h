@@ -57,10 +57,15 @@ typedef struct MarchParams {
   CLMARCH_FLOAT camera_height; /* world y of the camera, for height fog */
   CLMARCH_FLOAT over_relaxation; /* camera rays' omega in [1, 2); 1 = plain sphere tracing */
   CLMARCH_FLOAT hit_cone_slope;  /* camera rays hit below max(epsilon, hit_cone_slope * t); 0 = fixed */
+  /* With bounds: the image's tiles in columns live_columns[0] .. live_columns[1] and rows
+     live_rows[0] .. live_rows[1] (both included) hold every tile whose rays may meet the sphere
+     (host/render/march_dispatch.cpp, live_tiles); the others miss it. */
+  CLMARCH_INT live_columns[2];
+  CLMARCH_INT live_rows[2];
 } MarchParams;
 
 #ifndef __OPENCL_VERSION__
-static_assert(sizeof(MarchParams) == 7 * 16 + 12 * 4, "MarchParams layout must match OpenCL C");
+static_assert(sizeof(MarchParams) == 7 * 16 + 16 * 4, "MarchParams layout must match OpenCL C");
 #endif
 
 #endif

@@ -122,11 +122,18 @@ typedef struct {
   vfloat t_start, t_end;
 } Packet;
 
-/* Whether no ray through the tile whose top-left pixel is (x0, y0) can meet the bounding sphere,
- * by one scalar test for the tile, without a square root: the host's tile_reach.x is reach^2
- * (host/render/march_dispatch.cpp: the sphere's radius plus how far the tile's rays spread from its
- * centre ray, times |c|), and the centre ray q passes the sphere's centre c at |c x q| / |q|. */
+/* Whether no ray through the tile whose top-left pixel is (x0, y0) can meet the bounding sphere.
+ * Tiles outside the host's range of live tiles (MarchParams live_columns, live_rows) take two
+ * integer tests; inside it, one scalar test without a square root decides: the host's
+ * tile_reach.x is reach^2 (host/render/march_dispatch.cpp: the sphere's radius plus how far the
+ * tile's rays spread from its centre ray, times |c|), and the centre ray q passes the sphere's
+ * centre c at |c x q| / |q|. */
 SDF_INLINE int tile_misses_bounds(const MarchParams* params, int x0, int y0) {
+  const int column = x0 / PACKET_WIDTH, row = y0 / PACKET_HEIGHT;
+  if (column < params->live_columns[0] || column > params->live_columns[1] || row < params->live_rows[0] ||
+      row > params->live_rows[1]) {
+    return 1;
+  }
   const float4 c = params->bounds; /* xyz = camera - centre; |c x q| is the same for -c */
   const float4 q = camera_plane_point(params, (float)x0 + 0.5f * PACKET_WIDTH, (float)y0 + 0.5f * PACKET_HEIGHT);
   const float cross_x = c.y * q.z - c.z * q.y, cross_y = c.z * q.x - c.x * q.z, cross_z = c.x * q.y - c.y * q.x;

@@ -3,10 +3,12 @@
 // clipped to the bound equal unclipped ones with fewer distance evaluations.
 #include "reference/reference_renderer.hpp"
 #include "reference/reference_sdf.hpp"
+#include "render/march_dispatch.hpp"
 #include "render/opencl_renderer.hpp"
 #include "scene/scene_bounds.hpp"
 #include "support/test_support.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -173,13 +175,26 @@ TEST(CameraRayBounds, TilesSkippedWholeByDepthProgramsAreMissesOfTheShadedOnes) 
   // sphere fills the view) to far (the sphere covers a few pixels, where a tile's spread matters
   // most), and with chunks of 8 rows in one buffer, so that a tile left unwritten would keep an
   // earlier chunk's values. Planes a program does not compute read back as 0.
-  const std::vector<std::pair<std::string, std::string>> cameras = {
-      {"[0, 0.5, 2.2]", "50"}, {"[-2, 4, 4]", "50"}, {"[30, 12, -25]", "20"}, {"[150, 40, 90]", "4"}};
+  // Also with the sphere at each edge and corner of the view (where the host's range of live tiles
+  // ends), behind the camera, around it, and seen through a wide lens.
+  struct View {
+    const char* position;
+    const char* look_at;
+    const char* fov;
+  };
+  const View views[] = {{"[0, 0.5, 2.2]", "[0.3, 0, 0.1]", "50"}, {"[-2, 4, 4]", "[0.3, 0, 0.1]", "50"},
+                        {"[30, 12, -25]", "[0.3, 0, 0.1]", "20"}, {"[150, 40, 90]", "[0.3, 0, 0.1]", "4"},
+                        {"[0, 0, 6]", "[2.6, 0, 0]", "50"},        {"[0, 0, 6]", "[-2.2, 1.7, 0]", "50"},
+                        {"[0, 0, 6]", "[0, -2.1, 0]", "50"},       {"[0, 0, 6]", "[0, 0, 12]", "50"},
+                        {"[0.2, 0.1, 0.3]", "[3, 1, 2]", "50"},    {"[0, 3, 2]", "[0, 2.2, -1]", "150"}};
   const auto all_zero = [](const std::vector<float>& plane) {
     return std::all_of(plane.begin(), plane.end(), [](float v) { return v == 0.0f; });
   };
-  for (const auto& [position, fov] : cameras) {
-    Scene scene = scene_from_yaml("camera: {position: " + position + ", look_at: [0.3, 0, 0.1], fov: " + fov + "}\n"
+  int views_with_hits = 0;
+  for (const View& view : views) {
+    const std::string position = std::string(view.position) + " looking at " + view.look_at;
+    Scene scene = scene_from_yaml(std::string("camera: {position: ") + view.position + ", look_at: " + view.look_at +
+                                  ", fov: " + view.fov + "}\n"
                                   "render: {width: 61, height: 45, max_distance: 1000}\nsdf: {torus: {}}\n");
     OpenClOptions shaded, depth, normals;
     shaded.purpose = KernelPurpose::Shaded;
@@ -202,11 +217,100 @@ TEST(CameraRayBounds, TilesSkippedWholeByDepthProgramsAreMissesOfTheShadedOnes) 
       EXPECT_TRUE(all_zero(b.plane(c))) << position;
       EXPECT_TRUE(all_zero(n.plane(c))) << position;
     }
-    EXPECT_GT(std::count_if(a.plane(Channel::Depth).begin(), a.plane(Channel::Depth).end(),
-                            [](float d) { return std::isfinite(d); }),
-              0)
-        << position;
+    const std::vector<float>& depths = a.plane(Channel::Depth);
+    if (std::any_of(depths.begin(), depths.end(), [](float d) { return std::isfinite(d); })) ++views_with_hits;
   }
+  // All but the view away from the torus see it.
+  EXPECT_EQ(views_with_hits, 9);
+}
+
+// The kernel's scalar tile test as the device computes it, in float from the frame's parameters
+// (kernels/march.cl, tile_misses_bounds after the range): whether the tile may meet the sphere.
+bool tile_test_passes(const MarchParams& p, int column, int row, int tile_width, int tile_height) {
+  const float x = static_cast<float>(column * tile_width) + 0.5f * static_cast<float>(tile_width);
+  const float y = static_cast<float>(row * tile_height) + 0.5f * static_cast<float>(tile_height);
+  const float sx = x * (2.0f / static_cast<float>(p.width)) - 1.0f;
+  const float sy = 1.0f - y * (2.0f / static_cast<float>(p.height));
+  float q[3], c[3];
+  for (int i = 0; i < 3; ++i) {
+    q[i] = p.forward.s[i] + sx * p.right_extent.s[i] + sy * p.up_extent.s[i];
+    c[i] = p.bounds.s[i];
+  }
+  const float cross[3] = {c[1] * q[2] - c[2] * q[1], c[2] * q[0] - c[0] * q[2], c[0] * q[1] - c[1] * q[0]};
+  return cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2] <=
+         p.tile_reach.s[0] * (q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+}
+
+TEST(CameraRayBounds, LiveTileRangeHoldsEveryTileTheKernelsTestPasses) {
+  // Random cameras around a unit sphere of random size and place, close and far, narrow and wide:
+  // the host's range must hold every tile the kernel's own float test lets through, or those tiles
+  // would be written as misses. The range must also leave out most of the image when the sphere
+  // covers little of it, or it would buy nothing.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int ranges_smaller_than_the_image = 0, views_with_live_tiles = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const double distance = std::pow(10.0, 0.3 + 2.5 * (unit(rng) + 1.0) / 2.0);
+    const glm::dvec3 position = glm::dvec3(unit(rng), unit(rng), unit(rng)) * distance;
+    const glm::dvec3 look_at(unit(rng) * distance * 0.3, unit(rng) * distance * 0.3, unit(rng) * distance * 0.3);
+    const double fov = 2.0 + 85.0 * (unit(rng) + 1.0);
+    const std::string yaml = fmt::format(
+        "camera: {{position: [{}, {}, {}], look_at: [{}, {}, {}], fov: {}}}\n"
+        "render: {{width: {}, height: {}, max_distance: 1e5}}\nsdf: {{sphere: {{center: [{}, {}, {}], radius: {}}}}}\n",
+        position.x, position.y, position.z, look_at.x, look_at.y, look_at.z, fov, 37 + trial % 90, 29 + (trial * 7) % 70,
+        unit(rng), unit(rng), unit(rng), 0.05 + (unit(rng) + 1.0));
+    const Scene scene = scene_from_yaml(yaml);
+    PreparedProgram program;
+    program.lanes = 16;
+    program.packets_per_item = 2;
+    const Dispatch dispatch = plan_tile_dispatch(program, scene.render.width, scene.render.height, std::size_t{1} << 20);
+    const MarchParams params = march_params(scene, dispatch);
+    ASSERT_GT(params.bounds.s[3], 0.0f) << yaml;
+    const int columns = (scene.render.width + 3) / 4, rows = (scene.render.height + 3) / 4;
+    int live = 0;
+    for (int row = 0; row < rows; ++row) {
+      for (int column = 0; column < columns; ++column) {
+        if (!tile_test_passes(params, column, row, 4, 4)) continue;
+        ++live;
+        EXPECT_TRUE(column >= params.live_columns[0] && column <= params.live_columns[1] && row >= params.live_rows[0] &&
+                    row <= params.live_rows[1])
+            << "tile " << column << ", " << row << " outside columns " << params.live_columns[0] << ".."
+            << params.live_columns[1] << ", rows " << params.live_rows[0] << ".." << params.live_rows[1] << " of\n" << yaml;
+      }
+    }
+    if (live > 0) ++views_with_live_tiles;
+    const int range_tiles = std::max(0, params.live_columns[1] - params.live_columns[0] + 1) *
+                            std::max(0, params.live_rows[1] - params.live_rows[0] + 1);
+    if (range_tiles < columns * rows / 2) ++ranges_smaller_than_the_image;
+  }
+  EXPECT_GT(views_with_live_tiles, 100);
+  EXPECT_GT(ranges_smaller_than_the_image, 100);
+}
+
+TEST(CameraRayBounds, LiveTilesOfASphereAheadAreItsDisc) {
+  // A sphere of radius 1 straight ahead at distance 10, 90 degrees of view on 400 x 400 pixels in
+  // 4 x 4 tiles: its disc has a radius of tan(asin(0.1)) / tan(45 deg) * 200 = 20.1 pixels around
+  // the centre (200, 200), 5.03 tiles, and the range holds the tiles whose centre lies in it
+  // (columns and rows 45 to 54) and one more on each side.
+  Scene scene = scene_from_yaml("camera: {position: [0, 0, 10], look_at: [0, 0, 0], fov: 90}\n"
+                                "render: {width: 400, height: 400}\nsdf: {sphere: {radius: 1}}\n");
+  const CameraBasis basis = camera_basis(scene.camera, 400, 400);
+  const TileRange live = live_tiles(basis, glm::dvec3(0, 0, 10), 1.0, 4, 4);
+  const double disc_tiles = std::tan(std::asin(0.1)) * 200.0 / 4.0;
+  for (const auto& [first, last] : {std::pair{live.first_column, live.last_column}, std::pair{live.first_row, live.last_row}}) {
+    EXPECT_EQ(first + last, 99) << "centred on tile 49.5";
+    EXPECT_EQ(first, static_cast<int>(std::ceil(49.5 - disc_tiles)) - 1);
+  }
+  // A camera within reach of the centre: every tile.
+  const TileRange around = live_tiles(basis, glm::dvec3(0, 0, 0.5), 1.0, 4, 4);
+  EXPECT_EQ(around.first_column, 0);
+  EXPECT_EQ(around.last_column, 99);
+  EXPECT_EQ(around.first_row, 0);
+  EXPECT_EQ(around.last_row, 99);
+  // A sphere to the side, out of view: no tile.
+  const TileRange none = live_tiles(basis, glm::dvec3(-30, 0, 10), 1.0, 4, 4);
+  EXPECT_GT(none.first_column, none.last_column);
+  EXPECT_GT(none.first_row, none.last_row);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include "cl/device_program.hpp"
 #include "device_types.h"
 #include "render/opencl_renderer.hpp"
+#include "scene/camera_model.hpp"
 #include "scene/scene.hpp"
 
 #include <functional>
@@ -57,6 +58,19 @@ Dispatch plan_point_dispatch(const DeviceEntry& device, std::size_t count, int l
 /// Pixels per dispatch that the device's allocation limits allow (capped so that progress and
 /// Ctrl-C stay responsive).
 std::size_t chunk_pixels_for(const DeviceEntry& device);
+
+/// Tiles of an image, by their column and row in the grid of tile_width x tile_height tiles, both
+/// ends included; empty when a first is past its last.
+struct TileRange {
+  int first_column = 0, last_column = -1;
+  int first_row = 0, last_row = -1;
+};
+/// The tiles whose centre ray (the unnormalised q = f + sx r + sy u through the tile's centre) may
+/// pass within reach of the point c (relative to the camera): every tile for which the march
+/// kernel's scalar test |c x q|^2 <= reach^2 |q|^2 holds, in float, lies inside. Outside it the
+/// kernel skips tiles with two integer tests instead. Solved per row of tiles in double, with
+/// margins for the kernel's float arithmetic.
+TileRange live_tiles(const CameraBasis& basis, const glm::dvec3& c, double reach, int tile_width, int tile_height);
 
 /// The march kernel's parameters for the scene (first_row left at 0).
 MarchParams march_params(const Scene& scene, const Dispatch& dispatch);
