@@ -68,7 +68,7 @@ struct TileRange {
 /// The tiles whose centre ray (the unnormalised q = f + sx r + sy u through the tile's centre) may
 /// pass within reach of the point c (relative to the camera): every tile for which the march
 /// kernel's scalar test |c x q|^2 <= reach^2 |q|^2 holds, in float, lies inside. Outside it the
-/// kernel skips tiles with two integer tests instead. Solved per row of tiles in double, with
+/// kernel skips tiles by integer comparisons instead. Solved per row of tiles in double, with
 /// margins for the kernel's float arithmetic.
 TileRange live_tiles(const CameraBasis& basis, const glm::dvec3& c, double reach, int tile_width, int tile_height);
 
