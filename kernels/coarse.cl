@@ -28,8 +28,8 @@ SDF_INLINE vfloat coarse_spread(vec3v axis, vec3v c0, vec3v c1, vec3v c2, vec3v 
 /* Writes, for blocks get_global_id(0) * LANES .. + LANES - 1 of the image (row-major, blocks_x per
  * row), where their rays start (starts) and the cone's steps (steps). */
 __kernel void coarse_cones(const MarchParams params, __global float* starts, __global float* steps_out) {
-  const int blocks_x = (params.width + CLMARCH_COARSE_BLOCK - 1) / CLMARCH_COARSE_BLOCK;
-  const int blocks_y = (params.height + CLMARCH_COARSE_BLOCK - 1) / CLMARCH_COARSE_BLOCK;
+  const int blocks_x = CLMARCH_COARSE_BLOCKS(params.width);
+  const int blocks_y = CLMARCH_COARSE_BLOCKS(params.height);
   const int base = (int)get_global_id(0) * LANES;
   const vint block = (vint)(base) + LANE_IOTA;
   const vint bx = block % blocks_x, by = block / blocks_x;

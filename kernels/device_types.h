@@ -27,8 +27,10 @@ typedef cl_float4 float4;
 #define CLMARCH_CHANNEL_WALL_STEPS 8
 #define CLMARCH_CHANNEL_COUNT 9
 
-/* Pixels per side of a block of the coarse cone pass (kernels/coarse.cl). */
+/* Pixels per side of a block of the coarse cone pass (kernels/coarse.cl), and the blocks that
+ * cover n pixels (the last one cut by the image's edge). */
 #define CLMARCH_COARSE_BLOCK 8
+#define CLMARCH_COARSE_BLOCKS(n) (((n) + CLMARCH_COARSE_BLOCK - 1) / CLMARCH_COARSE_BLOCK)
 
 /* Lights, two float4 each, positions relative to the camera (computed on the host in double). */
 #define CLMARCH_LIGHT_FLOAT4S 2

@@ -167,7 +167,7 @@ SDF_INLINE Packet packet_at(const MarchParams* params, int index, __global const
   k.marching = MASK(LANE_X < k.columns) & MASK(LANE_Y < k.rows);
   if (params->bounds.w > 0.0f) clip_to_bounds(params->bounds, k.dir, &k.marching, &k.t_start, &k.t_end);
 #if defined(COARSE_PASS)
-  const int blocks_x = (params->width + CLMARCH_COARSE_BLOCK - 1) / CLMARCH_COARSE_BLOCK;
+  const int blocks_x = CLMARCH_COARSE_BLOCKS(params->width);
   const real cone_start = coarse_starts[(y0 / CLMARCH_COARSE_BLOCK) * blocks_x + k.x0 / CLMARCH_COARSE_BLOCK];
   k.t_start = fmax(k.t_start, cone_start);
   k.marching &= MASK(k.t_start < k.t_end);

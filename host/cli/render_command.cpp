@@ -123,14 +123,15 @@ RenderResult render_scene(const RenderCommandOptions& options, const Scene& scen
                             tbb::this_task_arena::max_concurrency()));
     RenderResult result;
     const auto start = std::chrono::steady_clock::now();
-    result.buffers = render_reference(scene);
+    const std::optional<ConeStarts> cones = uses_cone_pass(scene) ? std::optional(reference_cone_starts(scene)) : std::nullopt;
+    result.buffers = render_reference(scene, cones);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     result.stats.device = "CPU reference (double)";
     result.stats.kernel_ms = ms;
     for (float s : result.buffers.plane(Channel::Steps)) result.stats.steps += static_cast<std::uint64_t>(s);
     for (float s : result.buffers.plane(Channel::WallSteps)) result.stats.wall_steps += static_cast<std::uint64_t>(s);
-    if (uses_cone_pass(scene)) {
-      for (int s : reference_cone_starts(scene).steps) result.stats.coarse_steps += static_cast<std::uint64_t>(s);
+    if (cones) {
+      for (int s : cones->steps) result.stats.coarse_steps += static_cast<std::uint64_t>(s);
     }
     result.stats.rays_per_s = static_cast<double>(scene.render.width) * scene.render.height / (ms * 1e-3);
     return result;

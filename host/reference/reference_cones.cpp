@@ -57,8 +57,8 @@ ConeStarts reference_cone_starts(const Scene& scene) {
     t_last = std::min(distance + bounds->radius, t_last);
   }
   ConeStarts cones;
-  cones.blocks_x = (width + kBlock - 1) / kBlock;
-  const int blocks_y = (height + kBlock - 1) / kBlock;
+  cones.blocks_x = CLMARCH_COARSE_BLOCKS(width);
+  const int blocks_y = CLMARCH_COARSE_BLOCKS(height);
   cones.start.assign(static_cast<std::size_t>(cones.blocks_x) * blocks_y, t_first);
   cones.steps.assign(cones.start.size(), 0);
   tbb::parallel_for(0, static_cast<int>(cones.start.size()), [&](int b) {

@@ -139,11 +139,14 @@ RayResult reference_trace(const Scene& scene, const glm::dvec3& origin, const gl
 }
 
 FrameBuffers render_reference(const Scene& scene) {
+  return render_reference(scene, uses_cone_pass(scene) ? std::optional(reference_cone_starts(scene)) : std::nullopt);
+}
+
+FrameBuffers render_reference(const Scene& scene, const std::optional<ConeStarts>& cones) {
   const int width = scene.render.width;
   const int height = scene.render.height;
   const CameraBasis basis = camera_basis(scene.camera, width, height);
   const std::optional<BoundingSphere> bounds = camera_ray_bounds(scene);
-  const std::optional<ConeStarts> cones = uses_cone_pass(scene) ? std::optional(reference_cone_starts(scene)) : std::nullopt;
   FrameBuffers fb(width, height);
   ProgressLine progress("reference rows", height, scene.render.width);
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {

@@ -2,10 +2,13 @@
 // rules of the OpenCL renderer (docs/scene-format.md), so the two can be compared pixel by pixel.
 #pragma once
 
+#include "reference/reference_cones.hpp"
 #include "render/frame_buffers.hpp"
 #include "scene/scene.hpp"
 
 #include <glm/glm.hpp>
+
+#include <optional>
 
 namespace clmarch {
 
@@ -37,5 +40,8 @@ RayResult reference_trace(const Scene& scene, const glm::dvec3& origin, const gl
 /// parallel, with a progress line on a terminal. Always fills the shaded color; other views are
 /// derived from the buffers elsewhere.
 FrameBuffers render_reference(const Scene& scene);
+/// The same with the cone pass's starts already computed: reference_cone_starts(scene) when the
+/// scene uses the pass, nothing otherwise (for callers that also report the cones' steps).
+FrameBuffers render_reference(const Scene& scene, const std::optional<ConeStarts>& cones);
 
 }  // namespace clmarch

@@ -181,10 +181,8 @@ std::size_t march_output_bytes(const Dispatch& dispatch) {
 std::optional<ConePass> make_cone_pass(const PreparedProgram& program, const Scene& scene) {
   if (!uses_cone_pass(scene)) return std::nullopt;
   const DeviceProgram& dp = program.program;
-  const std::size_t blocks_x = (static_cast<std::size_t>(scene.render.width) + CLMARCH_COARSE_BLOCK - 1) / CLMARCH_COARSE_BLOCK;
-  const std::size_t blocks_y = (static_cast<std::size_t>(scene.render.height) + CLMARCH_COARSE_BLOCK - 1) / CLMARCH_COARSE_BLOCK;
   ConePass cones;
-  cones.blocks = blocks_x * blocks_y;
+  cones.blocks = static_cast<std::size_t>(CLMARCH_COARSE_BLOCKS(scene.render.width)) * CLMARCH_COARSE_BLOCKS(scene.render.height);
   cones.dispatch = plan_point_dispatch(dp.device, cones.blocks, program.lanes);
   // The kernel stores whole vectors of lanes, padding included.
   const std::size_t bytes = cones.dispatch.plane_stride * sizeof(float);
