@@ -1,5 +1,7 @@
 // --quiet, --verbose and the progress line: what a render says on stderr, and when.
+#include "cl/device_program.hpp"
 #include "cl/devices.hpp"
+#include "common/log.hpp"
 #include "common/errors.hpp"
 #include "support/child_process.hpp"
 
@@ -72,6 +74,25 @@ TEST(Verbosity, VerboseNamesDeviceBuildLanesLocalSizeAndCache) {
   EXPECT_TRUE(contains(second.err, "driver cache hit (" + cache.path().string() + ")")) << second.err;
   const auto off = run_clmarch(args, {"POCL_CACHE_DIR=" + cache.path().string(), "POCL_KERNEL_CACHE=0"});
   EXPECT_TRUE(contains(off.err, "driver cache off")) << off.err;
+}
+
+TEST(Verbosity, VerboseShowsTheWarningsOfASuccessfulBuildVerbatim) {
+  const DeviceEntry device = select_device(std::nullopt);
+  const std::string source = "#warning clmarch-test-warning\nkernel void fill(global float* x) { x[0] = 1.0f; }\n";
+  const Verbosity before = verbosity();
+  set_verbosity(Verbosity::Normal);
+  ::testing::internal::CaptureStderr();
+  build_device_program(device, source);
+  const std::string normal = ::testing::internal::GetCapturedStderr();
+  set_verbosity(Verbosity::Verbose);
+  ::testing::internal::CaptureStderr();
+  const DeviceProgram program = build_device_program(device, source);
+  const std::string verbose = ::testing::internal::GetCapturedStderr();
+  set_verbosity(before);
+  ASSERT_TRUE(contains(program.build_log, "clmarch-test-warning")) << program.build_log;
+  EXPECT_FALSE(contains(normal, "build log")) << normal;
+  EXPECT_TRUE(contains(verbose, "clmarch: build log of " + device.name + ":\n")) << verbose;
+  EXPECT_TRUE(contains(verbose, "clmarch-test-warning")) << "the compiler's own words must follow:\n" << verbose;
 }
 
 TEST(Verbosity, ProgressOnlyOnATerminalAndNotWhenQuiet) {

@@ -29,6 +29,11 @@ DeviceProgram build_device_program(const DeviceEntry& device, const std::string&
     out.program.build(std::vector<cl::Device>{device.device}, options.c_str());
     out.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     out.build_log = out.program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device.device);
+    // A successful build may still carry the compiler's warnings; shown verbatim, as on failure.
+    const std::size_t log_end = out.build_log.find_last_not_of(" \t\r\n");
+    if (log_end != std::string::npos) {
+      log_verbose(fmt::format("build log of {}:\n{}", device.name, out.build_log.substr(0, log_end + 1)));
+    }
     if (probe) {
       const BuildCache cache = probe->result();
       std::string where;
