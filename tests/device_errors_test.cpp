@@ -44,6 +44,8 @@ TEST(DeviceErrors, OversizedBufferNamesDeviceAndCall) {
       cl::Buffer buffer(context, CL_MEM_READ_WRITE, too_big);
     });
   });
+  // The limit is advisory for some drivers: NVIDIA's creates such a buffer (on an 80 GB H100).
+  if (message == "no error") GTEST_SKIP() << device.label() << " accepts buffers beyond CL_DEVICE_MAX_MEM_ALLOC_SIZE";
   EXPECT_EQ(message, "OpenCL error on " + device.label() +
                          ": clCreateBuffer failed with CL_INVALID_BUFFER_SIZE (a buffer exceeds the device's largest "
                          "allocation)");

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cstdio>
 #include <fstream>
 #include <random>
@@ -23,6 +24,19 @@ std::string read_text(const std::filesystem::path& path) {
   std::stringstream text;
   text << in.rdbuf();
   return text.str();
+}
+
+std::string compiler_warnings(const std::string& build_log) {
+  std::string warnings;
+  std::istringstream lines(build_log);
+  for (std::string line; std::getline(lines, line);) {
+    std::string lower = line;
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+    if (lower.find("warning") == std::string::npos) continue;
+    if (lower.find("is a kernel, so overriding noinline attribute") != std::string::npos) continue;
+    warnings += line + "\n";
+  }
+  return warnings;
 }
 
 std::string shell_quote(const std::string& s) {

@@ -36,6 +36,11 @@ CommandResult run_clmarch_in_shell(const std::string& shell_prefix, const std::v
 /// The whole file as text (empty if it cannot be read).
 std::string read_text(const std::filesystem::path& path);
 
+/// The lines of an OpenCL build log that speak of warnings, in any case ("" if none), except
+/// NVIDIA's "Function F is a kernel, so overriding noinline attribute" that its drivers since 550
+/// print for every kernel of every source.
+std::string compiler_warnings(const std::string& build_log);
+
 /// s in single quotes for /bin/sh.
 std::string shell_quote(const std::string& s);
 
