@@ -6,10 +6,13 @@
  * fewer lanes idle while the slowest ray of the packet finishes than with a row of 16.
  * Masks are 0 or -1 (all bits) at every width: vector comparisons already give -1, scalar ones
  * give 1, so scalar comparisons go through MASK(). */
-/* No fused multiply-adds unless written: compilers contract a * b + c differently in scalar and
- * vector code (NVIDIA's differs by an epsilon of depth between 1 and 16 lanes), and the packet
- * width must not change the image. Measured cost: none on PoCL, 6-9 % on an H100 (performance.md). */
+/* The packet width must not change the image. NVIDIA's compiler fuses a * b + c differently in
+ * scalar and vector code (1 and 16 lanes an epsilon of depth apart), so the host defines
+ * NO_FP_CONTRACT for every device but PoCL, whose fused operations agree at every width and
+ * would cost up to 10 % to forbid (allows_fp_contraction, docs/performance.md). */
+#ifdef NO_FP_CONTRACT
 #pragma OPENCL FP_CONTRACT OFF
+#endif
 
 #ifndef LANES
 #define LANES 1

@@ -4,6 +4,8 @@
 // normal of a sphere, in the reference and on the device.
 #include "bench/sweep_run.hpp"
 #include "check/cross_check.hpp"
+#include "cl/device_program.hpp"
+#include "cl/devices.hpp"
 #include "codegen/kernel_source.hpp"
 #include "reference/reference_renderer.hpp"
 #include "reference/reference_sdf.hpp"
@@ -52,6 +54,27 @@ TEST(KernelVariant, SourceAndBuildOptionsSayWhatTheyAre) {
   EXPECT_THROW(generate_kernel_source(scene, {KernelPurpose::Shaded, 1, {Precision::Double, false, false}}), std::invalid_argument);
   EXPECT_EQ(kernel_build_options({}), "-cl-std=CL1.2");
   EXPECT_EQ(kernel_build_options({Precision::Float, false, true}), "-cl-std=CL1.2 -cl-fast-relaxed-math");
+}
+
+// Fused multiply-adds the source does not write are left to the compiler only on PoCL, whose
+// fused operations agree at every packet width; elsewhere the program forbids them, and that
+// program builds cleanly here too.
+TEST(KernelVariant, FpContractionOnlyOnPocl) {
+  DeviceEntry pocl, nvidia;
+  pocl.platform_name = "Portable Computing Language";
+  pocl.is_cpu = true;
+  nvidia.platform_name = "NVIDIA CUDA";
+  nvidia.is_gpu = true;
+  EXPECT_TRUE(allows_fp_contraction(pocl));
+  EXPECT_FALSE(allows_fp_contraction(nvidia));
+  const Scene scene = small_torus();
+  KernelOptions options{KernelPurpose::Shaded, 16, {}};
+  EXPECT_EQ(generate_kernel_source(scene, options).find("#define NO_FP_CONTRACT\n"), std::string::npos);
+  options.fp_contraction = false;
+  const std::string exact = generate_kernel_source(scene, options);
+  EXPECT_NE(exact.find("#define NO_FP_CONTRACT\n"), std::string::npos);
+  const DeviceProgram program = build_device_program(select_device(std::nullopt), exact);
+  EXPECT_EQ(testing::compiler_warnings(program.build_log), "") << program.build_log;
 }
 
 struct VariantCase {

@@ -9,8 +9,6 @@
 namespace clmarch {
 namespace {
 
-constexpr std::string_view kPoclPlatformName = "Portable Computing Language";
-
 std::filesystem::path environment_path(const char* name) {
   const char* value = std::getenv(name);
   return value != nullptr && *value != '\0' ? std::filesystem::path(value) : std::filesystem::path();
@@ -26,7 +24,7 @@ std::filesystem::path pocl_cache_folder() {
 }
 
 BuildCacheProbe::BuildCacheProbe(const DeviceEntry& device) {
-  pocl_ = device.platform_name == kPoclPlatformName;
+  pocl_ = device.is_pocl();
   if (!pocl_) return;
   const char* enabled = std::getenv("POCL_KERNEL_CACHE");
   disabled_ = enabled != nullptr && std::string_view(enabled) == "0";

@@ -68,6 +68,10 @@ DeviceEntry select_device(std::optional<int> index) {
 
 int default_lanes(const DeviceEntry& device) { return device.is_gpu ? 1 : 16; }
 
+bool DeviceEntry::is_pocl() const { return platform_name == "Portable Computing Language"; }
+
+bool allows_fp_contraction(const DeviceEntry& device) { return device.is_pocl(); }
+
 std::size_t default_local_size(const DeviceEntry& device) { return device.is_gpu ? 64 : 8; }
 
 void pin_pocl_threads_for_timing() { setenv("POCL_AFFINITY", "1", /*overwrite=*/0); }

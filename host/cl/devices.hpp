@@ -18,6 +18,8 @@ struct DeviceEntry {
   std::string name;
   bool is_gpu = false;
   bool is_cpu = false;
+  /// Whether the platform is PoCL (its kernel cache and compiler behaviour are known).
+  bool is_pocl() const;
 
   /// "NAME (PLATFORM)", for messages and --stats.
   std::string label() const;
@@ -36,6 +38,12 @@ std::string no_device_message();
 /// Pixels per work-item that suit the device: explicit vector packets on CPUs (PoCL does not
 /// vectorise the per-pixel march loop), one pixel per work-item on GPUs.
 int default_lanes(const DeviceEntry& device);
+
+/// Whether the kernels may let the compiler fuse a * b + c where the source does not (OpenCL's
+/// FP_CONTRACT). Only where the fused operations are known to be the same at every packet width:
+/// PoCL's. NVIDIA's compiler fuses scalar and vector code differently (1 and 16 lanes an epsilon
+/// of depth apart); forbidding it on PoCL would cost up to 10 % (docs/performance.md).
+bool allows_fp_contraction(const DeviceEntry& device);
 
 /// Work-items per work-group: GPUs want many; PoCL loops over the items of a group on one core, and
 /// one fixed size keeps its per-size compile of the work-group function cached.

@@ -87,6 +87,7 @@ std::string feature_defines(const Scene& scene, const KernelOptions& options) {
   }
   if (options.variant.precision == Precision::Double) out += "#define DOUBLE_PRECISION\n";
   if (options.variant.native_math) out += "#define NATIVE_MATH\n";
+  if (!options.fp_contraction) out += "#define NO_FP_CONTRACT\n";
   const MarchOutputs outputs = march_outputs(scene, options.purpose);
   // Shading needs the normal whether or not its planes are written.
   if (outputs.normals) out += "#define WRITE_NORMALS\n";

@@ -52,6 +52,8 @@ struct KernelOptions {
   /// Pixels per work-item: 1, 4, 8 or 16.
   int lanes = 1;
   KernelVariant variant;
+  /// Whether the compiler may fuse a * b + c (no NO_FP_CONTRACT); allows_fp_contraction(device).
+  bool fp_contraction = true;
 };
 
 /// What a march program computes beyond depth and steps, and so which planes of the output buffer

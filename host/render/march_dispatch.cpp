@@ -74,7 +74,8 @@ TileRange live_tiles(const CameraBasis& basis, const glm::dvec3& c, double reach
 
 PreparedProgram prepare_program(const Scene& scene, const OpenClOptions& options, KernelPurpose purpose) {
   const DeviceEntry device = select_device(options.device);
-  const KernelOptions kernel_options{purpose, options.lanes.value_or(default_lanes(device)), options.variant};
+  KernelOptions kernel_options{purpose, options.lanes.value_or(default_lanes(device)), options.variant};
+  kernel_options.fp_contraction = allows_fp_contraction(device);
   const std::string source = generate_kernel_source(scene, kernel_options);
   if (!options.dump_kernel_path.empty()) write_file_atomically(options.dump_kernel_path, source);
   const bool march = purpose != KernelPurpose::EvalPoints;
