@@ -25,7 +25,7 @@ BenchReport run_bench(const Scene& scene, const OpenClOptions& options, const Be
   depth.purpose = KernelPurpose::DepthSteps;
   CeilingKernel ceiling(scene, options);
   r.output_floor_planes = static_cast<int>(march_outputs(scene, KernelPurpose::DepthSteps).planes().size());
-  OutputFloorKernel output_floor(options, static_cast<std::size_t>(r.output_floor_planes) * r.width * r.height);
+  OutputFloorKernel output_floor(options, depth_frame_floats(scene));
   OpenClRenderer shaded_renderer(scene, shaded);
   OpenClRenderer depth_renderer(scene, depth);
   // One untimed round pays PoCL's work-group compiles and the first touch of the buffers; then the

@@ -135,6 +135,10 @@ double CeilingKernel::run_ms() {
   });
 }
 
+std::size_t depth_frame_floats(const Scene& scene) {
+  return march_outputs(scene, KernelPurpose::DepthSteps).planes().size() * scene.render.width * scene.render.height;
+}
+
 OutputFloorKernel::OutputFloorKernel(const OpenClOptions& options, std::size_t floats)
     : program_(build_device_program(select_device(options.device), output_floor_source())),
       floats_((std::max<std::size_t>(floats, 1) + 15) / 16 * 16) {

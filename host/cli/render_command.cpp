@@ -123,7 +123,7 @@ RenderResult render_scene(const RenderCommandOptions& options, const Scene& scen
                             tbb::this_task_arena::max_concurrency()));
     RenderResult result;
     const auto start = std::chrono::steady_clock::now();
-    const std::optional<ConeStarts> cones = uses_cone_pass(scene) ? std::optional(reference_cone_starts(scene)) : std::nullopt;
+    const std::optional<ConeStarts> cones = reference_cones_if_used(scene);
     result.buffers = render_reference(scene, cones);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     result.stats.device = "CPU reference (double)";

@@ -82,4 +82,8 @@ ConeStarts reference_cone_starts(const Scene& scene) {
   return cones;
 }
 
+std::optional<ConeStarts> reference_cones_if_used(const Scene& scene) {
+  return uses_cone_pass(scene) ? std::optional(reference_cone_starts(scene)) : std::nullopt;
+}
+
 }  // namespace clmarch

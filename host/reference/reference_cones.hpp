@@ -4,6 +4,7 @@
 
 #include "scene/scene.hpp"
 
+#include <optional>
 #include <vector>
 
 namespace clmarch {
@@ -21,5 +22,7 @@ struct ConeStarts {
 
 /// The cone pass of scene (uses_cone_pass(scene) must hold).
 ConeStarts reference_cone_starts(const Scene& scene);
+/// reference_cone_starts(scene) when the scene uses the cone pass, nothing otherwise.
+std::optional<ConeStarts> reference_cones_if_used(const Scene& scene);
 
 }  // namespace clmarch

@@ -139,7 +139,7 @@ RayResult reference_trace(const Scene& scene, const glm::dvec3& origin, const gl
 }
 
 FrameBuffers render_reference(const Scene& scene) {
-  return render_reference(scene, uses_cone_pass(scene) ? std::optional(reference_cone_starts(scene)) : std::nullopt);
+  return render_reference(scene, reference_cones_if_used(scene));
 }
 
 FrameBuffers render_reference(const Scene& scene, const std::optional<ConeStarts>& cones) {

@@ -40,8 +40,8 @@ RayResult reference_trace(const Scene& scene, const glm::dvec3& origin, const gl
 /// parallel, with a progress line on a terminal. Always fills the shaded color; other views are
 /// derived from the buffers elsewhere.
 FrameBuffers render_reference(const Scene& scene);
-/// The same with the cone pass's starts already computed: reference_cone_starts(scene) when the
-/// scene uses the pass, nothing otherwise (for callers that also report the cones' steps).
+/// The same with the cone pass's starts already computed (reference_cones_if_used), for callers
+/// that also report the cones' steps.
 FrameBuffers render_reference(const Scene& scene, const std::optional<ConeStarts>& cones);
 
 }  // namespace clmarch

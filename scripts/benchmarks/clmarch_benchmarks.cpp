@@ -5,7 +5,6 @@
 // OpenCL profiling events (manual time); counters give rays/s, distance evaluations/s and bytes/s.
 #include "bench/throughput.hpp"
 #include "cl/devices.hpp"
-#include "codegen/kernel_source.hpp"
 #include "scene/scene_loader.hpp"
 
 #include <benchmark/benchmark.h>
@@ -58,8 +57,7 @@ void BM_Ceiling(benchmark::State& state, const std::string& name) {
 
 void BM_OutputFloor(benchmark::State& state, const std::string& name) {
   const Scene scene = scene_1280x720(name);
-  const std::size_t planes = march_outputs(scene, KernelPurpose::DepthSteps).planes().size();
-  OutputFloorKernel output_floor(OpenClOptions{}, planes * scene.render.width * scene.render.height);
+  OutputFloorKernel output_floor(OpenClOptions{}, depth_frame_floats(scene));
   output_floor.run_ms();  // PoCL compiles the work-group function at the first enqueue
   double bytes = 0.0;
   for (auto _ : state) {
