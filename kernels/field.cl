@@ -11,10 +11,10 @@ SDF_INLINE vec3v wrap_to_cell(vec3v p) {
 }
 #endif
 
-SDF_INLINE vfloat field(vec3v p) {
+SDF_INLINE vfloat field(SceneValues values, vec3v p) {
 #if defined(TILING_MOD)
-  return map(wrap_to_cell(p));
+  return map(values, wrap_to_cell(p));
 #else
-  return map(p);
+  return map(values, p);
 #endif
 }

@@ -9,12 +9,12 @@
 #if defined(NEED_SHADING)
 /* The surface met by a ray from the camera-relative point relative_origin, marched in map()'s
  * frame (m), with its normal and material. */
-SDF_INLINE Hit surface_at(const MarchResult* m, vec3v relative_origin, vec3v dir, float normal_epsilon) {
+SDF_INLINE Hit surface_at(SceneValues values, const MarchResult* m, vec3v relative_origin, vec3v dir, float normal_epsilon) {
   Hit hit;
   hit.point = m->local_point;
   hit.relative = v3_add(relative_origin, v3_scale(dir, m->t));
-  hit.normal = estimate_normal(m->local_point, normal_epsilon);
-  map_color(m->local_point, &hit.albedo, &hit.surface);
+  hit.normal = estimate_normal(values, m->local_point, normal_epsilon);
+  map_color(values, m->local_point, &hit.albedo, &hit.surface);
   hit.steps = m->steps;
   return hit;
 }
@@ -23,10 +23,10 @@ SDF_INLINE Hit surface_at(const MarchResult* m, vec3v relative_origin, vec3v dir
 #if defined(NEED_SHADING) && defined(REFLECTION_BOUNCES)
 /* Adds the mirror bounces of the PBR course: each bounce's color weighted by the product of the
  * reflectivities met so far; a bounce that misses shows the sky. */
-SDF_INLINE vec3v add_reflections(vec3v color, Hit hit, vec3v dir, vint live, const MarchParams* params, __constant float4* lights) {
+SDF_INLINE vec3v add_reflections(SceneValues values, vec3v color, Hit hit, vec3v dir, vint live, const MarchParams* params, __constant float4* lights) {
   /* Mirror rays march plainly with the fixed epsilon: the pixel cone is the camera's, and their t
    * starts again at the mirror. */
-  MarchLimits limits = {params->max_steps, params->epsilon, 0, 0.0f, 1.0f, 0.0f};
+  MarchLimits limits = {values, params->max_steps, params->epsilon, 0, 0.0f, 1.0f, 0.0f};
   vfloat weight = (vfloat)(1.0f);
   vint active = live;
   for (int bounce = 0; bounce < REFLECTION_BOUNCES; ++bounce) {
@@ -41,8 +41,8 @@ SDF_INLINE vec3v add_reflections(vec3v color, Hit hit, vec3v dir, vint live, con
     vec3v seen = miss_color(dir, r.closest);
     const vint reflected_hit = active & r.hit;
     if (LANE_ANY(reflected_hit)) {
-      const Hit next = surface_at(&r, relative_origin, dir, params->normal_epsilon);
-      seen = v3_select(seen, shade(&next, v3_scale(dir, -1.0f), reflected_hit, lights), reflected_hit);
+      const Hit next = surface_at(values, &r, relative_origin, dir, params->normal_epsilon);
+      seen = v3_select(seen, shade(values, &next, v3_scale(dir, -1.0f), reflected_hit, lights), reflected_hit);
       hit.point = v3_select(hit.point, next.point, reflected_hit);
       hit.relative = v3_select(hit.relative, next.relative, reflected_hit);
       hit.normal = v3_select(hit.normal, next.normal, reflected_hit);
@@ -178,8 +178,8 @@ SDF_INLINE Packet packet_at(const MarchParams* params, int index, __global const
 }
 
 /* The march limits of camera rays; with RECORD_SAMPLES, where the packet's points go. */
-SDF_INLINE MarchLimits camera_limits(const MarchParams* params, const Packet* k, const MarchRecord* record) {
-  MarchLimits limits = {params->max_steps, params->epsilon, 0, 0.0f, params->over_relaxation, params->hit_cone_slope};
+SDF_INLINE MarchLimits camera_limits(SceneValues values, const MarchParams* params, const Packet* k, const MarchRecord* record) {
+  MarchLimits limits = {values, params->max_steps, params->epsilon, 0, 0.0f, params->over_relaxation, params->hit_cone_slope};
 #if defined(RECORD_SAMPLES)
   limits.samples = record->samples;
   limits.sample_stride = record->sample_stride;
@@ -194,7 +194,7 @@ SDF_INLINE MarchLimits camera_limits(const MarchParams* params, const Packet* k,
 
 /* Writes what the march of packet k found: depth, steps (and wall steps), and as the program
  * needs them the normal and the shaded color. */
-SDF_INLINE void finish_packet(const Packet* k, const MarchResult* m, const MarchParams* params, __global float* out,
+SDF_INLINE void finish_packet(SceneValues values, const Packet* k, const MarchResult* m, const MarchParams* params, __global float* out,
                               __constant float4* lights) {
   const int stride = params->plane_stride;
   const int at = k->row0 * params->width + k->x0;
@@ -212,16 +212,16 @@ SDF_INLINE void finish_packet(const Packet* k, const MarchResult* m, const March
 #endif
   if (LANE_ANY(m->hit)) {
 #ifdef NEED_SHADING
-    const Hit hit = surface_at(m, v3_splat(0.0f), k->dir, params->normal_epsilon);
+    const Hit hit = surface_at(values, m, v3_splat(0.0f), k->dir, params->normal_epsilon);
     normal = v3_select(normal, hit.normal, m->hit);
-    vec3v lit = shade(&hit, v3_scale(k->dir, -1.0f), m->hit, lights);
+    vec3v lit = shade(values, &hit, v3_scale(k->dir, -1.0f), m->hit, lights);
 #if defined(REFLECTION_BOUNCES)
-    lit = add_reflections(lit, hit, k->dir, m->hit, params, lights);
+    lit = add_reflections(values, lit, hit, k->dir, m->hit, params, lights);
 #endif
     lit = apply_fog(lit, k->dir, m->t, params->camera_height);
     color = v3_select(color, lit, m->hit);
 #else
-    normal = v3_select(normal, estimate_normal(m->local_point, params->normal_epsilon), m->hit);
+    normal = v3_select(normal, estimate_normal(values, m->local_point, params->normal_epsilon), m->hit);
 #endif
   }
 #if defined(WRITE_NORMALS)
@@ -244,7 +244,7 @@ SDF_INLINE void finish_packet(const Packet* k, const MarchResult* m, const March
 
 /* Each work-item marches PACKETS_PER_ITEM consecutive packets of the chunk: two on CPUs, whose
  * steps interleave (march_plain_pair), one on GPUs and under the cells tiling. */
-__kernel void march(const MarchParams params, __global float* out, __constant float4* lights
+__kernel void march(const MarchParams params, __global float* out, __constant float4* lights, SceneValues scene_values
 #if defined(COARSE_PASS)
                     , __global const float* coarse_starts
 #endif
@@ -270,18 +270,18 @@ __kernel void march(const MarchParams params, __global float* out, __constant fl
   if (a.rows <= 0) return; /* padding of the dispatch to whole work-groups */
 #if PACKETS_PER_ITEM == 2
   const Packet b = packet_at(&params, first + 1, coarse_starts);
-  PlainMarch march_a = plain_march_begin(origin, a.dir, a.marching, a.t_start, a.t_end, camera_limits(&params, &a, &record));
+  PlainMarch march_a = plain_march_begin(origin, a.dir, a.marching, a.t_start, a.t_end, camera_limits(scene_values, &params, &a, &record));
   /* Past the chunk b has no lane marching, and its loop never runs. */
-  PlainMarch march_b = plain_march_begin(origin, b.dir, b.marching, b.t_start, b.t_end, camera_limits(&params, &b, &record));
+  PlainMarch march_b = plain_march_begin(origin, b.dir, b.marching, b.t_start, b.t_end, camera_limits(scene_values, &params, &b, &record));
   march_plain_pair(&march_a, &march_b);
   const MarchResult ma = plain_march_end(&march_a);
-  finish_packet(&a, &ma, &params, out, lights);
+  finish_packet(scene_values, &a, &ma, &params, out, lights);
   if (b.rows > 0) {
     const MarchResult mb = plain_march_end(&march_b);
-    finish_packet(&b, &mb, &params, out, lights);
+    finish_packet(scene_values, &b, &mb, &params, out, lights);
   }
 #else
-  const MarchResult m = MARCH(origin, a.dir, a.marching, a.t_start, a.t_end, camera_limits(&params, &a, &record));
-  finish_packet(&a, &m, &params, out, lights);
+  const MarchResult m = MARCH(origin, a.dir, a.marching, a.t_start, a.t_end, camera_limits(scene_values, &params, &a, &record));
+  finish_packet(scene_values, &a, &m, &params, out, lights);
 #endif
 }

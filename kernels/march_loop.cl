@@ -19,6 +19,7 @@ typedef struct {
  * two; an initialiser that leaves them out gives 0 (plain sphere tracing, the fixed epsilon), which
  * is what shadow and mirror rays use. */
 typedef struct {
+  SceneValues values; /* the scene's animated values (map()) */
   int max_steps;
   float epsilon;
   int soft_mode; /* 0: none, 1: classic penumbra, 2: improved */
@@ -130,7 +131,7 @@ SDF_INLINE PlainMarch plain_march_begin(vec3v origin, vec3v dir, vint live, vflo
 SDF_INLINE void plain_march_step(PlainMarch* s) {
   MarchResult* m = &s->m;
   const vec3v p = v3_add(s->origin, v3_scale(s->dir, m->t));
-  const vfloat d = field(p);
+  const vfloat d = field(s->limits.values, p);
 #if defined(RECORD_SAMPLES)
   record_samples(&s->limits, p, s->active, m->steps);
 #endif

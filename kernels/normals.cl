@@ -5,26 +5,26 @@
  * see that cell's geometry, and under the mod method taps wrap like the march did (field.cl). */
 
 #ifdef NORMAL_TETRAHEDRAL
-SDF_INLINE vec3v estimate_normal(vec3v p, float h) {
+SDF_INLINE vec3v estimate_normal(SceneValues values, vec3v p, float h) {
   /* Taps at h * k.xyy, k.yyx, k.yxy, k.xxx with k = (1, -1). */
-  vfloat a = field(v3(p.x + h, p.y - h, p.z - h));
-  vfloat b = field(v3(p.x - h, p.y - h, p.z + h));
-  vfloat c = field(v3(p.x - h, p.y + h, p.z - h));
-  vfloat d = field(v3(p.x + h, p.y + h, p.z + h));
+  vfloat a = field(values, v3(p.x + h, p.y - h, p.z - h));
+  vfloat b = field(values, v3(p.x - h, p.y - h, p.z + h));
+  vfloat c = field(values, v3(p.x - h, p.y + h, p.z - h));
+  vfloat d = field(values, v3(p.x + h, p.y + h, p.z + h));
   return v3_normalize(v3(a - b - c + d, -a - b + c + d, -a + b - c + d));
 }
 #elif defined(NORMAL_FORWARD)
-SDF_INLINE vec3v estimate_normal(vec3v p, float h) {
+SDF_INLINE vec3v estimate_normal(SceneValues values, vec3v p, float h) {
   /* f(p + h e_i) - f(p); the shared tap f(p) is the fourth. */
-  vfloat here = field(p);
-  return v3_normalize(v3(field(v3(p.x + h, p.y, p.z)) - here, field(v3(p.x, p.y + h, p.z)) - here,
-                         field(v3(p.x, p.y, p.z + h)) - here));
+  vfloat here = field(values, p);
+  return v3_normalize(v3(field(values, v3(p.x + h, p.y, p.z)) - here, field(values, v3(p.x, p.y + h, p.z)) - here,
+                         field(values, v3(p.x, p.y, p.z + h)) - here));
 }
 #else
-SDF_INLINE vec3v estimate_normal(vec3v p, float h) {
-  vfloat dx = field(v3(p.x + h, p.y, p.z)) - field(v3(p.x - h, p.y, p.z));
-  vfloat dy = field(v3(p.x, p.y + h, p.z)) - field(v3(p.x, p.y - h, p.z));
-  vfloat dz = field(v3(p.x, p.y, p.z + h)) - field(v3(p.x, p.y, p.z - h));
+SDF_INLINE vec3v estimate_normal(SceneValues values, vec3v p, float h) {
+  vfloat dx = field(values, v3(p.x + h, p.y, p.z)) - field(values, v3(p.x - h, p.y, p.z));
+  vfloat dy = field(values, v3(p.x, p.y + h, p.z)) - field(values, v3(p.x, p.y - h, p.z));
+  vfloat dz = field(values, v3(p.x, p.y, p.z + h)) - field(values, v3(p.x, p.y, p.z - h));
   return v3_normalize(v3(dx, dy, dz));
 }
 #endif

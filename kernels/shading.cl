@@ -21,8 +21,8 @@ SDF_INLINE vec3v point_light_direction(vec3v p, float4 position) { return v3_nor
 #if defined(SHADOW_MODE)
 /* Light reaching p from unit direction l over distance t_end: 0 behind an occluder, 1 unlit by
  * none, the penumbra in between for soft shadows. */
-SDF_INLINE vfloat shadow_factor(vec3v p, vec3v n, vec3v l, vfloat t_end, vint live) {
-  MarchLimits limits = {SHADOW_MAX_STEPS, SHADOW_EPSILON, SHADOW_MODE - 1, SHADOW_K};
+SDF_INLINE vfloat shadow_factor(SceneValues values, vec3v p, vec3v n, vec3v l, vfloat t_end, vint live) {
+  MarchLimits limits = {values, SHADOW_MAX_STEPS, SHADOW_EPSILON, SHADOW_MODE - 1, SHADOW_K};
   /* Leave the surface along its normal first so the ray does not hit its own start. */
   const vec3v origin = v3_add(p, v3_scale(n, SHADOW_EPSILON * 4.0f));
   const MarchResult m = MARCH(origin, l, live, (vfloat)(SHADOW_MIN_T), t_end, limits);
@@ -34,11 +34,11 @@ SDF_INLINE vfloat shadow_factor(vec3v p, vec3v n, vec3v l, vfloat t_end, vint li
 #if defined(AO_SAMPLES)
 /* The PBR-course occlusion: from 1, subtract (i delta - sdf(p + n i delta))^2 / i over the samples,
  * then raise to AO_POWER. */
-SDF_INLINE vfloat normal_occlusion(vec3v p, vec3v n) {
+SDF_INLINE vfloat normal_occlusion(SceneValues values, vec3v p, vec3v n) {
   vfloat occlusion = (vfloat)(1.0f);
   for (int i = AO_SAMPLES; i > 0; --i) {
     const float along = (float)i * AO_STEP;
-    const vfloat gap = along - field(v3_add(p, v3_scale(n, along)));
+    const vfloat gap = along - field(values, v3_add(p, v3_scale(n, along)));
     occlusion -= gap * gap / (float)i;
   }
   return pow(clamp(occlusion, 0.0f, 1.0f), (vfloat)(AO_POWER));
@@ -111,10 +111,10 @@ SDF_INLINE vec3v apply_step_ao(vec3v color, vfloat steps) {
 
 /* Lit color of the surface, seen along -view (unit). Each light is (xyz position relative to the
  * camera, w = 1) or (xyz unit direction towards the light, w = 0), then its radiance. */
-SDF_INLINE vec3v shade(const Hit* hit, vec3v view, vint live, __constant float4* lights) {
+SDF_INLINE vec3v shade(SceneValues values, const Hit* hit, vec3v view, vint live, __constant float4* lights) {
   vfloat ambient_occlusion = (vfloat)(1.0f);
 #if defined(AO_SAMPLES)
-  ambient_occlusion = normal_occlusion(hit->point, hit->normal);
+  ambient_occlusion = normal_occlusion(values, hit->point, hit->normal);
 #endif
   vec3v color = v3_scale(v3_mul(hit->albedo, v3_from(AMBIENT_COLOR)), ambient_occlusion);
   for (int k = 0; k < LIGHT_COUNT; ++k) {
@@ -129,7 +129,7 @@ SDF_INLINE vec3v shade(const Hit* hit, vec3v view, vint live, __constant float4*
 #endif
 #if defined(SHADOW_MODE)
     const vfloat t_end = is_point ? v3_length(v3_sub(v3_from(where), hit->relative)) : (vfloat)(SHADOW_MAX_T);
-    lit = v3_scale(lit, shadow_factor(hit->point, hit->normal, l, t_end, live & MASK(v3_dot(hit->normal, l) > 0.0f)));
+    lit = v3_scale(lit, shadow_factor(values, hit->point, hit->normal, l, t_end, live & MASK(v3_dot(hit->normal, l) > 0.0f)));
 #else
     (void)live;
 #endif

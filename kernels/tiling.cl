@@ -36,7 +36,7 @@ SDF_INLINE MarchResult march_cells(vec3v origin, vec3v dir, vint live, vfloat t_
   vfloat previous = (vfloat)(1e20f);
   for (int step = 0; step < limits.max_steps && LANE_ANY(active); ++step) {
     const vec3v p = v3_add(entry, v3_scale(dir, s));
-    const vfloat d = map(p);
+    const vfloat d = map(limits.values, p);
 #if defined(RECORD_SAMPLES)
     record_samples(&limits, p, active, m.steps);
 #endif

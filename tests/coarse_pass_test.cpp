@@ -46,7 +46,7 @@ Scene with_cones(Scene scene) {
 std::vector<float> kernel_cone_starts(const Scene& scene) {
   OpenClOptions options;
   PreparedProgram program = prepare_program(scene, options, KernelPurpose::DepthSteps);
-  std::optional<ConePass> cones = make_cone_pass(program, scene);
+  std::optional<ConePass> cones = make_cone_pass(program, scene, std::nullopt);
   EXPECT_TRUE(cones.has_value());
   if (!cones) return {};
   const Dispatch dispatch = plan_tile_dispatch(program, scene.render.width, scene.render.height, chunk_pixels_for(program.program.device));

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -71,7 +72,9 @@ TEST(FrameSequence, FramesEqualSingleRendersAtTheirTimes) {
 // A camera that orbits, and a light that follows it, change only the kernel's arguments: every
 // frame after the first reuses the first frame's program and buffers (build_ms 0, --dump-kernel
 // still written per frame), and each frame is still the single render at its time, buffers and
-// all. A shape that moves is baked into the program, so each of its frames builds.
+// all. Shapes that move change literals of the distance function, which the frames' shared
+// program reads from its values: in moving_shapes only frame 0 (the sphere's scale exactly 1, no
+// rotation) has a code of its own.
 TEST(FrameSequence, FramesOfAMovingCameraReuseTheProgram) {
   TempDir dir;
   const std::string scene = (dir / "orbit.yaml").string();
@@ -103,12 +106,33 @@ TEST(FrameSequence, FramesOfAMovingCameraReuseTheProgram) {
   EXPECT_NE(read_image(dir / "o_0.png").pixels, read_image(dir / "o_1.png").pixels) << "the camera moves around the sphere";
 
   const auto moving_shapes = run_clmarch({"render", testing::source_path("scenes/moving_shapes.yaml").string(), "--size",
-                                          "32x18", "--frames", "0:1", "--stats", "-o", (dir / "m_#.png").string()});
+                                          "32x18", "--frames", "0:3", "--stats", "-o", (dir / "m_#.png").string(),
+                                          "--dump-kernel", (dir / "m_#.cl").string()});
   ASSERT_EQ(moving_shapes.exit_code, 0) << moving_shapes.err;
   std::istringstream moving_lines(moving_shapes.out);
+  std::vector<double> moving_build_ms;
   for (std::string line; std::getline(moving_lines, line);) {
-    EXPECT_GT(nlohmann::json::parse(line)["build_ms"].get<double>(), 0.0) << line;
+    moving_build_ms.push_back(nlohmann::json::parse(line)["build_ms"].get<double>());
   }
+  ASSERT_EQ(moving_build_ms.size(), 4u);
+  EXPECT_GT(moving_build_ms[0], 0.0);
+  EXPECT_GT(moving_build_ms[1], 0.0);
+  EXPECT_EQ(moving_build_ms[2], 0.0);
+  EXPECT_EQ(moving_build_ms[3], 0.0);
+  EXPECT_EQ(testing::read_text(dir / "m_0.cl").find("values[0]"), std::string::npos) << "frame 0 spells its values";
+  EXPECT_NE(testing::read_text(dir / "m_3.cl").find("values[0]"), std::string::npos);
+}
+
+TEST(SampleFrames, AllFramesUpToTheLimitElseTheFirstTwoTheLastAndEvenlyBetween) {
+  EXPECT_EQ(sample_frames(parse_frame_range("5:9", 24.0), 8), (std::vector<int>{5, 6, 7, 8, 9}));
+  EXPECT_EQ(sample_frames(parse_frame_range("5:5", 24.0), 8), (std::vector<int>{5}));
+  EXPECT_EQ(sample_frames(parse_frame_range("0:100", 24.0), 6), (std::vector<int>{0, 1, 25, 50, 75, 100}));
+  const std::vector<int> many = sample_frames(parse_frame_range("10:999999", 24.0), 64);
+  EXPECT_EQ(many.size(), 64u);
+  EXPECT_TRUE(std::is_sorted(many.begin(), many.end()));
+  EXPECT_EQ(many.front(), 10);
+  EXPECT_EQ(many[1], 11);
+  EXPECT_EQ(many.back(), 999999);
 }
 
 TEST(FrameSequence, BadOptionsWriteNothing) {

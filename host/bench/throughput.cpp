@@ -27,8 +27,9 @@ std::vector<int> record_march(const Scene& scene, PreparedProgram& prepared, con
   cl::Buffer bases(dp.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sample_base.size() * sizeof(cl_int),
                    const_cast<cl_int*>(sample_base.data()));
   cl::Kernel kernel(dp.program, "march");
-  std::optional<ConePass> cones = make_cone_pass(prepared, scene);
-  const int record_arg = bind_march_inputs(kernel, out, light_buffer, cones);
+  // Benchmark programs spell every literal (no value slots): the values buffer is NULL.
+  std::optional<ConePass> cones = make_cone_pass(prepared, scene, std::nullopt);
+  const int record_arg = bind_march_inputs(kernel, out, light_buffer, std::nullopt, cones);
   kernel.setArg(record_arg, bases);
   if (samples) {
     kernel.setArg(record_arg + 1, *samples);
@@ -109,6 +110,7 @@ CeilingKernel::CeilingKernel(const Scene& scene, const OpenClOptions& options, i
     kernel_.setArg(3, static_cast<cl_int>(repeats_));
     kernel_.setArg(4, sums_);
     kernel_.setArg(5, evaluations_);
+    set_scene_values_arg(kernel_, 6, std::nullopt);
   });
 }
 

@@ -31,6 +31,23 @@ FrameRange parse_frame_range(const std::string& frames, double fps) {
   return range;
 }
 
+std::vector<int> sample_frames(const FrameRange& range, int most) {
+  const int count = range.count();
+  std::vector<int> frames;
+  if (count <= most) {
+    for (int frame = range.first; frame <= range.last; ++frame) frames.push_back(frame);
+    return frames;
+  }
+  frames = {range.first, range.first + 1};
+  // most - 2 more, evenly from the third frame to the last.
+  const int spread = most - 2;
+  for (int i = 1; i <= spread; ++i) {
+    frames.push_back(range.first + 1 + static_cast<int>(static_cast<long long>(count - 2) * i / spread));
+  }
+  frames.erase(std::unique(frames.begin(), frames.end()), frames.end());
+  return frames;
+}
+
 std::string frame_path(const std::string& pattern, int frame, const FrameRange& range) {
   const std::filesystem::path path(pattern);
   std::string name = path.filename().string();

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace clmarch {
 
@@ -14,6 +15,10 @@ struct FrameRange {
   int count() const { return last - first + 1; }
   double time_of(int frame) const { return frame / fps; }
 };
+
+/// Up to most frames of the range, ascending: all of them, or the first two, the last and the
+/// others spread evenly between (what an animation changes shows in a few of its frames).
+std::vector<int> sample_frames(const FrameRange& range, int most);
 
 /// Parses "A:B" (0 <= A <= B <= 999999) with the fps; throws InputError naming --frames or --fps.
 FrameRange parse_frame_range(const std::string& frames, double fps);

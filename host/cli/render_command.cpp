@@ -4,6 +4,7 @@
 #include "cli/frame_sequence.hpp"
 
 #include "cl/devices.hpp"
+#include "codegen/varying_literals.hpp"
 #include "common/cancellation.hpp"
 #include "common/errors.hpp"
 #include "common/log.hpp"
@@ -113,11 +114,17 @@ struct FrameFiles {
   std::string dump_kernel;
 };
 
-/// Renders scene with the options' backend. The frames of a sequence pass renderer: the OpenCL
-/// renderer of the previous frame, kept when this frame's program is the same (a moving camera or
-/// light), replaced when it is not (an animated shape is baked into the program).
+/// What the frames of a sequence carry from one to the next: the OpenCL renderer of the previous
+/// frame, kept when this frame's program is the same (the camera, lights and the varying literals
+/// are its inputs), and the literals of the distance function that vary among the frames.
+struct SequenceState {
+  std::optional<OpenClRenderer> renderer;
+  VaryingLiterals varying;
+};
+
+/// Renders scene with the options' backend; sequence is set for the frames of a sequence.
 RenderResult render_scene(const RenderCommandOptions& options, const Scene& scene, const FrameFiles& files,
-                          std::optional<OpenClRenderer>* renderer = nullptr) {
+                          SequenceState* sequence) {
   if (options.backend == "reference") {
     log_verbose(fmt::format("rendering on the CPU reference (double precision, {} threads)",
                             tbb::this_task_arena::max_concurrency()));
@@ -140,7 +147,11 @@ RenderResult render_scene(const RenderCommandOptions& options, const Scene& scen
   cl.purpose = purpose_for(scene, !files.buffers.empty());
   cl.dump_kernel_path = files.dump_kernel;
   std::optional<OpenClRenderer> single;
-  if (!renderer) renderer = &single;
+  std::optional<OpenClRenderer>* renderer = &single;
+  if (sequence) {
+    cl.value_slots = sequence->varying.slots_for(scene);
+    renderer = &sequence->renderer;
+  }
   if (*renderer && (*renderer)->can_render(scene, cl)) {
     log_verbose("same program as the previous frame: no build");
     if (!files.dump_kernel.empty()) write_file_atomically(files.dump_kernel, (*renderer)->source());
@@ -158,8 +169,8 @@ RenderResult render_scene(const RenderCommandOptions& options, const Scene& scen
 
 /// Renders and writes one image (and its buffers); frame is set for sequences.
 void render_image(const RenderCommandOptions& options, const Scene& scene, const FrameFiles& files,
-                  std::optional<int> frame, std::optional<OpenClRenderer>* renderer = nullptr) {
-  RenderResult result = render_scene(options, scene, files, renderer);
+                  std::optional<int> frame, SequenceState* sequence = nullptr) {
+  RenderResult result = render_scene(options, scene, files, sequence);
   // A Ctrl-C that came too late for the renderer's own checks still writes nothing.
   throw_if_cancelled();
   apply_view(result.buffers, scene.shading.view, scene.render);
@@ -183,20 +194,32 @@ void render_image(const RenderCommandOptions& options, const Scene& scene, const
   }
 }
 
+/// Frames loaded before a sequence renders, to find the literals that vary (a load costs little next
+/// to a program build).
+constexpr int kSampledFrames = 64;
+
 /// Every frame of --frames in turn; each image is complete before the next begins, so a Ctrl-C
 /// leaves the finished frames and nothing of the one in progress.
 void render_sequence(const RenderCommandOptions& options, const std::string& output) {
   const FrameRange range = parse_frame_range(options.frames, options.fps);
   std::optional<ProgressLine> progress;
-  std::optional<OpenClRenderer> renderer;
+  SequenceState sequence;
+  if (options.backend == "opencl") {
+    // Knowing up front which literals vary, the frames of one shape build one program between them.
+    for (int frame : sample_frames(range, kSampledFrames)) {
+      sequence.varying.add(load_scene_with_options(options.scene, range.time_of(frame)));
+    }
+  }
   for (int frame = range.first; frame <= range.last; ++frame) {
     const Scene scene = load_scene_with_options(options.scene, range.time_of(frame));
+    // A frame between the samples may vary more: its shape's program is built again, once.
+    sequence.varying.add(scene);
     if (!progress) progress.emplace("frames", range.count(), static_cast<double>(scene.render.width) * scene.render.height);
     FrameFiles files{frame_path(output, frame, range), "", ""};
     if (!options.buffers.empty()) files.buffers = frame_path(options.buffers, frame, range);
     if (!options.dump_kernel.empty()) files.dump_kernel = frame_path(options.dump_kernel, frame, range);
     log_verbose(fmt::format("frame {} at t = {} s", frame, scene.time));
-    render_image(options, scene, files, frame, &renderer);
+    render_image(options, scene, files, frame, &sequence);
     progress->advance();
   }
 }

@@ -172,13 +172,14 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
   if (uses_kind(scene.sdf, {NodeKind::Terrain})) src += kernel_file("noise.cl");
   src += kernel_file("operators.cl");
   src += "#line 1 \"generated scene\"\n";
-  // eval_points takes world points; the march's points are relative to map_frame_origin.
-  src += generate_sdf_functions(scene.sdf, options.purpose == KernelPurpose::EvalPoints ? glm::dvec3(0.0) : map_frame_origin(scene),
-                                scene.render.subtree_bounds == SceneBounds::Sphere);
   if (options.purpose == KernelPurpose::EvalPoints) {
+    if (!options.value_slots.empty()) throw std::invalid_argument("value slots are for march programs, not eval_points");
+    // eval_points takes world points; the march's points are relative to map_frame_origin.
+    src += spell_sdf_code(generate_sdf_code(scene.sdf, glm::dvec3(0.0), scene.render.subtree_bounds == SceneBounds::Sphere));
     src += kernel_file("eval_points.cl");
     return src;
   }
+  src += spell_sdf_code(march_sdf_code(scene), options.value_slots);
   src += kernel_file("field.cl");
   src += kernel_file("camera.cl");
   src += kernel_file("march_loop.cl");
@@ -193,6 +194,10 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
   src += kernel_file("march.cl");
   if (options.purpose == KernelPurpose::Ceiling) src += kernel_file("replay.cl");
   return src;
+}
+
+SdfCode march_sdf_code(const Scene& scene) {
+  return generate_sdf_code(scene.sdf, map_frame_origin(scene), scene.render.subtree_bounds == SceneBounds::Sphere);
 }
 
 std::string output_floor_source() { return kernel_file("output_floor.cl"); }

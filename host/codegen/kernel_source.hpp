@@ -2,6 +2,7 @@
 // needs (each behind a #line so build errors point at the real file), and the generated scene code.
 #pragma once
 
+#include "codegen/sdf_codegen.hpp"
 #include "scene/scene.hpp"
 
 #include <string>
@@ -54,6 +55,9 @@ struct KernelOptions {
   KernelVariant variant;
   /// Whether the compiler may fuse a * b + c (no NO_FP_CONTRACT); allows_fp_contraction(device).
   bool fp_contraction = true;
+  /// Literals of march_sdf_code(scene) that the program reads from its scene_values buffer
+  /// (animations: VaryingLiterals); march programs only.
+  ValueSlots value_slots;
 };
 
 /// What a march program computes beyond depth and steps, and so which planes of the output buffer
@@ -81,8 +85,13 @@ inline constexpr const char* kDoubleNeedsVectorLanes =
 
 /// The full program source, exactly as it is built (and dumped by --dump-kernel). Throws
 /// std::invalid_argument for native math with double precision (OpenCL has no double native_*)
-/// and for double precision with 1 lane.
+/// and for double precision with 1 lane, and std::invalid_argument for value slots in an
+/// eval_points program or outside the scene's literals.
 std::string generate_kernel_source(const Scene& scene, const KernelOptions& options);
+
+/// The distance functions of the scene's march programs, literals open: points relative to
+/// map_frame_origin, subtrees gated as render.subtree_bounds says.
+SdfCode march_sdf_code(const Scene& scene);
 
 /// The output floor's program (kernels/output_floor.cl): fill_planes, which only stores.
 std::string output_floor_source();

@@ -11,11 +11,28 @@
 
 #include <cmath>
 #include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
 namespace clmarch {
 namespace {
+
+/// Records the tree's float literals, each written as its mark "@k@" (SdfCode).
+class Literals {
+ public:
+  std::string f(double value) {
+    values_.push_back(static_cast<float>(value));
+    return fmt::format("@{}@", values_.size() - 1);
+  }
+  std::string f4(const glm::dvec3& v) { return fmt::format("(float4)({}, {}, {}, 0.0f)", f(v.x), f(v.y), f(v.z)); }
+  std::vector<float> take() { return std::move(values_); }
+
+ private:
+  std::vector<float> values_;
+};
 
 /// The material a node passes to its subtree: its own settings over the inherited ones.
 Material material_of(const Node& node, const Material& inherited) {
@@ -29,59 +46,60 @@ Material material_of(const Node& node, const Material& inherited) {
 
 /// The call of a primitive at the point p + offset: positions are baked relative to offset, in
 /// double, so p stays small where the camera is far from the origin (map_frame_origin).
-std::string primitive_call(const Primitive& primitive, const std::string& p, const glm::dvec3& offset) {
+std::string primitive_call(const Primitive& primitive, const std::string& p, const glm::dvec3& offset, Literals& lit) {
   struct Visitor {
     const std::string& p;
     const glm::dvec3& offset;
+    Literals& lit;
     std::string operator()(const Sphere& s) const {
-      return fmt::format("sd_sphere({}, {}, {})", p, cl_float4(s.center - offset), cl_float(s.radius));
+      return fmt::format("sd_sphere({}, {}, {})", p, lit.f4(s.center - offset), lit.f(s.radius));
     }
     std::string operator()(const Box& b) const {
-      return fmt::format("sd_box({}, {}, {})", p, cl_float4(b.center - offset), cl_float4(b.half_size));
+      return fmt::format("sd_box({}, {}, {})", p, lit.f4(b.center - offset), lit.f4(b.half_size));
     }
     std::string operator()(const RoundBox& b) const {
-      return fmt::format("sd_round_box({}, {}, {}, {})", p, cl_float4(b.center - offset), cl_float4(b.half_size),
-                         cl_float(b.radius));
+      return fmt::format("sd_round_box({}, {}, {}, {})", p, lit.f4(b.center - offset), lit.f4(b.half_size),
+                         lit.f(b.radius));
     }
     std::string operator()(const BoxFrame& b) const {
-      return fmt::format("sd_box_frame({}, {}, {}, {})", p, cl_float4(b.center - offset), cl_float4(b.half_size),
-                         cl_float(b.thickness));
+      return fmt::format("sd_box_frame({}, {}, {}, {})", p, lit.f4(b.center - offset), lit.f4(b.half_size),
+                         lit.f(b.thickness));
     }
     std::string operator()(const Torus& t) const {
-      return fmt::format("sd_torus({}, {}, {}, {})", p, cl_float4(t.center - offset), cl_float(t.major_radius),
-                         cl_float(t.minor_radius));
+      return fmt::format("sd_torus({}, {}, {}, {})", p, lit.f4(t.center - offset), lit.f(t.major_radius),
+                         lit.f(t.minor_radius));
     }
     std::string operator()(const Plane& s) const {
       // dot(n, p + offset) + c = dot(n, p) + (c + dot(n, offset))
-      return fmt::format("sd_plane({}, {}, {})", p, cl_float4(s.normal), cl_float(s.offset + glm::dot(s.normal, offset)));
+      return fmt::format("sd_plane({}, {}, {})", p, lit.f4(s.normal), lit.f(s.offset + glm::dot(s.normal, offset)));
     }
     std::string operator()(const Capsule& c) const {
-      return fmt::format("sd_capsule({}, {}, {}, {})", p, cl_float4(c.a - offset), cl_float4(c.b - offset),
-                         cl_float(c.radius));
+      return fmt::format("sd_capsule({}, {}, {}, {})", p, lit.f4(c.a - offset), lit.f4(c.b - offset),
+                         lit.f(c.radius));
     }
     std::string operator()(const Cylinder& c) const {
-      return fmt::format("sd_cylinder({}, {}, {}, {})", p, cl_float4(c.center - offset), cl_float(c.radius),
-                         cl_float(c.half_height));
+      return fmt::format("sd_cylinder({}, {}, {}, {})", p, lit.f4(c.center - offset), lit.f(c.radius),
+                         lit.f(c.half_height));
     }
     std::string operator()(const Mandelbulb& m) const {
       // Power 8 has a form without transcendentals in the loop (kernels/fractals.cl).
       if (m.power == 8.0) {
-        return fmt::format("sd_mandelbulb8({}, {}, {}, {})", p, cl_float4(m.center - offset), m.iterations,
-                           cl_float(m.bailout));
+        return fmt::format("sd_mandelbulb8({}, {}, {}, {})", p, lit.f4(m.center - offset), m.iterations,
+                           lit.f(m.bailout));
       }
-      return fmt::format("sd_mandelbulb({}, {}, {}, {}, {})", p, cl_float4(m.center - offset), cl_float(m.power),
-                         m.iterations, cl_float(m.bailout));
+      return fmt::format("sd_mandelbulb({}, {}, {}, {}, {})", p, lit.f4(m.center - offset), lit.f(m.power),
+                         m.iterations, lit.f(m.bailout));
     }
     std::string operator()(const Menger& m) const {
-      return fmt::format("sd_menger({}, {}, {}, {})", p, cl_float4(m.center - offset), cl_float(m.half_size),
+      return fmt::format("sd_menger({}, {}, {}, {})", p, lit.f4(m.center - offset), lit.f(m.half_size),
                          m.iterations);
     }
     std::string operator()(const Terrain& t) const {
       return fmt::format("sd_terrain_{}({}, {}, {}, {}, {}, {}u)", kTerrainNoiseNames[static_cast<int>(t.noise)], p,
-                         cl_float(t.height), cl_float(t.amplitude), cl_float(t.frequency), t.octaves, t.seed);
+                         lit.f(t.height), lit.f(t.amplitude), lit.f(t.frequency), t.octaves, t.seed);
     }
   };
-  return std::visit(Visitor{p, offset}, primitive);
+  return std::visit(Visitor{p, offset, lit}, primitive);
 }
 
 /// A rough cost of evaluating a subtree, in sphere evaluations: what decides whether a bounding
@@ -107,7 +125,8 @@ constexpr int kGateCost = 8;
 /// surface = metallic, roughness, reflectivity), blended by the same rules as the albedo.
 class SdfEmitter {
  public:
-  SdfEmitter(bool with_color, bool gate_subtrees) : with_color_(with_color), gate_subtrees_(gate_subtrees) {}
+  SdfEmitter(bool with_color, bool gate_subtrees, Literals& literals)
+      : with_color_(with_color), gate_subtrees_(gate_subtrees), lit_(literals) {}
 
   struct Value {
     std::string distance;
@@ -125,13 +144,13 @@ class SdfEmitter {
     if (node.transform.scale != 1.0) {
       // p was divided by the scale, so distances in the local frame are scaled back.
       const std::string scaled = fresh("d");
-      line(fmt::format("vfloat {} = {} * {};", scaled, value.distance, cl_float(node.transform.scale)));
+      line(fmt::format("vfloat {} = {} * {};", scaled, value.distance, lit_.f(node.transform.scale)));
       value.distance = scaled;
     }
     if (node.step_factor != 1.0) {
       // Shorter steps for fields steeper than 1 (terrain, fractals, deep smooth unions).
       const std::string bounded = fresh("d");
-      line(fmt::format("vfloat {} = {} * {};  /* step_factor */", bounded, value.distance, cl_float(node.step_factor)));
+      line(fmt::format("vfloat {} = {} * {};  /* step_factor */", bounded, value.distance, lit_.f(node.step_factor)));
       value.distance = bounded;
     }
     return value;
@@ -154,8 +173,8 @@ class SdfEmitter {
     const std::string q = fresh("p");
     // p + offset - translate = p - (translate - offset): the offset ends here.
     line(fmt::format("vec3v {} = v3_transform(v3_sub({}, v3_from({})), {}, {}, {}, {}, {}, {}, {}, {}, {});", q, p,
-                     cl_float4(transform.translate - offset), cl_float(r0.x), cl_float(r0.y), cl_float(r0.z), cl_float(r1.x),
-                     cl_float(r1.y), cl_float(r1.z), cl_float(r2.x), cl_float(r2.y), cl_float(r2.z)));
+                     lit_.f4(transform.translate - offset), lit_.f(r0.x), lit_.f(r0.y), lit_.f(r0.z), lit_.f(r1.x),
+                     lit_.f(r1.y), lit_.f(r1.z), lit_.f(r2.x), lit_.f(r2.y), lit_.f(r2.z)));
     return {q, glm::dvec3(0.0)};
   }
 
@@ -163,7 +182,7 @@ class SdfEmitter {
   std::string absolute_point(const std::string& p, const glm::dvec3& offset) {
     if (offset == glm::dvec3(0.0)) return p;
     const std::string q = fresh("p");
-    line(fmt::format("vec3v {} = v3_add({}, v3_from({}));", q, p, cl_float4(offset)));
+    line(fmt::format("vec3v {} = v3_add({}, v3_from({}));", q, p, lit_.f4(offset)));
     return q;
   }
 
@@ -171,15 +190,15 @@ class SdfEmitter {
     Value value{fresh("d"), "", ""};
     // Terrain noise hashes absolute lattice coordinates, so it cannot fold the offset.
     const std::string call = node.kind == NodeKind::Terrain
-                                 ? primitive_call(node.primitive, absolute_point(p, offset), glm::dvec3(0.0))
-                                 : primitive_call(node.primitive, p, offset);
+                                 ? primitive_call(node.primitive, absolute_point(p, offset), glm::dvec3(0.0), lit_)
+                                 : primitive_call(node.primitive, p, offset, lit_);
     line(fmt::format("vfloat {} = {};  /* {} */", value.distance, call, node_kind_name(node.kind)));
     if (with_color_) {
       value.color = fresh("c");
-      line(fmt::format("vec3v {} = v3_from({});", value.color, cl_float4(color.albedo)));
+      line(fmt::format("vec3v {} = v3_from({});", value.color, lit_.f4(color.albedo)));
       value.surface = fresh("s");
       line(fmt::format("vec3v {} = v3_from({});", value.surface,
-                       cl_float4(glm::dvec3(color.metallic, color.roughness, color.reflectivity))));
+                       lit_.f4(glm::dvec3(color.metallic, color.roughness, color.reflectivity))));
     }
     return value;
   }
@@ -201,8 +220,8 @@ class SdfEmitter {
   /// Above what bound of a later child the operator returns acc unchanged: smooth union acc + k
   /// (its blend weight is 1 there), subtraction -acc, smooth subtraction k - acc (weight 0).
   /// Nothing for intersections, whose result is the largest operand.
-  static std::optional<std::string> sequential_skip_limit(const Node& node, const std::string& acc) {
-    const std::string k = cl_float(node.smooth_k);
+  std::optional<std::string> sequential_skip_limit(const Node& node, const std::string& acc) {
+    const std::string k = lit_.f(node.smooth_k);
     switch (node.kind) {
       case NodeKind::SmoothUnion: return fmt::format("{} + {}", acc, k);
       case NodeKind::Subtraction: return fmt::format("-{}", acc);
@@ -255,7 +274,7 @@ class SdfEmitter {
     const BoundingSphere sphere = *node_bounds(child);
     Value out{fresh("d"), "", ""};
     line(fmt::format("vfloat {} = sd_bound({}, {}, {}, {});  /* bound of {} */", out.distance, p,
-                     cl_float4(sphere.center - offset), cl_float(sphere.radius), cl_float(1.0 / sphere.gain),
+                     lit_.f4(sphere.center - offset), lit_.f(sphere.radius), lit_.f(1.0 / sphere.gain),
                      node_kind_name(child.kind)));
     if (with_color_) {
       out.color = fresh("c");
@@ -280,8 +299,8 @@ class SdfEmitter {
       // Repetition forgets whole periods, so only the offset's remainder matters (floor-based).
       const double remainder = offset[i] - period[i] * std::floor(offset[i] / period[i]);
       child_offset[i] = 0.0;
-      const std::string x = remainder == 0.0 ? fmt::format("{}.{}", p, c) : fmt::format("{}.{} + {}", p, c, cl_float(remainder));
-      return fmt::format("op_repeat_axis({}, {})", x, cl_float(period[i]));
+      const std::string x = remainder == 0.0 ? fmt::format("{}.{}", p, c) : fmt::format("{}.{} + {}", p, c, lit_.f(remainder));
+      return fmt::format("op_repeat_axis({}, {})", x, lit_.f(period[i]));
     };
     const std::string q = fresh("p");
     line(fmt::format("vec3v {} = v3({}, {}, {});  /* repeat */", q, axis("x", 0), axis("y", 1), axis("z", 2)));
@@ -293,14 +312,14 @@ class SdfEmitter {
     const std::string at = absolute_point(p, offset);
     Value out{fresh("d"), child.color, child.surface};
     line(fmt::format("vfloat {} = ({} + displacement({}, {}, {})) * {};  /* displace */", out.distance, child.distance, at,
-                     cl_float(node.displace_amplitude), cl_float(node.displace_frequency),
-                     cl_float(1.0 / displacement_lipschitz(node))));
+                     lit_.f(node.displace_amplitude), lit_.f(node.displace_frequency),
+                     lit_.f(1.0 / displacement_lipschitz(node))));
     return out;
   }
 
   Value combine(const Node& node, const Value& a, const Value& b) {
     Value out{fresh("d"), "", ""};
-    const std::string k = cl_float(node.smooth_k);
+    const std::string k = lit_.f(node.smooth_k);
     const std::string& da = a.distance;
     const std::string& db = b.distance;
     std::string distance, blend;  // blend: {0} = first operand's, {1} = second's
@@ -344,6 +363,7 @@ class SdfEmitter {
 
   bool with_color_;
   bool gate_subtrees_;
+  Literals& lit_;
   int counter_ = 0;
   std::string body_;
   std::string indent_;
@@ -351,23 +371,88 @@ class SdfEmitter {
 
 }  // namespace
 
-std::string generate_sdf_functions(const Node& root, const glm::dvec3& frame_origin, bool gate_subtrees) {
-  SdfEmitter distance_only(false, gate_subtrees);
+SdfCode generate_sdf_code(const Node& root, const glm::dvec3& frame_origin, bool gate_subtrees) {
+  Literals literals;
+  SdfEmitter distance_only(false, gate_subtrees, literals);
   const SdfEmitter::Value d = distance_only.emit(root, "p", Material{}, frame_origin);
-  SdfEmitter with_color(true, gate_subtrees);
+  SdfEmitter with_color(true, gate_subtrees, literals);
   const SdfEmitter::Value dc = with_color.emit(root, "p", Material{}, frame_origin);
   const std::string frame = frame_origin == glm::dvec3(0.0)
                                 ? std::string()
                                 : fmt::format("/* p is relative to the world point ({}, {}, {}) (map_frame_origin). */\n",
                                               frame_origin.x, frame_origin.y, frame_origin.z);
-  return frame + fmt::format(
+  SdfCode code;
+  code.source = frame + fmt::format(
+      "/* Literals of the tree that change between the frames of an animation are read from the\n"
+      " * kernel's scene_values buffer (values[j]) instead, so that those frames share this program. */\n"
+      "typedef __constant const float* SceneValues;\n\n"
       "/* Distance to the scene. */\n"
-      "SDF_INLINE vfloat map(vec3v p) {{\n{}  return {};\n}}\n\n"
+      "SDF_INLINE vfloat map(SceneValues values, vec3v p) {{\n{}  return {};\n}}\n\n"
       "/* Distance to the scene and the material there: albedo, surface = (metallic, roughness,\n"
       " * reflectivity). */\n"
-      "SDF_INLINE vfloat map_color(vec3v p, vec3v* albedo, vec3v* surface) {{\n{}  *albedo = {};\n"
+      "SDF_INLINE vfloat map_color(SceneValues values, vec3v p, vec3v* albedo, vec3v* surface) {{\n{}  *albedo = {};\n"
       "  *surface = {};\n  return {};\n}}\n",
       distance_only.body(), d.distance, with_color.body(), dc.color, dc.surface, dc.distance);
+  code.literals = literals.take();
+  return code;
+}
+
+namespace {
+
+/// Calls visit(text, k) for each run of plain text and each literal mark k of the source, in order.
+template <typename Visit>
+void for_each_mark(const std::string& source, Visit&& visit) {
+  std::size_t at = 0;
+  for (std::size_t mark = source.find('@'); mark != std::string::npos; mark = source.find('@', at)) {
+    const std::size_t end = source.find('@', mark + 1);
+    visit(std::string_view(source).substr(at, mark - at), std::stoul(source.substr(mark + 1, end - mark - 1)));
+    at = end + 1;
+  }
+  visit(std::string_view(source).substr(at), std::string::npos);
+}
+
+/// The slots' literals in the order the source first reads them: the program's values[j] is the
+/// j-th, so that the dumped source numbers them as it is read.
+std::vector<std::size_t> slots_in_reading_order(const SdfCode& code, const ValueSlots& slots) {
+  std::vector<bool> is_slot(code.literals.size(), false);
+  for (int k : slots) {
+    if (k < 0 || static_cast<std::size_t>(k) >= code.literals.size()) {
+      throw std::invalid_argument(fmt::format("value slot {} is not a literal of the scene's code", k));
+    }
+    is_slot[static_cast<std::size_t>(k)] = true;
+  }
+  std::vector<std::size_t> order;
+  for_each_mark(code.source, [&](std::string_view, std::size_t k) {
+    if (k != std::string::npos && is_slot[k]) {
+      is_slot[k] = false;
+      order.push_back(k);
+    }
+  });
+  return order;
+}
+
+}  // namespace
+
+std::string spell_sdf_code(const SdfCode& code, const ValueSlots& slots) {
+  const std::vector<std::size_t> order = slots_in_reading_order(code, slots);
+  std::vector<int> slot_of(code.literals.size(), -1);
+  for (std::size_t j = 0; j < order.size(); ++j) slot_of[order[j]] = static_cast<int>(j);
+  std::string out;
+  if (!order.empty()) {
+    out += fmt::format("/* values[0 .. {}]: the literals that change from frame to frame. */\n", order.size() - 1);
+  }
+  for_each_mark(code.source, [&](std::string_view text, std::size_t k) {
+    out += text;
+    if (k == std::string::npos) return;
+    out += slot_of[k] >= 0 ? fmt::format("values[{}]", slot_of[k]) : cl_float(code.literals[k]);
+  });
+  return out;
+}
+
+std::vector<float> slot_values(const SdfCode& code, const ValueSlots& slots) {
+  std::vector<float> values;
+  for (std::size_t k : slots_in_reading_order(code, slots)) values.push_back(code.literals[k]);
+  return values;
 }
 
 }  // namespace clmarch

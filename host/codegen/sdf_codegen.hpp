@@ -1,18 +1,40 @@
-// Turns a scene's SDF tree into OpenCL C: map(p), the distance, and map_color(p, &albedo), the
-// distance with the blended albedo, calling the functions of kernels/primitives.cl and operators.cl.
+// Turns a scene's SDF tree into OpenCL C: map(values, p), the distance, and map_color(values, p,
+// &albedo, &surface), the distance with the blended material, calling the functions of
+// kernels/primitives.cl and operators.cl.
 #pragma once
 
 #include "scene/scene.hpp"
 
 #include <string>
+#include <vector>
 
 namespace clmarch {
 
-/// Source of the two functions map and map_color for this tree, taking points relative to the
-/// world point frame_origin (its positions are baked relative to it, in double). With
-/// gate_subtrees, unions and subtractions evaluate an expensive bounded subtree only where its
-/// bounding sphere shows it can change their result (render.subtree_bounds).
-std::string generate_sdf_functions(const Node& root, const glm::dvec3& frame_origin = glm::dvec3(0.0),
-                                   bool gate_subtrees = true);
+/// The two functions with their float literals left open: the frames of an animation share one
+/// program when their trees differ only in values, which the program then reads from its
+/// scene_values buffer (SceneValues values) instead of spelling them.
+struct SdfCode {
+  /// The source, with "@k@" where literal k goes.
+  std::string source;
+  /// Every float literal of the tree, rounded to float, by index.
+  std::vector<float> literals;
+};
+
+/// The code of map and map_color for this tree, taking points relative to the world point
+/// frame_origin (its positions are baked relative to it, in double). With gate_subtrees, unions
+/// and subtractions evaluate an expensive bounded subtree only where its bounding sphere shows it
+/// can change their result (render.subtree_bounds).
+SdfCode generate_sdf_code(const Node& root, const glm::dvec3& frame_origin = glm::dvec3(0.0), bool gate_subtrees = true);
+
+/// Indices into SdfCode::literals, ascending: the literals a program reads from its values
+/// (values[j] is the j-th of them that the source reads, in the source's order).
+using ValueSlots = std::vector<int>;
+
+/// The source as it is built: each literal spelled exactly, except those of slots (values[j]).
+/// Throws std::invalid_argument for a slot that is no literal of the code.
+std::string spell_sdf_code(const SdfCode& code, const ValueSlots& slots = {});
+
+/// What values[j] holds for this code: its literals at slots, in the order the source reads them.
+std::vector<float> slot_values(const SdfCode& code, const ValueSlots& slots);
 
 }  // namespace clmarch

@@ -2,6 +2,7 @@
 #include "render/march_dispatch.hpp"
 
 #include "cl/cl_errors.hpp"
+#include "codegen/kernel_source.hpp"
 #include "common/cancellation.hpp"
 #include "image/atomic_file.hpp"
 #include "scene/camera_model.hpp"
@@ -76,12 +77,13 @@ PreparedProgram prepare_program(const Scene& scene, const OpenClOptions& options
   const DeviceEntry device = select_device(options.device);
   KernelOptions kernel_options{purpose, options.lanes.value_or(default_lanes(device)), options.variant};
   kernel_options.fp_contraction = allows_fp_contraction(device);
+  const bool march = purpose != KernelPurpose::EvalPoints;
+  if (march) kernel_options.value_slots = options.value_slots;
   const std::string source = generate_kernel_source(scene, kernel_options);
   if (!options.dump_kernel_path.empty()) write_file_atomically(options.dump_kernel_path, source);
-  const bool march = purpose != KernelPurpose::EvalPoints;
   return {build_device_program(device, source, kernel_build_options(options.variant)), kernel_options.lanes,
           march ? packets_per_item(scene, kernel_options.lanes) : 1,
-          march ? march_outputs(scene, purpose).planes() : std::vector<int>{}, source};
+          march ? march_outputs(scene, purpose).planes() : std::vector<int>{}, source, kernel_options};
 }
 
 int packet_width(int lanes) { return lanes == 1 ? 1 : lanes == 4 ? 2 : 4; }
@@ -175,11 +177,33 @@ std::vector<cl_float4> light_data(const Scene& scene) {
   return data;
 }
 
+std::optional<cl::Buffer> make_scene_values(const PreparedProgram& program, const Scene& scene) {
+  std::vector<float> values = slot_values(march_sdf_code(scene), program.kernel_options.value_slots);
+  if (values.empty()) return std::nullopt;
+  return cl::Buffer(program.program.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * sizeof(float),
+                    values.data());
+}
+
+void write_scene_values(PreparedProgram& program, const Scene& scene, const std::optional<cl::Buffer>& values) {
+  if (!values) return;
+  const std::vector<float> data = slot_values(march_sdf_code(scene), program.kernel_options.value_slots);
+  program.program.queue.enqueueWriteBuffer(*values, CL_TRUE, 0, data.size() * sizeof(float), data.data());
+}
+
+void set_scene_values_arg(cl::Kernel& kernel, int index, const std::optional<cl::Buffer>& values) {
+  if (values) {
+    kernel.setArg(index, *values);
+  } else {
+    kernel.setArg(index, sizeof(cl_mem), nullptr);  // a NULL pointer: the program spells every literal
+  }
+}
+
 std::size_t march_output_bytes(const Dispatch& dispatch) {
   return dispatch.plane_stride * CLMARCH_CHANNEL_COUNT * sizeof(float);
 }
 
-std::optional<ConePass> make_cone_pass(const PreparedProgram& program, const Scene& scene) {
+std::optional<ConePass> make_cone_pass(const PreparedProgram& program, const Scene& scene,
+                                       const std::optional<cl::Buffer>& values) {
   if (!uses_cone_pass(scene)) return std::nullopt;
   const DeviceProgram& dp = program.program;
   ConePass cones;
@@ -192,6 +216,7 @@ std::optional<ConePass> make_cone_pass(const PreparedProgram& program, const Sce
   cones.kernel = cl::Kernel(dp.program, "coarse_cones");
   cones.kernel.setArg(1, cones.starts);
   cones.kernel.setArg(2, cones.steps);
+  set_scene_values_arg(cones.kernel, 3, values);
   return cones;
 }
 
@@ -209,12 +234,14 @@ std::vector<float> read_cone_plane(cl::CommandQueue& queue, const ConePass& cone
   return values;
 }
 
-int bind_march_inputs(cl::Kernel& march, const cl::Buffer& out, const cl::Buffer& lights, const std::optional<ConePass>& cones) {
+int bind_march_inputs(cl::Kernel& march, const cl::Buffer& out, const cl::Buffer& lights,
+                      const std::optional<cl::Buffer>& values, const std::optional<ConePass>& cones) {
   march.setArg(1, out);
   march.setArg(2, lights);
-  if (!cones) return 3;
-  march.setArg(3, cones->starts);
-  return 4;
+  set_scene_values_arg(march, 3, values);
+  if (!cones) return 4;
+  march.setArg(4, cones->starts);
+  return 5;
 }
 
 void for_each_chunk(cl::CommandQueue& queue, cl::Kernel& kernel, MarchParams params, const Dispatch& dispatch, int height,

@@ -23,8 +23,9 @@ struct PreparedProgram {
   int lanes = 1;
   int packets_per_item = 1;
   std::vector<int> planes;
-  /// The generated OpenCL C it was built from.
+  /// The generated OpenCL C it was built from, and what it was generated with.
   std::string source;
+  KernelOptions kernel_options;
 };
 
 /// Generates and builds the scene's program for purpose (writing it to options.dump_kernel_path
@@ -77,6 +78,14 @@ MarchParams march_params(const Scene& scene, const Dispatch& dispatch);
 /// Lights as the kernel reads them (kernels/shading.cl): positions relative to the camera.
 std::vector<cl_float4> light_data(const Scene& scene);
 
+/// The scene_values buffer of program, holding scene's literals at the program's value slots;
+/// nothing for a program without slots (its kernels get NULL).
+std::optional<cl::Buffer> make_scene_values(const PreparedProgram& program, const Scene& scene);
+/// Writes scene's literals at the program's value slots into values (made for the same slots).
+void write_scene_values(PreparedProgram& program, const Scene& scene, const std::optional<cl::Buffer>& values);
+/// Sets kernel argument index, a SceneValues pointer, to values or NULL.
+void set_scene_values_arg(cl::Kernel& kernel, int index, const std::optional<cl::Buffer>& values);
+
 /// Bytes of the march kernel's output buffer for dispatch (every plane, kernels/device_types.h).
 std::size_t march_output_bytes(const Dispatch& dispatch);
 /// The coarse cone pass of a program built with it (uses_cone_pass, kernels/coarse.cl): its kernel
@@ -89,15 +98,18 @@ struct ConePass {
   cl::Buffer starts;
   cl::Buffer steps;
 };
-/// The cone pass of program for scene, or nothing when the scene has none.
-std::optional<ConePass> make_cone_pass(const PreparedProgram& program, const Scene& scene);
+/// The cone pass of program for scene (reading values, make_scene_values), or nothing when the
+/// scene has none.
+std::optional<ConePass> make_cone_pass(const PreparedProgram& program, const Scene& scene,
+                                       const std::optional<cl::Buffer>& values);
 /// Enqueues the cone pass with params (before the march's chunks, which read its starts).
 cl::Event enqueue_cone_pass(cl::CommandQueue& queue, ConePass& cones, const MarchParams& params);
 /// One value per block of the cone pass's starts or steps (a blocking read).
 std::vector<float> read_cone_plane(cl::CommandQueue& queue, const ConePass& cones, const cl::Buffer& plane);
-/// Sets the march kernel's arguments after params: out, lights, and the cone pass's starts when
-/// there is one. Returns the index of the next argument.
-int bind_march_inputs(cl::Kernel& march, const cl::Buffer& out, const cl::Buffer& lights, const std::optional<ConePass>& cones);
+/// Sets the march kernel's arguments after params: out, lights, the scene's values, and the cone
+/// pass's starts when there is one. Returns the index of the next argument.
+int bind_march_inputs(cl::Kernel& march, const cl::Buffer& out, const cl::Buffer& lights,
+                      const std::optional<cl::Buffer>& values, const std::optional<ConePass>& cones);
 
 /// Enqueues kernel (its argument 0 is params) once per chunk of rows and calls done(first_row, rows,
 /// event) after each dispatch was enqueued. Each dispatch writes the program's planes (PreparedProgram::

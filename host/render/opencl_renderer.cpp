@@ -28,6 +28,7 @@ struct OpenClRenderer::State {
   MarchParams params;
   cl::Buffer out;
   cl::Buffer lights;
+  std::optional<cl::Buffer> values;
   cl::Kernel kernel;
   std::optional<ConePass> cones;
 };
@@ -46,9 +47,10 @@ OpenClRenderer::OpenClRenderer(const Scene& scene, const OpenClOptions& options)
     s.out = cl::Buffer(dp.context, CL_MEM_WRITE_ONLY | CL_MEM_HOST_READ_ONLY, march_output_bytes(s.dispatch));
     s.lights = cl::Buffer(dp.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, lights.size() * sizeof(cl_float4),
                           const_cast<cl_float4*>(lights.data()));
+    s.values = make_scene_values(s.prepared, scene);
     s.kernel = cl::Kernel(dp.program, "march");
-    s.cones = make_cone_pass(s.prepared, scene);
-    bind_march_inputs(s.kernel, s.out, s.lights, s.cones);
+    s.cones = make_cone_pass(s.prepared, scene, s.values);
+    bind_march_inputs(s.kernel, s.out, s.lights, s.values, s.cones);
   });
 }
 
@@ -59,10 +61,11 @@ bool OpenClRenderer::can_render(const Scene& scene, const OpenClOptions& options
   const OpenClOptions& mine = s.options;
   if (scene.render.width != s.scene.render.width || scene.render.height != s.scene.render.height) return false;
   if (options.device != mine.device || options.lanes != mine.lanes || options.purpose != mine.purpose ||
-      !(options.variant == mine.variant) || options.max_chunk_pixels != mine.max_chunk_pixels) {
+      !(options.variant == mine.variant) || options.max_chunk_pixels != mine.max_chunk_pixels ||
+      options.value_slots != mine.value_slots) {
     return false;
   }
-  return generate_kernel_source(scene, {options.purpose, s.prepared.lanes, options.variant}) == s.prepared.source;
+  return generate_kernel_source(scene, s.prepared.kernel_options) == s.prepared.source;
 }
 
 void OpenClRenderer::set_scene(const Scene& scene) {
@@ -73,6 +76,7 @@ void OpenClRenderer::set_scene(const Scene& scene) {
   const std::vector<cl_float4> lights = light_data(scene);
   with_device_errors(s.prepared.program.device, [&] {
     s.prepared.program.queue.enqueueWriteBuffer(s.lights, CL_TRUE, 0, lights.size() * sizeof(cl_float4), lights.data());
+    write_scene_values(s.prepared, scene, s.values);
   });
 }
 
@@ -154,6 +158,7 @@ PointSamples eval_points_opencl(const Scene& scene, const std::vector<glm::dvec3
       out_buffers.emplace_back(dp.context, CL_MEM_WRITE_ONLY, n * sizeof(float));
       kernel.setArg(3 + i, out_buffers.back());
     }
+    set_scene_values_arg(kernel, 8, std::nullopt);  // eval_points programs spell every literal
     dp.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(dispatch.global_items),
                                   cl::NDRange(dispatch.local_items));
     for (int i = 0; i < 5; ++i) dp.queue.enqueueReadBuffer(out_buffers[i], CL_TRUE, 0, n * sizeof(float), outputs[i].data());

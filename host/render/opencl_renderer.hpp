@@ -23,6 +23,10 @@ struct OpenClOptions {
   KernelPurpose purpose = KernelPurpose::Shaded;
   /// Precision, native math and fast math of the program (default: float, precise builtins).
   KernelVariant variant;
+  /// Literals of the scene's distance function that the march program reads from its scene_values
+  /// buffer instead of spelling them (march_sdf_code): the values an animation changes, so that
+  /// its frames share one program (VaryingLiterals). Empty: every literal is spelled.
+  ValueSlots value_slots;
   /// Where to write the exact program source before building; empty: nowhere.
   std::string dump_kernel_path;
   /// Most pixels per dispatch; 0: as many as the device's largest buffer allows (capped so that
@@ -73,7 +77,7 @@ class OpenClRenderer {
 
   /// Whether scene can be rendered with this program and buffers: the same image size, options
   /// (but dump_kernel_path) and generated source, so only what the kernel takes as arguments
-  /// differs (the camera and lights, march limits).
+  /// differs (the camera and lights, march limits, the literals at value_slots).
   bool can_render(const Scene& scene, const OpenClOptions& options) const;
   /// Makes scene the current one; can_render(scene, ...) must hold.
   void set_scene(const Scene& scene);

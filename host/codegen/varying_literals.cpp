@@ -1,0 +1,36 @@
+// Literals compared bit for bit: the program spells a literal exactly, so any other bits are
+// another value (-0.0 too).
+#include "codegen/varying_literals.hpp"
+
+#include "codegen/kernel_source.hpp"
+
+#include <bit>
+#include <cstdint>
+
+namespace clmarch {
+
+void VaryingLiterals::add(const Scene& frame) {
+  SdfCode code = march_sdf_code(frame);
+  const auto [it, is_new] = shapes_.try_emplace(std::move(code.source));
+  Shape& shape = it->second;
+  if (is_new) {
+    shape.first = std::move(code.literals);
+    shape.varies.assign(shape.first.size(), false);
+    return;
+  }
+  for (std::size_t k = 0; k < shape.first.size(); ++k) {
+    if (std::bit_cast<std::uint32_t>(shape.first[k]) != std::bit_cast<std::uint32_t>(code.literals[k])) shape.varies[k] = true;
+  }
+}
+
+ValueSlots VaryingLiterals::slots_for(const Scene& frame) const {
+  const auto it = shapes_.find(march_sdf_code(frame).source);
+  ValueSlots slots;
+  if (it == shapes_.end()) return slots;
+  for (std::size_t k = 0; k < it->second.varies.size(); ++k) {
+    if (it->second.varies[k]) slots.push_back(static_cast<int>(k));
+  }
+  return slots;
+}
+
+}  // namespace clmarch

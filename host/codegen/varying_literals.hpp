@@ -1,0 +1,32 @@
+// Which literals of a scene's distance function change between the frames of an animation.
+#pragma once
+
+#include "codegen/sdf_codegen.hpp"
+#include "scene/scene.hpp"
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace clmarch {
+
+/// The literals that differ among the frames seen, per shape of the code: frames whose distance
+/// functions have the same source once their literals are left open (march_sdf_code) share one
+/// program, which reads the literals that differ from its scene_values buffer. A change of shape
+/// (a rotation leaving the identity, a fractal's iterations) makes another program.
+class VaryingLiterals {
+ public:
+  /// Takes the frame's literals in: those that differ from the first frame of its shape vary.
+  void add(const Scene& frame);
+  /// The varying literals of the frame's shape (none for a shape seen in one frame only).
+  ValueSlots slots_for(const Scene& frame) const;
+
+ private:
+  struct Shape {
+    std::vector<float> first;
+    std::vector<bool> varies;
+  };
+  std::map<std::string, Shape> shapes_;  // by SdfCode::source
+};
+
+}  // namespace clmarch
