@@ -100,8 +100,16 @@ TEST(SceneLoader, NumbersMayBeExpressionsOfTime) {
   EXPECT_NEAR(std::get<Sphere>(at_half.sdf.primitive).center.y, std::sin(0.5), 1e-15);
   EXPECT_DOUBLE_EQ(std::get<Sphere>(at_half.sdf.primitive).radius, 1.5);
   EXPECT_EQ(at_half.time, 0.5);
-  // Ranges apply to the value at that time, and a bad expression names itself.
-  EXPECT_NE(error_of("sdf: {sphere: {radius: \"sin(t) - 1\"}}\n").find("radius must be > 0 (got sin(t) - 1)"), std::string::npos);
+  // Ranges apply to the value at that time, which the message shows with the time, and a bad
+  // expression names itself.
+  EXPECT_NE(error_of("sdf: {sphere: {radius: \"sin(t) - 1\"}}\n").find("radius must be > 0 (got sin(t) - 1 = -1 at t = 0)"),
+            std::string::npos);
+  try {
+    load_scene_text("sdf: {sphere: {radius: \"1 / (2 - t)\"}}\n", "s.yaml", {}, 2.0);
+    ADD_FAILURE() << "1 / 0 must be refused";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "s.yaml:1:24: sdf.sphere.radius must be finite (got 1 / (2 - t) = inf at t = 2)");
+  }
   EXPECT_NE(error_of("sdf: {sphere: {radius: \"cos(\"}}\n").find("expression of the time t"), std::string::npos);
 }
 

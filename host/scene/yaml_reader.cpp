@@ -119,6 +119,8 @@ void YamlReader::expect_map(const YAML::Node& node, const std::string& what,
 
 double YamlReader::number(const YAML::Node& node, const std::string& what, Range range) const {
   double value = 0.0;
+  // What a message shows as the value: the text, and for an expression what it came to and when.
+  std::string shown = node.IsScalar() ? node.Scalar() : std::string();
   if (!node.IsScalar()) fail(node, fmt::format("{} must be a number (got {})", what, describe_yaml(node)));
   if (!YAML::convert<double>::decode(node, value)) {
     // yaml-cpp refuses a number beyond double's range (1e400), which would then read as a bad
@@ -136,17 +138,18 @@ double YamlReader::number(const YAML::Node& node, const std::string& what, Range
       parser.DefineConst("pi", M_PI);
       parser.SetExpr(node.Scalar());
       value = parser.Eval();
+      shown = fmt::format("{} = {:g} at t = {:g}", node.Scalar(), value, time_);
     } catch (const mu::Parser::exception_type& e) {
       fail(node, fmt::format("{} must be a number or an expression of the time t (got '{}': {})", what, node.Scalar(), e.GetMsg()));
     }
   }
-  if (!std::isfinite(value)) fail(node, fmt::format("{} must be finite (got {})", what, node.Scalar()));
+  if (!std::isfinite(value)) fail(node, fmt::format("{} must be finite (got {})", what, shown));
   // The device computes in float: a larger value would become inf there, and as a literal of the
   // generated program "inff", which OpenCL C cannot parse (found by tests/fuzz/scene_fuzzer.cpp).
   if (std::abs(value) > kMaxSceneNumber) {
-    fail(node, fmt::format("{} must be within +-{:g}, the float range (got {})", what, kMaxSceneNumber, node.Scalar()));
+    fail(node, fmt::format("{} must be within +-{:g}, the float range (got {})", what, kMaxSceneNumber, shown));
   }
-  if (!range.contains(value)) fail(node, fmt::format("{} must be {} (got {})", what, range.describe(), node.Scalar()));
+  if (!range.contains(value)) fail(node, fmt::format("{} must be {} (got {})", what, range.describe(), shown));
   return value;
 }
 
