@@ -30,10 +30,12 @@ using testing::scene_from_yaml;
 // coordinates' magnitude (as in docs/accuracy.md).
 constexpr double kFloatRelative = 16.0 * 0x1p-24;
 
+/// A shipped scene without the pass (the default, auto, runs it for the terrain).
 Scene load_scene(const std::string& name, int width, int height) {
   Scene scene = load_scene_file(testing::source_path("scenes/" + name).string());
   scene.render.width = width;
   scene.render.height = height;
+  scene.render.coarse_pass = CoarsePass::None;
   return scene;
 }
 
@@ -183,6 +185,31 @@ TEST(ConePass, StatsCountTheConesSteps) {
   const double reference_steps = std::accumulate(steps.begin(), steps.end(), 0.0);
   EXPECT_GT(reference_steps, static_cast<double>(steps.size()));
   EXPECT_NEAR(static_cast<double>(stats.coarse_steps), reference_steps, 0.02 * reference_steps);
+}
+
+// auto, the default: the pass for a scene whose rays no bounding sphere starts near the surface,
+// unless its shading reads the step counts the pass shortens; never under the cells tiling; and
+// what a scene sets is kept.
+TEST(ConePass, AutoRunsItWhereNoBoundingSphereStartsTheRays) {
+  const auto uses = [](const std::string& yaml) { return uses_cone_pass(scene_from_yaml(yaml)); };
+  EXPECT_EQ(scene_from_yaml("sdf: {sphere: {}}\n").render.coarse_pass, CoarsePass::Auto);
+  EXPECT_TRUE(uses("sdf: {union: [{sphere: {}}, {plane: {}}]}\n")) << "unbounded";
+  EXPECT_FALSE(uses("sdf: {sphere: {}}\n")) << "inside its bounding sphere";
+  EXPECT_TRUE(uses("sdf: {sphere: {}}\nrender: {bounds: none}\n")) << "bounded, but no sphere clips the rays";
+  EXPECT_FALSE(uses("sdf: {union: [{sphere: {}}, {plane: {}}]}\nshading: {step_ao: 3000}\n")) << "step-count occlusion";
+  EXPECT_TRUE(uses("tiling: {method: mod}\nsdf: {sphere: {center: [0.5, 0.5, 0.5], radius: 0.3}}\n")) << "mod tiling";
+  EXPECT_FALSE(uses("tiling: {method: cells}\nsdf: {sphere: {center: [0.5, 0.5, 0.5], radius: 0.3}}\n")) << "cells tiling";
+  EXPECT_FALSE(uses("sdf: {union: [{sphere: {}}, {plane: {}}]}\nrender: {coarse_pass: none}\n"));
+  EXPECT_TRUE(uses("sdf: {sphere: {}}\nrender: {coarse_pass: cone}\n"));
+  // The terrain renders with the pass by default, and with its steps.
+  Scene terrain = load_scene("terrain_fbm.yaml", 96, 54);
+  terrain.render.coarse_pass = CoarsePass::Auto;
+  OpenClOptions options;
+  options.purpose = KernelPurpose::DepthSteps;
+  const RenderStats by_default = render_opencl(terrain, options).stats;
+  const RenderStats with_cone = render_opencl(with_cones(terrain), options).stats;
+  EXPECT_GT(by_default.coarse_steps, 0u);
+  EXPECT_EQ(by_default.steps, with_cone.steps);
 }
 
 // Bad values through the real executable: one line naming the file position or --set, exit 2,

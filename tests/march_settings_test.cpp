@@ -142,14 +142,14 @@ TEST(OverRelaxation, FewerStepsOnTheTorusSameImage) {
 }
 
 // A floor receding to the horizon: with the pixel cone every ray follows the same t sequence as with
-// the fixed epsilon and stops no later, so per pixel it takes no more steps and hits wherever the
+// the fixed epsilon (both from the camera: no coarse pass) and stops no later, so per pixel it takes no more steps and hits wherever the
 // fixed march hits, at most threshold / cos in front of the exact plane; near the camera, where the
 // cone is narrower than epsilon (0.02 here, so that such pixels exist), nothing changes; far away
 // most steps are saved.
 TEST(PixelCone, FewerStepsAtDistanceOnAFloor) {
   const Scene fixed = scene_from_yaml(
       "camera: {position: [0, 1, 0], look_at: [0, -2, -10], fov: 45}\n"
-      "render: {width: 160, height: 90, max_distance: 100, epsilon: 0.02}\n"
+      "render: {width: 160, height: 90, max_distance: 100, epsilon: 0.02, coarse_pass: none}\n"
       "sdf: {plane: {normal: [0, 1, 0], offset: 0}}\n");
   Scene cone = fixed;
   cone.render.hit_threshold = HitThreshold::PixelCone;

@@ -146,9 +146,10 @@ enum class SceneBounds { None, Sphere };
 inline constexpr const char* kSceneBoundsNames[] = {"none", "sphere"};
 
 /// A coarse pass before the camera rays' march: none, or a cone per block of pixels
-/// (CLMARCH_COARSE_BLOCK in kernels/device_types.h) that gives the block's rays a safe start.
-enum class CoarsePass { None, Cone };
-inline constexpr const char* kCoarsePassNames[] = {"none", "cone"};
+/// (CLMARCH_COARSE_BLOCK in kernels/device_types.h) that gives the block's rays a safe start;
+/// auto: the cone where the time-against-error sweeps found it pays (uses_cone_pass).
+enum class CoarsePass { None, Cone, Auto };
+inline constexpr const char* kCoarsePassNames[] = {"none", "cone", "auto"};
 
 /// Settings of the march itself.
 struct RenderSettings {
@@ -171,8 +172,9 @@ struct RenderSettings {
   /// sphere: unions and subtractions skip an expensive bounded subtree wherever its bounding sphere
   /// shows it cannot change the result (host/codegen/sdf_codegen.cpp).
   SceneBounds subtree_bounds = SceneBounds::Sphere;
-  /// cone: camera rays start where their block's cone march stopped (docs/scene-format.md).
-  CoarsePass coarse_pass = CoarsePass::None;
+  /// cone: camera rays start where their block's cone march stopped (docs/scene-format.md); auto
+  /// (the default): the cone for scenes without a bounding sphere or step-count occlusion.
+  CoarsePass coarse_pass = CoarsePass::Auto;
 
   bool operator==(const RenderSettings&) const = default;
 };

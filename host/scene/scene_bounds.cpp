@@ -115,7 +115,11 @@ std::optional<BoundingSphere> camera_ray_bounds(const Scene& scene) {
 }
 
 bool uses_cone_pass(const Scene& scene) {
-  return scene.render.coarse_pass == CoarsePass::Cone && !uses_cells_tiling(scene);
+  if (uses_cells_tiling(scene)) return false;
+  if (scene.render.coarse_pass != CoarsePass::Auto) return scene.render.coarse_pass == CoarsePass::Cone;
+  // Rays clipped to a bounding sphere start next to their object already; the pass shortens the
+  // step counts that step-count occlusion shades by.
+  return !camera_ray_bounds(scene) && scene.shading.step_ao == 0.0;
 }
 
 std::optional<RaySpan> ray_sphere_span(const glm::dvec3& origin, const glm::dvec3& dir, const BoundingSphere& sphere) {
