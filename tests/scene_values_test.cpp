@@ -121,35 +121,58 @@ TEST(KernelSource, ValueSlotsAreForMarchProgramsAndTheScenesLiterals) {
 }
 
 // One program renders every frame of the shape: each frame equals the render of the program
-// that spells its values, plane for plane: shaded at 1 and 16 lanes, depth-only (the cone pass
-// without the shading) at 16.
+// that spells its values, plane for plane.
+void expect_one_program_renders_every_frame(const std::string& yaml, const std::vector<double>& times, int lanes,
+                                            KernelPurpose purpose) {
+  VaryingLiterals varying;
+  for (double t : times) varying.add(frame_at(t, yaml));
+  OpenClOptions spelled;
+  spelled.lanes = lanes;
+  spelled.purpose = purpose;
+  OpenClOptions shared = spelled;
+  shared.value_slots = varying.slots_for(frame_at(times.front(), yaml));
+  OpenClRenderer renderer(frame_at(times.front(), yaml), shared);
+  EXPECT_NE(renderer.source().find("values[0]"), std::string::npos);
+  for (double t : times) {
+    const Scene frame = frame_at(t, yaml);
+    ASSERT_TRUE(renderer.can_render(frame, shared)) << t;
+    renderer.set_scene(frame);
+    const FrameBuffers a = renderer.render().buffers;
+    const FrameBuffers b = render_opencl(frame, spelled).buffers;
+    for (int c = 0; c < kChannelCount; ++c) {
+      EXPECT_EQ(a.planes[c], b.planes[c]) << kChannelNames[c] << " t " << t << " lanes " << lanes;
+    }
+  }
+}
+
+// Shaded at 1 and 16 lanes, and depth-only (the cone pass without the shading) at 16.
 TEST(SceneValues, OneProgramRendersEveryFrameAsItsOwnProgramWould) {
   const std::vector<double> times = {0.25, 0.6, 1.3};
-  VaryingLiterals varying;
-  for (double t : times) varying.add(frame_at(t));
   for (const auto& [lanes, purpose] : {std::pair{1, KernelPurpose::Shaded}, std::pair{16, KernelPurpose::Shaded},
                                        std::pair{16, KernelPurpose::DepthSteps}}) {
-    OpenClOptions spelled;
-    spelled.lanes = lanes;
-    spelled.purpose = purpose;
-    OpenClOptions shared = spelled;
-    shared.value_slots = varying.slots_for(frame_at(times.front()));
-    OpenClRenderer renderer(frame_at(times.front()), shared);
-    EXPECT_NE(renderer.source().find("values[0]"), std::string::npos);
-    for (double t : times) {
-      const Scene frame = frame_at(t);
-      ASSERT_TRUE(renderer.can_render(frame, shared)) << t;
-      renderer.set_scene(frame);
-      const FrameBuffers a = renderer.render().buffers;
-      const FrameBuffers b = render_opencl(frame, spelled).buffers;
-      for (int c = 0; c < kChannelCount; ++c) {
-        EXPECT_EQ(a.planes[c], b.planes[c]) << kChannelNames[c] << " t " << t << " lanes " << lanes;
-      }
-    }
-    OpenClOptions unscaled = spelled;
-    unscaled.value_slots = varying.slots_for(frame_at(0.0));
-    EXPECT_FALSE(renderer.can_render(frame_at(0.0), unscaled)) << "the unscaled torus is another program";
+    expect_one_program_renders_every_frame(kAnimated, times, lanes, purpose);
   }
+  VaryingLiterals varying;
+  for (double t : times) varying.add(frame_at(t));
+  OpenClOptions options;
+  options.value_slots = varying.slots_for(frame_at(times.front()));
+  const OpenClRenderer renderer(frame_at(times.front()), options);
+  OpenClOptions unscaled;
+  unscaled.value_slots = varying.slots_for(frame_at(0.0));
+  EXPECT_FALSE(renderer.can_render(frame_at(0.0), unscaled)) << "the unscaled torus is another program";
+}
+
+// The cells tiling's own march (march_cells) and the mod tiling's wrapped field read them too.
+TEST(SceneValues, TiledFramesShareOneProgram) {
+  const std::string cells =
+      "camera: {position: [0.5, 0.15, 0.05], look_at: [3.2, 1.9, 4.1], fov: 60}\n"
+      "render: {width: 40, height: 24, max_steps: 400, max_distance: 40}\n"
+      "tiling: {cell: [1, 1, 1], method: cells}\n"
+      "sdf: {sphere: {center: [0.5, \"0.5 + 0.1 * sin(t)\", 0.5], radius: \"0.25 + 0.05 * cos(t)\"}}\n"
+      "lights: [{directional: {direction: [1, 2, 1]}}]\n";
+  expect_one_program_renders_every_frame(cells, {0.5, 1.5}, 16, KernelPurpose::Shaded);
+  expect_one_program_renders_every_frame(std::regex_replace(cells, std::regex("cells"), "mod"), {0.5, 1.5}, 16,
+                                         KernelPurpose::Shaded);
 }
 
 }  // namespace
