@@ -4,7 +4,7 @@
  * (Beer-Lambert FOG_*, Inigo Quilez's height fog HEIGHT_FOG_*), and the HDR tone mapping and gamma
  * of the PBR course (TONE_MAP_REINHARD, DISPLAY_GAMMA). */
 
-SDF_INLINE vec3v sky_color(vec3v dir) {
+SDF_INLINE vec3v sky_color(SceneValues values, vec3v dir) {
 #if defined(SKY_ZENITH)
   const vfloat up = clamp(dir.y, 0.0f, 1.0f);
   vec3v sky = v3_mix(v3_from(SKY_HORIZON), v3_from(SKY_ZENITH), up);
@@ -19,12 +19,13 @@ SDF_INLINE vec3v sky_color(vec3v dir) {
   const vfloat glow = exp(-PLANET_GLOW_SHARPNESS * fabs(dir.y)) * sun_term;
   sky = v3_add(sky, v3_scale(v3_from(PLANET_GLOW_COLOR), glow));
 #endif
+  (void)values;
   return sky;
 }
 
 /* A miss: the sky, plus Crum's glow where the ray passed close to the surface. */
-SDF_INLINE vec3v miss_color(vec3v dir, vfloat closest) {
-  vec3v color = sky_color(dir);
+SDF_INLINE vec3v miss_color(SceneValues values, vec3v dir, vfloat closest) {
+  vec3v color = sky_color(values, dir);
 #if defined(GLOW_COLOR)
   const vfloat near = clamp(1.0f - closest / GLOW_RADIUS, 0.0f, 1.0f);
   color = v3_add(color, v3_scale(v3_from(GLOW_COLOR), near * near));
@@ -35,7 +36,7 @@ SDF_INLINE vec3v miss_color(vec3v dir, vfloat closest) {
 }
 
 /* Fog over depth t along dir from a camera at height camera_y. */
-SDF_INLINE vec3v apply_fog(vec3v color, vec3v dir, vfloat t, float camera_y) {
+SDF_INLINE vec3v apply_fog(SceneValues values, vec3v color, vec3v dir, vfloat t, float camera_y) {
 #if defined(FOG_DENSITY)
   color = v3_mix(v3_from(FOG_COLOR), color, exp(-FOG_DENSITY * t));
 #endif
@@ -52,13 +53,14 @@ SDF_INLINE vec3v apply_fog(vec3v color, vec3v dir, vfloat t, float camera_y) {
 #else
   (void)camera_y;
 #endif
+  (void)values;
   (void)dir;
   (void)t;
   return color;
 }
 
 /* HDR to display: Reinhard c / (c + 1), then c^(1 / gamma). */
-SDF_INLINE vec3v tone_map(vec3v color) {
+SDF_INLINE vec3v tone_map(SceneValues values, vec3v color) {
 #if defined(TONE_MAP_REINHARD)
   color = v3(color.x / (color.x + 1.0f), color.y / (color.y + 1.0f), color.z / (color.z + 1.0f));
 #endif
@@ -66,5 +68,6 @@ SDF_INLINE vec3v tone_map(vec3v color) {
   const vfloat inverse = (vfloat)(1.0f / DISPLAY_GAMMA);
   color = v3(pow(color.x, inverse), pow(color.y, inverse), pow(color.z, inverse));
 #endif
+  (void)values;
   return color;
 }

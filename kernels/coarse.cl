@@ -28,7 +28,7 @@ SDF_INLINE vfloat coarse_spread(vec3v axis, vec3v c0, vec3v c1, vec3v c2, vec3v 
 /* Writes, for blocks get_global_id(0) * LANES .. + LANES - 1 of the image (row-major, blocks_x per
  * row), where their rays start (starts) and the cone's steps (steps). */
 __kernel void coarse_cones(const MarchParams params, __global float* starts, __global float* steps_out,
-                           SceneValues scene_values) {
+                           SceneValues values) {
   const int blocks_x = CLMARCH_COARSE_BLOCKS(params.width);
   const int blocks_y = CLMARCH_COARSE_BLOCKS(params.height);
   const int base = (int)get_global_id(0) * LANES;
@@ -60,7 +60,7 @@ __kernel void coarse_cones(const MarchParams params, __global float* starts, __g
   vfloat steps = (vfloat)(0.0f);
   vint active = MASK(block < blocks_x * blocks_y) & MASK(t < (vfloat)(t_last));
   for (int step = 0; step < params.max_steps && LANE_ANY(active); ++step) {
-    const vfloat d = field(scene_values, v3_add(origin, v3_scale(axis, t)));
+    const vfloat d = field(values, v3_add(origin, v3_scale(axis, t)));
     steps += select((vfloat)(0.0f), (vfloat)(1.0f), active);
     const vfloat s = fmin((d - floor_threshold - k * t) / (1.0f + k), (d - COARSE_MARGIN - (k + slope) * t) / (1.0f + k + slope));
     active &= MASK(s >= COARSE_STOP_FRACTION * d);

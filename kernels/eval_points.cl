@@ -4,12 +4,12 @@
 
 __kernel void eval_points(__global const float* xs, __global const float* ys, __global const float* zs,
                           __global float* distance, __global float* color_distance, __global float* red,
-                          __global float* green, __global float* blue, SceneValues scene_values) {
+                          __global float* green, __global float* blue, SceneValues values) {
   const int base = (int)get_global_id(0) * LANES;
   const vec3v p = v3(LOAD_LANES(base, xs), LOAD_LANES(base, ys), LOAD_LANES(base, zs));
   vec3v albedo, surface;
-  STORE_LANES(map(scene_values, p), base, distance);
-  STORE_LANES(map_color(scene_values, p, &albedo, &surface), base, color_distance);
+  STORE_LANES(map(values, p), base, distance);
+  STORE_LANES(map_color(values, p, &albedo, &surface), base, color_distance);
   STORE_LANES(albedo.x, base, red);
   STORE_LANES(albedo.y, base, green);
   STORE_LANES(albedo.z, base, blue);

@@ -38,7 +38,7 @@ SDF_INLINE vec3v add_reflections(SceneValues values, vec3v color, Hit hit, vec3v
     const vec3v origin = v3_add(hit.point, v3_scale(hit.normal, REFLECTION_OFFSET));
     const vec3v relative_origin = v3_add(hit.relative, v3_scale(hit.normal, REFLECTION_OFFSET));
     const MarchResult r = MARCH(origin, dir, active, (vfloat)(0.0f), (vfloat)(params->max_distance), limits);
-    vec3v seen = miss_color(dir, r.closest);
+    vec3v seen = miss_color(values, dir, r.closest);
     const vint reflected_hit = active & r.hit;
     if (LANE_ANY(reflected_hit)) {
       const Hit next = surface_at(values, &r, relative_origin, dir, params->normal_epsilon);
@@ -76,11 +76,11 @@ SDF_INLINE void store_tile(vfloat v, int at, int width, int columns, int rows, _
     STORE_TILE(v, at, width, plane);
     return;
   }
-  float values[LANES];
-  STORE_LANES(v, 0, values);
+  float lane_values[LANES];
+  STORE_LANES(v, 0, lane_values);
   for (int lane = 0; lane < LANES; ++lane) {
     const int x = lane % PACKET_WIDTH, y = lane / PACKET_WIDTH;
-    if (x < columns && y < rows) plane[at + y * width + x] = values[lane];
+    if (x < columns && y < rows) plane[at + y * width + x] = lane_values[lane];
   }
 }
 
@@ -208,7 +208,7 @@ SDF_INLINE void finish_packet(SceneValues values, const Packet* k, const MarchRe
 #ifdef NEED_NORMALS
   vec3v normal = v3_splat(0.0f);
 #ifdef NEED_SHADING
-  vec3v color = miss_color(k->dir, m->closest);
+  vec3v color = miss_color(values, k->dir, m->closest);
 #endif
   if (LANE_ANY(m->hit)) {
 #ifdef NEED_SHADING
@@ -218,7 +218,7 @@ SDF_INLINE void finish_packet(SceneValues values, const Packet* k, const MarchRe
 #if defined(REFLECTION_BOUNCES)
     lit = add_reflections(values, lit, hit, k->dir, m->hit, params, lights);
 #endif
-    lit = apply_fog(lit, k->dir, m->t, params->camera_height);
+    lit = apply_fog(values, lit, k->dir, m->t, params->camera_height);
     color = v3_select(color, lit, m->hit);
 #else
     normal = v3_select(normal, estimate_normal(values, m->local_point, params->normal_epsilon), m->hit);
@@ -232,7 +232,7 @@ SDF_INLINE void finish_packet(SceneValues values, const Packet* k, const MarchRe
   (void)normal; /* a color image alone: three planes fewer to write (a quarter of the torus's frame) */
 #endif
 #ifdef NEED_SHADING
-  color = tone_map(color);
+  color = tone_map(values, color);
   STORE_PLANE(CLMARCH_CHANNEL_R, color.x);
   STORE_PLANE(CLMARCH_CHANNEL_G, color.y);
   STORE_PLANE(CLMARCH_CHANNEL_B, color.z);
@@ -244,7 +244,7 @@ SDF_INLINE void finish_packet(SceneValues values, const Packet* k, const MarchRe
 
 /* Each work-item marches PACKETS_PER_ITEM consecutive packets of the chunk: two on CPUs, whose
  * steps interleave (march_plain_pair), one on GPUs and under the cells tiling. */
-__kernel void march(const MarchParams params, __global float* out, __constant float4* lights, SceneValues scene_values
+__kernel void march(const MarchParams params, __global float* out, __constant float4* lights, SceneValues values
 #if defined(COARSE_PASS)
                     , __global const float* coarse_starts
 #endif
@@ -270,18 +270,18 @@ __kernel void march(const MarchParams params, __global float* out, __constant fl
   if (a.rows <= 0) return; /* padding of the dispatch to whole work-groups */
 #if PACKETS_PER_ITEM == 2
   const Packet b = packet_at(&params, first + 1, coarse_starts);
-  PlainMarch march_a = plain_march_begin(origin, a.dir, a.marching, a.t_start, a.t_end, camera_limits(scene_values, &params, &a, &record));
+  PlainMarch march_a = plain_march_begin(origin, a.dir, a.marching, a.t_start, a.t_end, camera_limits(values, &params, &a, &record));
   /* Past the chunk b has no lane marching, and its loop never runs. */
-  PlainMarch march_b = plain_march_begin(origin, b.dir, b.marching, b.t_start, b.t_end, camera_limits(scene_values, &params, &b, &record));
+  PlainMarch march_b = plain_march_begin(origin, b.dir, b.marching, b.t_start, b.t_end, camera_limits(values, &params, &b, &record));
   march_plain_pair(&march_a, &march_b);
   const MarchResult ma = plain_march_end(&march_a);
-  finish_packet(scene_values, &a, &ma, &params, out, lights);
+  finish_packet(values, &a, &ma, &params, out, lights);
   if (b.rows > 0) {
     const MarchResult mb = plain_march_end(&march_b);
-    finish_packet(scene_values, &b, &mb, &params, out, lights);
+    finish_packet(values, &b, &mb, &params, out, lights);
   }
 #else
-  const MarchResult m = MARCH(origin, a.dir, a.marching, a.t_start, a.t_end, camera_limits(scene_values, &params, &a, &record));
-  finish_packet(scene_values, &a, &m, &params, out, lights);
+  const MarchResult m = MARCH(origin, a.dir, a.marching, a.t_start, a.t_end, camera_limits(values, &params, &a, &record));
+  finish_packet(values, &a, &m, &params, out, lights);
 #endif
 }

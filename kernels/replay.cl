@@ -9,14 +9,14 @@
 #define REPLAY_SHIFT 1e-7f
 
 __kernel void replay_samples(__global const float* samples, const int count, const int stride, const int repeats,
-                             __global float* sums, __global int* evaluations, SceneValues scene_values) {
+                             __global float* sums, __global int* evaluations, SceneValues values) {
   const int base = (int)get_global_id(0) * LANES;
   const vint live = MASK(base + LANE_IOTA < count);
   const vec3v p = v3(LOAD_LANES(base, samples), LOAD_LANES(base, samples + stride), LOAD_LANES(base, samples + 2 * stride));
   vfloat sum = (vfloat)(0.0f);
   vint counted = (vint)(0);
   for (int k = 0; k < repeats; ++k) {
-    sum += field(scene_values, v3(p.x + (float)k * REPLAY_SHIFT, p.y, p.z));
+    sum += field(values, v3(p.x + (float)k * REPLAY_SHIFT, p.y, p.z));
     counted -= live; /* live lanes are -1 */
   }
   STORE_LANES(sum, base, sums);

@@ -71,17 +71,18 @@ SDF_INLINE vec3v pbr_light(vec3v n, vec3v l, vec3v v, vec3v albedo, vfloat metal
 /* x^SHADING_SHININESS for x >= 0, as exp2(s log2 x): PoCL 3.1's double16 pow() returns inf for some
  * lanes on AVX-512 CPUs (seen on tiled_spheres with DOUBLE_PRECISION), while exp2 and log2 are
  * right; x = 0 gives exp2(-inf) = 0. */
-SDF_INLINE vfloat specular_power(vfloat x) { return exp2((vfloat)(SHADING_SHININESS) * log2(x)); }
+SDF_INLINE vfloat specular_power(SceneValues values, vfloat x) { return exp2((vfloat)(SHADING_SHININESS) * log2(x)); }
 
-SDF_INLINE vfloat specular_term(vec3v n, vec3v l, vec3v v) {
+SDF_INLINE vfloat specular_term(SceneValues values, vec3v n, vec3v l, vec3v v) {
 #if defined(SHADING_MODEL_PHONG)
   /* reflect(-l, n) = 2 dot(n, l) n - l */
   vec3v r = v3_sub(v3_scale(n, 2.0f * v3_dot(n, l)), l);
-  return specular_power(fmax(v3_dot(r, v), 0.0f));
+  return specular_power(values, fmax(v3_dot(r, v), 0.0f));
 #elif defined(SHADING_MODEL_BLINN_PHONG)
   vec3v half_vector = v3_normalize(v3_add(l, v));
-  return specular_power(fmax(v3_dot(n, half_vector), 0.0f));
+  return specular_power(values, fmax(v3_dot(n, half_vector), 0.0f));
 #else
+  (void)values;
   (void)n;
   (void)l;
   (void)v;
@@ -90,20 +91,21 @@ SDF_INLINE vfloat specular_term(vec3v n, vec3v l, vec3v v) {
 }
 
 /* Lambert plus the specular model, times n.l where it applies, for one light. */
-SDF_INLINE vec3v classic_light(vec3v n, vec3v l, vec3v v, vec3v albedo) {
+SDF_INLINE vec3v classic_light(SceneValues values, vec3v n, vec3v l, vec3v v, vec3v albedo) {
   const vfloat n_dot_l = fmax(v3_dot(n, l), 0.0f);
-  const vfloat specular = select((vfloat)(0.0f), specular_term(n, l, v), MASK(n_dot_l > 0.0f));
+  const vfloat specular = select((vfloat)(0.0f), specular_term(values, n, l, v), MASK(n_dot_l > 0.0f));
   const vfloat white = SHADING_SPECULAR * specular;
   return v3_add(v3_scale(albedo, SHADING_DIFFUSE * n_dot_l), v3(white, white, white));
 }
 #endif
 
 /* Darkens by steps^2 / SHADING_STEP_AO: many steps mean the ray crept past nearby geometry. */
-SDF_INLINE vec3v apply_step_ao(vec3v color, vfloat steps) {
+SDF_INLINE vec3v apply_step_ao(SceneValues values, vec3v color, vfloat steps) {
 #ifdef SHADING_STEP_AO
   vfloat darkening = steps * steps / SHADING_STEP_AO;
   return v3(color.x - darkening, color.y - darkening, color.z - darkening);
 #else
+  (void)values;
   (void)steps;
   return color;
 #endif
@@ -125,7 +127,7 @@ SDF_INLINE vec3v shade(SceneValues values, const Hit* hit, vec3v view, vint live
 #if defined(SHADING_MODEL_PBR)
     vec3v lit = pbr_light(hit->normal, l, view, hit->albedo, hit->surface.x, hit->surface.y);
 #else
-    vec3v lit = classic_light(hit->normal, l, view, hit->albedo);
+    vec3v lit = classic_light(values, hit->normal, l, view, hit->albedo);
 #endif
 #if defined(SHADOW_MODE)
     const vfloat t_end = is_point ? v3_length(v3_sub(v3_from(where), hit->relative)) : (vfloat)(SHADOW_MAX_T);
@@ -135,5 +137,5 @@ SDF_INLINE vec3v shade(SceneValues values, const Hit* hit, vec3v view, vint live
 #endif
     color = v3_add(color, v3_mul(lit, v3_from(radiance)));
   }
-  return v3_max0(apply_step_ao(color, hit->steps));
+  return v3_max0(apply_step_ao(values, color, hit->steps));
 }

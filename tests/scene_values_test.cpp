@@ -23,7 +23,8 @@ namespace {
 
 // A sphere that moves and breathes, a box that spins, a torus that grows (at t = 0 its scale is 1,
 // and an unscaled node is another shape of code) and a floor: shadows, occlusion, a mirror and the
-// cone pass all evaluate the distance function, so each reads the values.
+// cone pass all evaluate the distance function, so each reads the values; and a sky, an ambient
+// light and a fog that change, which the shading and the misses read.
 const char* const kAnimated =
     "camera: {position: [0, 2, 6], look_at: [0, 0, 0]}\n"
     "render: {width: 45, height: 27, coarse_pass: cone}\n"
@@ -34,7 +35,8 @@ const char* const kAnimated =
     "    - torus: {center: [1.5, 0, 0], major_radius: 0.5, minor_radius: 0.15, scale: \"1 + 0.2 * sin(t)\"}\n"
     "    - plane: {normal: [0, 1, 0], offset: 0.7}\n"
     "lights: [{point: {position: [2, 4, 3]}}]\n"
-    "shading: {shadows: {mode: soft}, ambient_occlusion: {}, reflections: 1}\n";
+    "shading: {shadows: {mode: soft}, ambient_occlusion: {}, reflections: 1, background: [\"0.2 + 0.1 * sin(t)\", 0.3, 0.4],\n"
+    "          ambient: \"0.1 + 0.05 * cos(t)\", fog: {density: \"0.05 + 0.02 * sin(t)\", color: [0.5, 0.5, 0.6]}}\n";
 
 Scene frame_at(double t, const std::string& yaml = kAnimated) { return load_scene_text(yaml, "animated.yaml", {}, t); }
 
@@ -58,7 +60,7 @@ TEST(SdfCode, EverySlotReadsTheLiteralItReplaces) {
   const Scene frame = frame_at(0.55);
   const ValueSlots slots = varying.slots_for(frame);
   ASSERT_FALSE(slots.empty());
-  const SdfCode code = march_sdf_code(frame);
+  const SdfCode code = march_scene_code(frame);
   const std::string spelled = spell_sdf_code(code);
   EXPECT_EQ(spelled.find('@'), std::string::npos);
   EXPECT_FALSE(std::regex_search(spelled, std::regex(R"(values\[\d)")));
@@ -72,22 +74,26 @@ TEST(SdfCode, EverySlotReadsTheLiteralItReplaces) {
 
 // Only what depends on t varies, in map and map_color alike: the sphere's centre x and radius, the
 // four entries of the box's matrix that a rotation about y changes (the other five are 0 or 1 at
-// every angle), the torus's three inverse scales and the scale of its distance; and in map_color
-// the sphere's red.
+// every angle), the torus's three inverse scales and the scale of its distance; in map_color the
+// sphere's red; in the shading the background's red, the ambient light's three components and the
+// fog's density.
 TEST(VaryingLiterals, OnlyWhatTheTimeChangesVaries) {
   VaryingLiterals varying;
   for (double t : {0.2, 0.7, 1.1}) varying.add(frame_at(t));
   const Scene frame = frame_at(0.2);
-  const std::vector<float> values = slot_values(march_sdf_code(frame), varying.slots_for(frame));
+  const std::vector<float> values = slot_values(march_scene_code(frame), varying.slots_for(frame));
   const auto count = [&](double v) {
     return std::count(values.begin(), values.end(), static_cast<float>(v));
   };
-  EXPECT_EQ(values.size(), 2u * (2u + 4u + 3u + 1u) + 1u);
+  EXPECT_EQ(values.size(), 2u * (2u + 4u + 3u + 1u) + 1u + 5u);
   EXPECT_EQ(count(std::cos(0.2)), 2);
   EXPECT_EQ(count(0.5 + 0.1 * std::sin(0.6)), 2);
   EXPECT_EQ(count(0.5 + 0.4 * std::sin(0.2)), 1);
   EXPECT_EQ(count(1.0 + 0.2 * std::sin(0.2)), 2);
   EXPECT_EQ(count(1.0 / (1.0 + 0.2 * std::sin(0.2))), 6);
+  EXPECT_EQ(count(0.2 + 0.1 * std::sin(0.2)), 1);
+  EXPECT_EQ(count(0.1 + 0.05 * std::cos(0.2)), 3);
+  EXPECT_EQ(count(0.05 + 0.02 * std::sin(0.2)), 1);
 }
 
 TEST(VaryingLiterals, AShapeSeenOnceHasNoSlots) {
@@ -116,7 +122,7 @@ TEST(KernelSource, ValueSlotsAreForMarchProgramsAndTheScenesLiterals) {
   eval.value_slots = {0};
   EXPECT_THROW(generate_kernel_source(frame, eval), std::invalid_argument);
   KernelOptions march{KernelPurpose::Shaded, 16};
-  march.value_slots = {static_cast<int>(march_sdf_code(frame).literals.size())};
+  march.value_slots = {static_cast<int>(march_scene_code(frame).literals.size())};
   EXPECT_THROW(generate_kernel_source(frame, march), std::invalid_argument);
 }
 

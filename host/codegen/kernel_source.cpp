@@ -25,57 +25,58 @@ std::string kernel_file(std::string_view name) {
   throw std::logic_error(fmt::format("kernel file {} is not embedded", name));
 }
 
-/// Shadows, normal-marched occlusion and reflections.
-std::string surface_effect_defines(const Scene& scene) {
+/// The numbers of shading, shadows, occlusion, reflections, sky, glows, fog and tone mapping, for
+/// kernels/shading.cl and atmosphere.cl: defined after map(), their literals marked like its own,
+/// so that an animation's frames read the ones that change from their values too (the macros
+/// expand where `values` is in scope).
+std::string shading_value_defines(const Scene& scene, Literals& lit) {
   const Shading& s = scene.shading;
-  std::string out;
+  std::string out = "\n/* The scene's shading numbers (kernels/shading.cl, atmosphere.cl). */\n";
+  out += fmt::format("#define SHADING_DIFFUSE {}\n", lit.f(s.diffuse));
+  out += fmt::format("#define SHADING_SPECULAR {}\n", lit.f(s.specular));
+  out += fmt::format("#define SHADING_SHININESS {}\n", lit.f(s.shininess));
+  if (s.step_ao > 0.0) out += fmt::format("#define SHADING_STEP_AO {}\n", lit.f(s.step_ao));
+  out += fmt::format("#define BACKGROUND_COLOR {}\n", lit.f4(s.background));
+  out += fmt::format("#define AMBIENT_COLOR {}\n", lit.f4(s.ambient));
+  if (s.fog) {
+    out += fmt::format("#define FOG_DENSITY {}\n", lit.f(s.fog->density));
+    out += fmt::format("#define FOG_COLOR {}\n", lit.f4(s.fog->color));
+  }
   if (s.shadows) {
-    out += fmt::format("#define SHADOW_MODE {}\n", static_cast<int>(s.shadows->mode) + 1);
-    out += fmt::format("#define SHADOW_K {}\n", cl_float(s.shadows->k));
-    out += fmt::format("#define SHADOW_MIN_T {}\n", cl_float(s.shadows->min_t));
-    out += fmt::format("#define SHADOW_MAX_T {}\n", cl_float(s.shadows->max_t));
-    out += fmt::format("#define SHADOW_MAX_STEPS {}\n", s.shadows->max_steps);
-    out += fmt::format("#define SHADOW_EPSILON {}\n", cl_float(scene.render.epsilon));
+    out += fmt::format("#define SHADOW_K {}\n", lit.f(s.shadows->k));
+    out += fmt::format("#define SHADOW_MIN_T {}\n", lit.f(s.shadows->min_t));
+    out += fmt::format("#define SHADOW_MAX_T {}\n", lit.f(s.shadows->max_t));
+    out += fmt::format("#define SHADOW_EPSILON {}\n", lit.f(scene.render.epsilon));
   }
   if (s.ambient_occlusion) {
-    out += fmt::format("#define AO_SAMPLES {}\n", s.ambient_occlusion->samples);
-    out += fmt::format("#define AO_STEP {}\n", cl_float(s.ambient_occlusion->step));
-    out += fmt::format("#define AO_POWER {}\n", cl_float(s.ambient_occlusion->power));
+    out += fmt::format("#define AO_STEP {}\n", lit.f(s.ambient_occlusion->step));
+    out += fmt::format("#define AO_POWER {}\n", lit.f(s.ambient_occlusion->power));
   }
-  if (s.reflection_bounces > 0) {
-    out += fmt::format("#define REFLECTION_BOUNCES {}\n", s.reflection_bounces);
-    out += fmt::format("#define REFLECTION_OFFSET {}\n", cl_float(reflection_offset(scene.render)));
-  }
-  return out;
-}
-
-/// Sky, glows, height fog, tone mapping.
-std::string atmosphere_defines(const Shading& s) {
-  std::string out;
+  if (s.reflection_bounces > 0) out += fmt::format("#define REFLECTION_OFFSET {}\n", lit.f(reflection_offset(scene.render)));
   if (s.sky) {
-    out += fmt::format("#define SKY_HORIZON {}\n", cl_float4(s.sky->horizon));
-    out += fmt::format("#define SKY_ZENITH {}\n", cl_float4(s.sky->zenith));
+    out += fmt::format("#define SKY_HORIZON {}\n", lit.f4(s.sky->horizon));
+    out += fmt::format("#define SKY_ZENITH {}\n", lit.f4(s.sky->zenith));
   }
   if (s.glow) {
-    out += fmt::format("#define GLOW_COLOR {}\n", cl_float4(s.glow->color));
-    out += fmt::format("#define GLOW_RADIUS {}\n", cl_float(s.glow->radius));
+    out += fmt::format("#define GLOW_COLOR {}\n", lit.f4(s.glow->color));
+    out += fmt::format("#define GLOW_RADIUS {}\n", lit.f(s.glow->radius));
   }
   if (s.planetary_glow) {
-    out += fmt::format("#define PLANET_GLOW_COLOR {}\n", cl_float4(s.planetary_glow->color));
-    out += fmt::format("#define PLANET_GLOW_SHARPNESS {}\n", cl_float(s.planetary_glow->sharpness));
-    out += fmt::format("#define PLANET_GLOW_SUN {}\n", cl_float4(s.planetary_glow->sun_direction));
+    out += fmt::format("#define PLANET_GLOW_COLOR {}\n", lit.f4(s.planetary_glow->color));
+    out += fmt::format("#define PLANET_GLOW_SHARPNESS {}\n", lit.f(s.planetary_glow->sharpness));
+    out += fmt::format("#define PLANET_GLOW_SUN {}\n", lit.f4(s.planetary_glow->sun_direction));
   }
   if (s.height_fog) {
     const HeightFog& f = *s.height_fog;
-    out += fmt::format("#define HEIGHT_FOG_DENSITY {}\n", cl_float(f.density));
-    out += fmt::format("#define HEIGHT_FOG_FALLOFF {}\n", cl_float(f.falloff));
-    out += fmt::format("#define HEIGHT_FOG_COLOR {}\n", cl_float4(f.color));
-    out += fmt::format("#define HEIGHT_FOG_SUN_COLOR {}\n", cl_float4(f.sun_color));
-    out += fmt::format("#define HEIGHT_FOG_SUN_DIRECTION {}\n", cl_float4(f.sun_direction));
-    out += fmt::format("#define HEIGHT_FOG_SUN_POWER {}\n", cl_float(f.sun_power));
+    out += fmt::format("#define HEIGHT_FOG_DENSITY {}\n", lit.f(f.density));
+    out += fmt::format("#define HEIGHT_FOG_FALLOFF {}\n", lit.f(f.falloff));
+    out += fmt::format("#define HEIGHT_FOG_COLOR {}\n", lit.f4(f.color));
+    out += fmt::format("#define HEIGHT_FOG_SUN_COLOR {}\n", lit.f4(f.sun_color));
+    out += fmt::format("#define HEIGHT_FOG_SUN_DIRECTION {}\n", lit.f4(f.sun_direction));
+    out += fmt::format("#define HEIGHT_FOG_SUN_POWER {}\n", lit.f(f.sun_power));
   }
   if (s.tone_map == ToneMap::Reinhard) out += "#define TONE_MAP_REINHARD\n";
-  if (s.gamma != 1.0) out += fmt::format("#define DISPLAY_GAMMA {}\n", cl_float(s.gamma));
+  if (s.gamma != 1.0) out += fmt::format("#define DISPLAY_GAMMA {}\n", lit.f(s.gamma));
   return out;
 }
 
@@ -102,29 +103,25 @@ std::string feature_defines(const Scene& scene, const KernelOptions& options) {
     if (s.model == ShadingModel::Phong) out += "#define SHADING_MODEL_PHONG\n";
     if (s.model == ShadingModel::BlinnPhong) out += "#define SHADING_MODEL_BLINN_PHONG\n";
     if (s.model == ShadingModel::Pbr) out += "#define SHADING_MODEL_PBR\n";
-    out += fmt::format("#define SHADING_DIFFUSE {}\n", cl_float(s.diffuse));
-    out += fmt::format("#define SHADING_SPECULAR {}\n", cl_float(s.specular));
-    out += fmt::format("#define SHADING_SHININESS {}\n", cl_float(s.shininess));
-    if (s.step_ao > 0.0) out += fmt::format("#define SHADING_STEP_AO {}\n", cl_float(s.step_ao));
-    out += fmt::format("#define BACKGROUND_COLOR {}\n", cl_float4(s.background));
-    out += fmt::format("#define AMBIENT_COLOR {}\n", cl_float4(s.ambient));
     out += fmt::format("#define LIGHT_COUNT {}\n", scene.lights.size());
-    if (s.fog) {
-      out += fmt::format("#define FOG_DENSITY {}\n", cl_float(s.fog->density));
-      out += fmt::format("#define FOG_COLOR {}\n", cl_float4(s.fog->color));
+    if (s.shadows) {
+      out += fmt::format("#define SHADOW_MODE {}\n", static_cast<int>(s.shadows->mode) + 1);
+      out += fmt::format("#define SHADOW_MAX_STEPS {}\n", s.shadows->max_steps);
     }
-    out += atmosphere_defines(s);
-    out += surface_effect_defines(scene);
+    if (s.ambient_occlusion) out += fmt::format("#define AO_SAMPLES {}\n", s.ambient_occlusion->samples);
+    if (s.reflection_bounces > 0) out += fmt::format("#define REFLECTION_BOUNCES {}\n", s.reflection_bounces);
   }
-  if (uses_cone_pass(scene) && options.purpose != KernelPurpose::EvalPoints) {
-    out += "#define COARSE_PASS\n";
-    out += fmt::format("#define COARSE_MARGIN {}\n", cl_float(scene.shading.glow ? scene.shading.glow->radius : 0.0));
-  }
+  if (uses_cone_pass(scene) && options.purpose != KernelPurpose::EvalPoints) out += "#define COARSE_PASS\n";
   if (scene.tiling && options.purpose != KernelPurpose::EvalPoints) {
     out += scene.tiling->method == TilingMethod::Cells ? "#define TILING_CELLS\n" : "#define TILING_MOD\n";
     out += fmt::format("#define TILING_CELL {}\n", cl_float4(scene.tiling->cell));
   }
   return out;
+}
+
+/// The scene's code as a march program built with options has it.
+SdfCode program_scene_code(const Scene& scene, const KernelOptions& options) {
+  return march_scene_code(scene, march_outputs(scene, options.purpose).color);
 }
 
 /// True if node or a descendant is of one of kinds: the library files of rare primitives are
@@ -179,7 +176,7 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
     src += kernel_file("eval_points.cl");
     return src;
   }
-  src += spell_sdf_code(march_sdf_code(scene), options.value_slots);
+  src += spell_sdf_code(program_scene_code(scene, options), options.value_slots);
   src += kernel_file("field.cl");
   src += kernel_file("camera.cl");
   src += kernel_file("march_loop.cl");
@@ -196,8 +193,22 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
   return src;
 }
 
-SdfCode march_sdf_code(const Scene& scene) {
-  return generate_sdf_code(scene.sdf, map_frame_origin(scene), scene.render.subtree_bounds == SceneBounds::Sphere);
+SdfCode march_scene_code(const Scene& scene, bool with_shading) {
+  Literals literals;
+  SdfCode code;
+  code.source = sdf_functions(scene.sdf, map_frame_origin(scene), scene.render.subtree_bounds == SceneBounds::Sphere, literals);
+  // Recorded whether or not the program shades, so that a literal's index is the same in every program.
+  const std::string shading = shading_value_defines(scene, literals);
+  if (with_shading) code.source += shading;
+  if (uses_cone_pass(scene)) {
+    code.source += fmt::format("#define COARSE_MARGIN {}\n", literals.f(scene.shading.glow ? scene.shading.glow->radius : 0.0));
+  }
+  code.literals = literals.take();
+  return code;
+}
+
+std::vector<float> scene_values(const Scene& scene, const KernelOptions& options) {
+  return slot_values(program_scene_code(scene, options), options.value_slots);
 }
 
 std::string output_floor_source() { return kernel_file("output_floor.cl"); }

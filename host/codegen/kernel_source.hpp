@@ -55,7 +55,7 @@ struct KernelOptions {
   KernelVariant variant;
   /// Whether the compiler may fuse a * b + c (no NO_FP_CONTRACT); allows_fp_contraction(device).
   bool fp_contraction = true;
-  /// Literals of march_sdf_code(scene) that the program reads from its scene_values buffer
+  /// Literals of march_scene_code(scene) that the program reads from its scene_values buffer
   /// (animations: VaryingLiterals); march programs only.
   ValueSlots value_slots;
 };
@@ -89,9 +89,14 @@ inline constexpr const char* kDoubleNeedsVectorLanes =
 /// eval_points program or outside the scene's literals.
 std::string generate_kernel_source(const Scene& scene, const KernelOptions& options);
 
-/// The distance functions of the scene's march programs, literals open: points relative to
-/// map_frame_origin, subtrees gated as render.subtree_bounds says.
-SdfCode march_sdf_code(const Scene& scene);
+/// The scene's code in its march programs, literals open: the distance functions (points relative
+/// to map_frame_origin, subtrees gated as render.subtree_bounds says), then with_shading the
+/// shading's numbers, and the cone pass's margin when it runs. Each literal has the same index
+/// with and without the shading.
+SdfCode march_scene_code(const Scene& scene, bool with_shading = true);
+
+/// What the values buffer of the scene's march program built with options holds.
+std::vector<float> scene_values(const Scene& scene, const KernelOptions& options);
 
 /// The output floor's program (kernels/output_floor.cl): fill_planes, which only stores.
 std::string output_floor_source();

@@ -20,20 +20,6 @@
 namespace clmarch {
 namespace {
 
-/// Records the tree's float literals, each written as its mark "@k@" (SdfCode).
-class Literals {
- public:
-  std::string f(double value) {
-    values_.push_back(static_cast<float>(value));
-    return fmt::format("@{}@", values_.size() - 1);
-  }
-  std::string f4(const glm::dvec3& v) { return fmt::format("(float4)({}, {}, {}, 0.0f)", f(v.x), f(v.y), f(v.z)); }
-  std::vector<float> take() { return std::move(values_); }
-
- private:
-  std::vector<float> values_;
-};
-
 /// The material a node passes to its subtree: its own settings over the inherited ones.
 Material material_of(const Node& node, const Material& inherited) {
   Material m = inherited;
@@ -371,8 +357,14 @@ class SdfEmitter {
 
 }  // namespace
 
-SdfCode generate_sdf_code(const Node& root, const glm::dvec3& frame_origin, bool gate_subtrees) {
-  Literals literals;
+std::string Literals::f(double value) {
+  values_.push_back(static_cast<float>(value));
+  return fmt::format("@{}@", values_.size() - 1);
+}
+
+std::string Literals::f4(const glm::dvec3& v) { return fmt::format("(float4)({}, {}, {}, 0.0f)", f(v.x), f(v.y), f(v.z)); }
+
+std::string sdf_functions(const Node& root, const glm::dvec3& frame_origin, bool gate_subtrees, Literals& literals) {
   SdfEmitter distance_only(false, gate_subtrees, literals);
   const SdfEmitter::Value d = distance_only.emit(root, "p", Material{}, frame_origin);
   SdfEmitter with_color(true, gate_subtrees, literals);
@@ -381,10 +373,9 @@ SdfCode generate_sdf_code(const Node& root, const glm::dvec3& frame_origin, bool
                                 ? std::string()
                                 : fmt::format("/* p is relative to the world point ({}, {}, {}) (map_frame_origin). */\n",
                                               frame_origin.x, frame_origin.y, frame_origin.z);
-  SdfCode code;
-  code.source = frame + fmt::format(
-      "/* Literals of the tree that change between the frames of an animation are read from the\n"
-      " * kernel's scene_values buffer (values[j]) instead, so that those frames share this program. */\n"
+  return frame + fmt::format(
+      "/* Literals of the scene that change between the frames of an animation are read from the\n"
+      " * kernel's values buffer (values[j]) instead, so that those frames share this program. */\n"
       "typedef __constant const float* SceneValues;\n\n"
       "/* Distance to the scene. */\n"
       "SDF_INLINE vfloat map(SceneValues values, vec3v p) {{\n{}  return {};\n}}\n\n"
@@ -393,6 +384,12 @@ SdfCode generate_sdf_code(const Node& root, const glm::dvec3& frame_origin, bool
       "SDF_INLINE vfloat map_color(SceneValues values, vec3v p, vec3v* albedo, vec3v* surface) {{\n{}  *albedo = {};\n"
       "  *surface = {};\n  return {};\n}}\n",
       distance_only.body(), d.distance, with_color.body(), dc.color, dc.surface, dc.distance);
+}
+
+SdfCode generate_sdf_code(const Node& root, const glm::dvec3& frame_origin, bool gate_subtrees) {
+  Literals literals;
+  SdfCode code;
+  code.source = sdf_functions(root, frame_origin, gate_subtrees, literals);
   code.literals = literals.take();
   return code;
 }

@@ -5,7 +5,10 @@
 
 #include "scene/scene.hpp"
 
+#include <glm/glm.hpp>
+
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace clmarch {
@@ -19,6 +22,23 @@ struct SdfCode {
   /// Every float literal of the tree, rounded to float, by index.
   std::vector<float> literals;
 };
+
+/// Writes float literals as their marks "@k@" and keeps their values, for SdfCode.
+class Literals {
+ public:
+  /// The mark of a new literal: value rounded to float.
+  std::string f(double value);
+  /// A float4 of three new literals and w = 0.
+  std::string f4(const glm::dvec3& v);
+  /// The values by index; leaves this empty.
+  std::vector<float> take() { return std::move(values_); }
+
+ private:
+  std::vector<float> values_;
+};
+
+/// map and map_color for this tree, their literals written to literals (see generate_sdf_code).
+std::string sdf_functions(const Node& root, const glm::dvec3& frame_origin, bool gate_subtrees, Literals& literals);
 
 /// The code of map and map_color for this tree, taking points relative to the world point
 /// frame_origin (its positions are baked relative to it, in double). With gate_subtrees, unions

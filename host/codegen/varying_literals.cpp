@@ -10,7 +10,7 @@
 namespace clmarch {
 
 void VaryingLiterals::add(const Scene& frame) {
-  SdfCode code = march_sdf_code(frame);
+  SdfCode code = march_scene_code(frame);
   const auto [it, is_new] = shapes_.try_emplace(std::move(code.source));
   Shape& shape = it->second;
   if (is_new) {
@@ -24,7 +24,7 @@ void VaryingLiterals::add(const Scene& frame) {
 }
 
 ValueSlots VaryingLiterals::slots_for(const Scene& frame) const {
-  const auto it = shapes_.find(march_sdf_code(frame).source);
+  const auto it = shapes_.find(march_scene_code(frame).source);
   ValueSlots slots;
   if (it == shapes_.end()) return slots;
   for (std::size_t k = 0; k < it->second.varies.size(); ++k) {

@@ -11,9 +11,10 @@
 namespace clmarch {
 
 /// The literals that differ among the frames seen, per shape of the code: frames whose distance
-/// functions have the same source once their literals are left open (march_sdf_code) share one
-/// program, which reads the literals that differ from its scene_values buffer. A change of shape
-/// (a rotation leaving the identity, a fractal's iterations) makes another program.
+/// functions and shading have the same source once their literals are left open
+/// (march_scene_code) share one program, which reads the literals that differ from its values
+/// buffer. A change of shape (a rotation leaving the identity, a fractal's iterations, fog
+/// appearing) makes another program.
 class VaryingLiterals {
  public:
   /// Takes the frame's literals in: those that differ from the first frame of its shape vary.

@@ -178,7 +178,7 @@ std::vector<cl_float4> light_data(const Scene& scene) {
 }
 
 std::optional<cl::Buffer> make_scene_values(const PreparedProgram& program, const Scene& scene) {
-  std::vector<float> values = slot_values(march_sdf_code(scene), program.kernel_options.value_slots);
+  std::vector<float> values = scene_values(scene, program.kernel_options);
   if (values.empty()) return std::nullopt;
   return cl::Buffer(program.program.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * sizeof(float),
                     values.data());
@@ -186,7 +186,7 @@ std::optional<cl::Buffer> make_scene_values(const PreparedProgram& program, cons
 
 void write_scene_values(PreparedProgram& program, const Scene& scene, const std::optional<cl::Buffer>& values) {
   if (!values) return;
-  const std::vector<float> data = slot_values(march_sdf_code(scene), program.kernel_options.value_slots);
+  const std::vector<float> data = scene_values(scene, program.kernel_options);
   program.program.queue.enqueueWriteBuffer(*values, CL_TRUE, 0, data.size() * sizeof(float), data.data());
 }
 

@@ -78,7 +78,8 @@ MarchParams march_params(const Scene& scene, const Dispatch& dispatch);
 /// Lights as the kernel reads them (kernels/shading.cl): positions relative to the camera.
 std::vector<cl_float4> light_data(const Scene& scene);
 
-/// The scene_values buffer of program, holding scene's literals at the program's value slots;
+/// The values buffer of program (its kernels' SceneValues), holding scene's literals at the
+/// program's value slots;
 /// nothing for a program without slots (its kernels get NULL).
 std::optional<cl::Buffer> make_scene_values(const PreparedProgram& program, const Scene& scene);
 /// Writes scene's literals at the program's value slots into values (made for the same slots).

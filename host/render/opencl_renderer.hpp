@@ -23,9 +23,9 @@ struct OpenClOptions {
   KernelPurpose purpose = KernelPurpose::Shaded;
   /// Precision, native math and fast math of the program (default: float, precise builtins).
   KernelVariant variant;
-  /// Literals of the scene's distance function that the march program reads from its scene_values
-  /// buffer instead of spelling them (march_sdf_code): the values an animation changes, so that
-  /// its frames share one program (VaryingLiterals). Empty: every literal is spelled.
+  /// Literals of the scene's distance function and shading that the march program reads from its
+  /// values buffer instead of spelling them (march_scene_code): the values an animation changes,
+  /// so that its frames share one program (VaryingLiterals). Empty: every literal is spelled.
   ValueSlots value_slots;
   /// Where to write the exact program source before building; empty: nowhere.
   std::string dump_kernel_path;
