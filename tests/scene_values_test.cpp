@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <regex>
 #include <stdexcept>
 #include <string>
@@ -166,6 +167,40 @@ TEST(SceneValues, OneProgramRendersEveryFrameAsItsOwnProgramWould) {
   OpenClOptions unscaled;
   unscaled.value_slots = varying.slots_for(frame_at(0.0));
   EXPECT_FALSE(renderer.can_render(frame_at(0.0), unscaled)) << "the unscaled torus is another program";
+}
+
+// Every literal of a scene that uses every shading feature, read from the values instead of
+// spelled: each macro expands where `values` is in scope (the build would fail otherwise), and the
+// image is the spelled program's, shaded at 1 and 16 lanes and depth-only with the cone pass.
+TEST(SceneValues, EveryLiteralAsAnInputRendersTheSpelledImage) {
+  const Scene scene = load_scene_text(
+      "camera: {position: [0, 1.5, 5], look_at: [0, 0.5, 0]}\n"
+      "render: {width: 40, height: 24, max_distance: 30, coarse_pass: cone}\n"
+      "sdf:\n  union:\n    - sphere: {center: [0, 0.6, 0], radius: 0.6, reflectivity: 0.3, scale: 1.2}\n"
+      "    - box: {half_size: [0.3, 0.3, 0.3], translate: [1.2, 0.3, 0], rotate: [0, 25, 0]}\n"
+      "    - plane: {normal: [0, 1, 0], offset: 0}\n"
+      "lights: [{point: {position: [2, 3, 2]}}, {directional: {direction: [-1, 2, 1], intensity: 0.5}}]\n"
+      "shading: {model: blinn_phong, specular: 0.4, step_ao: 5000, ambient_occlusion: {}, shadows: {mode: soft_improved},\n"
+      "          reflections: 1, sky: {}, glow: {radius: 0.2}, planetary_glow: {}, fog: {density: 0.02},\n"
+      "          height_fog: {density: 0.05}, tone_map: reinhard, gamma: 2.2}\n",
+      "every_feature.yaml");
+  ValueSlots every(march_scene_code(scene).literals.size());
+  std::iota(every.begin(), every.end(), 0);
+  for (const auto& [lanes, purpose] : {std::pair{1, KernelPurpose::Shaded}, std::pair{16, KernelPurpose::Shaded},
+                                       std::pair{16, KernelPurpose::DepthSteps}}) {
+    OpenClOptions spelled;
+    spelled.lanes = lanes;
+    spelled.purpose = purpose;
+    OpenClOptions inputs = spelled;
+    inputs.value_slots = every;
+    const RenderResult a = render_opencl(scene, inputs);
+    const RenderResult b = render_opencl(scene, spelled);
+    for (int c = 0; c < kChannelCount; ++c) EXPECT_EQ(a.buffers.planes[c], b.buffers.planes[c]) << kChannelNames[c] << " lanes " << lanes;
+  }
+  const std::string source = spell_sdf_code(march_scene_code(scene), every);
+  EXPECT_NE(source.find("#define COARSE_MARGIN values["), std::string::npos);
+  EXPECT_NE(source.find("#define HEIGHT_FOG_SUN_POWER values["), std::string::npos);
+  EXPECT_EQ(source.find('@'), std::string::npos);
 }
 
 // The cells tiling's own march (march_cells) and the mod tiling's wrapped field read them too.
