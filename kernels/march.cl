@@ -243,7 +243,9 @@ SDF_INLINE void finish_packet(SceneValues values, const Packet* k, const MarchRe
 }
 
 /* Each work-item marches PACKETS_PER_ITEM consecutive packets of the chunk: two on CPUs, whose
- * steps interleave (march_plain_pair), one on GPUs and under the cells tiling. */
+ * steps interleave (march_plain_pair), one on GPUs and under the cells tiling. values holds the
+ * scene's numbers that the program reads instead of spelling them (an animation's; NULL when it
+ * spells them all). */
 __kernel void march(const MarchParams params, __global float* out, __constant float4* lights, SceneValues values
 #if defined(COARSE_PASS)
                     , __global const float* coarse_starts
