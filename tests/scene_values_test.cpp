@@ -113,8 +113,9 @@ TEST(VaryingLiterals, AFrameThatVariesMoreWidensItsShapesSlots) {
   VaryingLiterals varying;
   for (double t : {0.25, 0.5}) varying.add(frame_at(t, yaml));
   const std::size_t before = varying.slots_for(frame_at(0.5, yaml)).size();
-  varying.add(frame_at(2.0, yaml));
+  const ValueSlots widened = varying.add(frame_at(2.0, yaml));
   EXPECT_EQ(varying.slots_for(frame_at(0.5, yaml)).size(), before + 2) << "the centre's x too, in map and map_color";
+  EXPECT_EQ(widened, varying.slots_for(frame_at(0.5, yaml))) << "add returns its shape's slots";
 }
 
 TEST(KernelSource, ValueSlotsAreForMarchProgramsAndTheScenesLiterals) {

@@ -71,12 +71,12 @@ class CeilingKernel {
   std::uint64_t counted_ = 0;
 };
 
-/// The output floor: the device storing as many floats as a march program writes per frame and
-/// doing nothing else (fill_planes of kernels/output_floor.cl, 16 floats per work-item, the count
-/// rounded up to whole rows of 16). Built once, run often; each run stores a new value.
 /// Floats the depth-only program stores per frame of scene: its planes times the pixels.
 std::size_t depth_frame_floats(const Scene& scene);
 
+/// The output floor: the device storing as many floats as a march program writes per frame and
+/// doing nothing else (fill_planes of kernels/output_floor.cl, 16 floats per work-item, the count
+/// rounded up to whole rows of 16). Built once, run often; each run stores a new value.
 class OutputFloorKernel {
  public:
   OutputFloorKernel(const OpenClOptions& options, std::size_t floats);

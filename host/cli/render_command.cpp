@@ -149,7 +149,8 @@ RenderResult render_scene(const RenderCommandOptions& options, const Scene& scen
   std::optional<OpenClRenderer> single;
   std::optional<OpenClRenderer>* renderer = &single;
   if (sequence) {
-    cl.value_slots = sequence->varying.slots_for(scene);
+    // A frame between the samples may vary more: its shape's program is built again, once.
+    cl.value_slots = sequence->varying.add(scene);
     renderer = &sequence->renderer;
   }
   if (*renderer && (*renderer)->can_render(scene, cl)) {
@@ -212,8 +213,6 @@ void render_sequence(const RenderCommandOptions& options, const std::string& out
   }
   for (int frame = range.first; frame <= range.last; ++frame) {
     const Scene scene = load_scene_with_options(options.scene, range.time_of(frame));
-    // A frame between the samples may vary more: its shape's program is built again, once.
-    sequence.varying.add(scene);
     if (!progress) progress.emplace("frames", range.count(), static_cast<double>(scene.render.width) * scene.render.height);
     FrameFiles files{frame_path(output, frame, range), "", ""};
     if (!options.buffers.empty()) files.buffers = frame_path(options.buffers, frame, range);

@@ -14,8 +14,10 @@ std::string cl_float(double value) {
   return text + "f";
 }
 
-std::string cl_float4(const glm::dvec3& v) {
-  return fmt::format("(float4)({}, {}, {}, 0.0f)", cl_float(v.x), cl_float(v.y), cl_float(v.z));
+std::string cl_float4(const glm::dvec3& v) { return cl_float4_of(cl_float(v.x), cl_float(v.y), cl_float(v.z)); }
+
+std::string cl_float4_of(const std::string& x, const std::string& y, const std::string& z) {
+  return fmt::format("(float4)({}, {}, {}, 0.0f)", x, y, z);
 }
 
 }  // namespace clmarch

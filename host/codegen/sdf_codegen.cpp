@@ -362,7 +362,11 @@ std::string Literals::f(double value) {
   return fmt::format("@{}@", values_.size() - 1);
 }
 
-std::string Literals::f4(const glm::dvec3& v) { return fmt::format("(float4)({}, {}, {}, 0.0f)", f(v.x), f(v.y), f(v.z)); }
+std::string Literals::f4(const glm::dvec3& v) {
+  // Numbered x, y, z whatever the compiler (it evaluates function arguments in no fixed order).
+  const std::string x = f(v.x), y = f(v.y), z = f(v.z);
+  return cl_float4_of(x, y, z);
+}
 
 std::string sdf_functions(const Node& root, const glm::dvec3& frame_origin, bool gate_subtrees, Literals& literals) {
   SdfEmitter distance_only(false, gate_subtrees, literals);

@@ -13,13 +13,13 @@
 
 namespace clmarch {
 
-/// The two functions with their float literals left open: the frames of an animation share one
-/// program when their trees differ only in values, which the program then reads from its
-/// scene_values buffer (SceneValues values) instead of spelling them.
+/// Generated code with its float literals left open: the frames of an animation share one program
+/// when their code differs only in values, which the program then reads from its values buffer
+/// (SceneValues values) instead of spelling them.
 struct SdfCode {
   /// The source, with "@k@" where literal k goes.
   std::string source;
-  /// Every float literal of the tree, rounded to float, by index.
+  /// Every float literal of the code, rounded to float, by index.
   std::vector<float> literals;
 };
 

@@ -9,26 +9,30 @@
 
 namespace clmarch {
 
-void VaryingLiterals::add(const Scene& frame) {
+ValueSlots VaryingLiterals::add(const Scene& frame) {
   SdfCode code = march_scene_code(frame);
   const auto [it, is_new] = shapes_.try_emplace(std::move(code.source));
   Shape& shape = it->second;
   if (is_new) {
     shape.first = std::move(code.literals);
     shape.varies.assign(shape.first.size(), false);
-    return;
+    return {};
   }
   for (std::size_t k = 0; k < shape.first.size(); ++k) {
     if (std::bit_cast<std::uint32_t>(shape.first[k]) != std::bit_cast<std::uint32_t>(code.literals[k])) shape.varies[k] = true;
   }
+  return shape.slots();
 }
 
 ValueSlots VaryingLiterals::slots_for(const Scene& frame) const {
   const auto it = shapes_.find(march_scene_code(frame).source);
+  return it == shapes_.end() ? ValueSlots{} : it->second.slots();
+}
+
+ValueSlots VaryingLiterals::Shape::slots() const {
   ValueSlots slots;
-  if (it == shapes_.end()) return slots;
-  for (std::size_t k = 0; k < it->second.varies.size(); ++k) {
-    if (it->second.varies[k]) slots.push_back(static_cast<int>(k));
+  for (std::size_t k = 0; k < varies.size(); ++k) {
+    if (varies[k]) slots.push_back(static_cast<int>(k));
   }
   return slots;
 }

@@ -18,7 +18,8 @@ namespace clmarch {
 class VaryingLiterals {
  public:
   /// Takes the frame's literals in: those that differ from the first frame of its shape vary.
-  void add(const Scene& frame);
+  /// Returns the varying literals of its shape, as slots_for(frame) would.
+  ValueSlots add(const Scene& frame);
   /// The varying literals of the frame's shape (none for a shape seen in one frame only).
   ValueSlots slots_for(const Scene& frame) const;
 
@@ -26,6 +27,8 @@ class VaryingLiterals {
   struct Shape {
     std::vector<float> first;
     std::vector<bool> varies;
+
+    ValueSlots slots() const;
   };
   std::map<std::string, Shape> shapes_;  // by SdfCode::source
 };

@@ -79,8 +79,7 @@ MarchParams march_params(const Scene& scene, const Dispatch& dispatch);
 std::vector<cl_float4> light_data(const Scene& scene);
 
 /// The values buffer of program (its kernels' SceneValues), holding scene's literals at the
-/// program's value slots;
-/// nothing for a program without slots (its kernels get NULL).
+/// program's value slots; nothing for a program without slots (its kernels get NULL).
 std::optional<cl::Buffer> make_scene_values(const PreparedProgram& program, const Scene& scene);
 /// Writes scene's literals at the program's value slots into values (made for the same slots).
 void write_scene_values(PreparedProgram& program, const Scene& scene, const std::optional<cl::Buffer>& values);
