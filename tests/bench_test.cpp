@@ -95,13 +95,14 @@ TEST(Bench, CeilingReplaysExactlyTheMarchsPoints) {
 
 TEST(Bench, RecordedPointsAreTheMarchsSamples) {
   // A plane z = 0 seen from z = 5: the march starts at the camera (no cone pass) and steps by the
-  // plane's exact distance, so each pixel's k-th point is at distance z_k along its ray from the
+  // plane's exact distance (plain sphere tracing), so each pixel's k-th point is at distance z_k along its ray from the
   // previous one.
   // Float rounds z to 2^-24 relative; 1e-5 leaves room for the sums along the ray.
   constexpr double kFloatSteps = 1e-5;
   const Scene scene = testing::scene_from_yaml(
       "camera: {position: [0, 0, 5], look_at: [0, 0, 0], fov: 60}\n"
-      "render: {width: 9, height: 7, max_steps: 6, epsilon: 1e-6, max_distance: 100, bounds: none, coarse_pass: none}\n"
+      "render: {width: 9, height: 7, max_steps: 6, epsilon: 1e-6, max_distance: 100, bounds: none, coarse_pass: none, "
+      "over_relaxation: 1}\n"
       "sdf: {plane: {normal: [0, 0, 1], offset: 0}}\n");
   for (int lanes : {1, 16}) {
     OpenClOptions options;

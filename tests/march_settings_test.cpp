@@ -47,9 +47,20 @@ FrameBuffers render_depth(const Scene& scene, int lanes = 16) {
   return render_opencl(scene, options).buffers;
 }
 
-TEST(MarchSettings, DefaultsArePlainSphereTracingWithTheFixedEpsilon) {
+TEST(MarchSettings, DefaultsAreAutomaticOverRelaxationWithTheFixedEpsilon) {
   const Scene scene = scene_from_yaml("sdf: {sphere: {}}\n");
-  EXPECT_EQ(scene.render.over_relaxation, 1.0);
+  EXPECT_FALSE(scene.render.over_relaxation.has_value());
+  EXPECT_EQ(camera_over_relaxation(scene), kAutoOverRelaxation);
+  EXPECT_EQ(camera_over_relaxation(scene_from_yaml("sdf: {sphere: {}}\nrender: {over_relaxation: auto}\n")), 1.2);
+  // Plain sphere tracing where the steps are the picture (step-count occlusion) and in the cells
+  // tiling; a number given always wins.
+  EXPECT_EQ(camera_over_relaxation(scene_from_yaml("sdf: {sphere: {}}\nshading: {step_ao: 3000}\n")), 1.0);
+  EXPECT_EQ(camera_over_relaxation(scene_from_yaml("sdf: {sphere: {}}\ntiling: {cell: [4, 4, 4]}\n")), 1.0);
+  EXPECT_EQ(camera_over_relaxation(scene_from_yaml("sdf: {sphere: {}}\ntiling: {cell: [4, 4, 4], method: mod}\n")), 1.2);
+  EXPECT_EQ(camera_over_relaxation(scene_from_yaml("sdf: {sphere: {}}\nrender: {over_relaxation: 1}\n")), 1.0);
+  EXPECT_EQ(camera_over_relaxation(
+                scene_from_yaml("sdf: {sphere: {}}\nrender: {over_relaxation: 1.5}\nshading: {step_ao: 3000}\n")),
+            1.5);
   EXPECT_EQ(scene.render.hit_threshold, HitThreshold::Fixed);
   EXPECT_EQ(scene.render.cone_factor, 1.0);
   EXPECT_EQ(hit_cone_slope(scene.render, scene.camera), 0.0);
@@ -218,7 +229,9 @@ TEST(MarchSettings, BadValuesAreOneLineErrors) {
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"render.over_relaxation=2", "render.over_relaxation must be in [1, 2) (got 2)"},
       {"render.over_relaxation=0.9", "render.over_relaxation must be in [1, 2) (got 0.9)"},
-      {"render.over_relaxation=fast", "render.over_relaxation must be a number"},
+      {"render.over_relaxation=fast", "render.over_relaxation must be a number in [1, 2) or auto (got 'fast')"},
+      {"render.over_relaxation=[1.2]", "render.over_relaxation must be a number (got a list)"},
+      {"render.over_relaxation=2*t+3", "render.over_relaxation must be in [1, 2) (got 2*t+3 = 3 at t = 0)"},
       {"render.hit_threshold=cone", "fixed, pixel_cone"},
       {"render={hit_threshold: pixel_cone, cone_factor: 0}", "render.cone_factor must be > 0 (got 0)"},
       {"render.cone_factor=2", "render.cone_factor applies only with render.hit_threshold: pixel_cone"},

@@ -83,7 +83,7 @@ TEST(Scale, PowersOfTwoScaleBitForBit) {
 std::string head_on_floor(int max_steps) {
   return fmt::format(
       "camera: {{position: [0, 2, 0], look_at: [0, 0, 0], up: [0, 0, -1]}}\n"
-      "render: {{width: 3, height: 3, max_steps: {}}}\n"
+      "render: {{width: 3, height: 3, max_steps: {}, over_relaxation: 1}}\n"
       "sdf: {{plane: {{}}}}\n"
       "lights: [{{directional: {{direction: [0, 1, 0]}}}}]\n"
       "shading: {{background: [0.25, 0.5, 0.75]}}\n",

@@ -7,6 +7,7 @@
 #include "support/test_support.hpp"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <fstream>
@@ -178,6 +179,43 @@ TEST(SweepCommand, TinySweepWritesOrderedErrors) {
   const testing::CommandResult mismatch = run_clmarch({"bench", torus, "--size", "16x9", "--sweep", "lanes=1", "--append",
                                                        "--csv", (dir / "other.csv").string()});
   EXPECT_EQ(mismatch.exit_code, kExitBadInput) << mismatch.err;
+}
+
+// The sweep compares its renders without step-count occlusion, but the automatic choices stay those
+// of the scene as it renders: a sphere on a floor (unbounded) with occlusion renders with neither
+// the cone pass nor over-relaxation, which the same scene without occlusion would get. Its sweep row
+// marches exactly as the render does.
+TEST(SweepCommand, AutomaticChoicesAreThoseOfTheRender) {
+  testing::TempDir dir;
+  const std::string scene = (dir / "floor.yaml").string();
+  std::ofstream(scene) << "camera: {position: [0, 1.5, 4], look_at: [0, 0.5, 0]}\n"
+                          "render: {width: 48, height: 27}\n"
+                          "sdf: {union: [{sphere: {center: [0, 1, 0]}}, {plane: {}}]}\n"
+                          "shading: {step_ao: 2000}\n";
+  const testing::CommandResult render =
+      run_clmarch({"render", scene, "--stats", "-q", "-o", (dir / "floor.png").string()});
+  ASSERT_EQ(render.exit_code, kExitOk) << render.err;
+  const double render_steps = nlohmann::json::parse(render.out)["steps"];
+  const std::filesystem::path csv = dir / "floor.csv";
+  const testing::CommandResult sweep =
+      run_clmarch({"bench", scene, "--repeat", "1", "-q", "--sweep", "lanes=16", "--csv", csv.string()});
+  ASSERT_EQ(sweep.exit_code, kExitOk) << sweep.err;
+  std::string header;
+  const auto rows = read_csv(csv, &header);
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].at("over_relaxation"), "1");
+  // The CSV's 7 significant digits: within half a step of the render's integer count.
+  EXPECT_NEAR(std::stod(rows[0].at("steps_per_pixel")) * 48 * 27, render_steps, 0.5);
+
+  // Without occlusion the render itself takes the cone pass and omega 1.2, and so does its row.
+  const testing::CommandResult plain =
+      run_clmarch({"bench", scene, "--repeat", "1", "-q", "--set", "shading.step_ao=0", "--sweep", "lanes=16", "--append",
+                   "--csv", csv.string()});
+  ASSERT_EQ(plain.exit_code, kExitOk) << plain.err;
+  const auto both = read_csv(csv, &header);
+  ASSERT_EQ(both.size(), 2u);
+  EXPECT_EQ(both[1].at("over_relaxation"), "1.2");
+  EXPECT_LT(std::stod(both[1].at("steps_per_pixel")), std::stod(rows[0].at("steps_per_pixel")));
 }
 
 }  // namespace

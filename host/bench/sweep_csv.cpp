@@ -49,7 +49,7 @@ std::string row_line(const std::string& scene, const SweepResult& result, const 
       quoted(combination_label(row.combination)), row.is_defaults ? "1" : "0", std::to_string(row.lanes),
       kPrecisionNames[static_cast<int>(row.variant.precision)], row.variant.fast_math ? "on" : "off",
       row.variant.native_math ? "on" : "off", number(r.epsilon), kHitThresholdNames[static_cast<int>(r.hit_threshold)],
-      number(r.cone_factor), std::to_string(r.max_steps), number(r.over_relaxation),
+      number(r.cone_factor), std::to_string(r.max_steps), r.over_relaxation ? number(*r.over_relaxation) : "auto",
       kNormalMethodNames[static_cast<int>(r.normal_method)], number(r.normal_epsilon), number(row.kernel_ms),
       number(timed ? *min_ms : 0.0), number(timed ? *max_ms : 0.0), number(row.steps_per_pixel),
       std::to_string(e.both_hit), number(e.depth_abs.rms), number(e.depth_abs.p99), number(e.depth_abs.max),

@@ -5,6 +5,7 @@
 #include "bench/throughput.hpp"
 #include "common/log.hpp"
 #include "reference/reference_renderer.hpp"
+#include "scene/scene_bounds.hpp"
 
 #include <fmt/format.h>
 #include <glm/glm.hpp>
@@ -14,7 +15,12 @@
 namespace clmarch {
 namespace {
 
+/// The scene as the sweep compares it: without step-count occlusion, whose colours follow step
+/// counts that the reference's tiny epsilon changes, but with the automatic choices (coarse pass,
+/// over-relaxation) made for the scene as it renders, occlusion included.
 Scene without_step_ao(Scene scene) {
+  scene.render.coarse_pass = uses_cone_pass(scene) ? CoarsePass::Cone : CoarsePass::None;
+  scene.render.over_relaxation = camera_over_relaxation(scene);
   scene.shading.step_ao = 0.0;
   return scene;
 }

@@ -124,7 +124,7 @@ MarchLimits camera_march_limits(const Scene& scene) {
   MarchLimits limits;
   limits.max_steps = scene.render.max_steps;
   limits.epsilon = scene.render.epsilon;
-  limits.over_relaxation = scene.render.over_relaxation;
+  limits.over_relaxation = camera_over_relaxation(scene);
   limits.hit_cone_slope = hit_cone_slope(scene.render, scene.camera);
   return limits;
 }

@@ -141,7 +141,7 @@ MarchParams march_params(const Scene& scene, const Dispatch& dispatch) {
   params.normal_epsilon = static_cast<float>(scene.render.normal_epsilon);
   if (scene.tiling) params.origin_in_cell = to_cl(offset_in_cell(scene.camera.position, scene.tiling->cell));
   params.camera_height = static_cast<float>(scene.camera.position.y);
-  params.over_relaxation = static_cast<float>(scene.render.over_relaxation);
+  params.over_relaxation = static_cast<float>(camera_over_relaxation(scene));
   params.hit_cone_slope = static_cast<float>(hit_cone_slope(scene.render, scene.camera));
   if (const std::optional<BoundingSphere> bounds = camera_ray_bounds(scene)) {
     const glm::dvec3 c = scene.camera.position - bounds->center;

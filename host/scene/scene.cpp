@@ -55,6 +55,13 @@ double hit_cone_slope(const RenderSettings& render, const Camera& camera) {
   return render.cone_factor * 2.0 * std::tan(half_fov) / render.height;
 }
 
+double camera_over_relaxation(const Scene& scene) {
+  if (scene.render.over_relaxation) return *scene.render.over_relaxation;
+  // docs/accuracy.md, "Over-relaxation by default": 1.2 took 0-17 % of the steps off every other
+  // shipped scene with no worse depth, mask or colour figure against the converged reference.
+  return scene.shading.step_ao > 0.0 || uses_cells_tiling(scene) ? 1.0 : kAutoOverRelaxation;
+}
+
 bool Transform::is_identity() const {
   return translate == glm::dvec3(0.0) && rotate_degrees == glm::dvec3(0.0) && scale == 1.0;
 }

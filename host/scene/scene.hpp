@@ -162,8 +162,9 @@ struct RenderSettings {
   NormalMethod normal_method = NormalMethod::Central;
   /// Finite-difference step of the normal estimate.
   double normal_epsilon = 1e-3;
-  /// Keinert et al.'s over-relaxation factor omega of camera rays, in [1, 2); 1 = plain sphere tracing.
-  double over_relaxation = 1.0;
+  /// Keinert et al.'s over-relaxation factor omega of camera rays, in [1, 2); 1 = plain sphere
+  /// tracing. Empty: auto (the default), omega chosen per scene by camera_over_relaxation.
+  std::optional<double> over_relaxation;
   HitThreshold hit_threshold = HitThreshold::Fixed;
   /// pixel_cone: the threshold is max(epsilon, cone_factor * t * pixel angle).
   double cone_factor = 1.0;
@@ -333,5 +334,11 @@ struct Scene {
 
 /// Whether camera rays walk the unit cells (tiling.method: cells) rather than a plain march.
 inline bool uses_cells_tiling(const Scene& scene) { return scene.tiling && scene.tiling->method == TilingMethod::Cells; }
+
+/// The over-relaxation of render.over_relaxation: for auto, omega = kAutoOverRelaxation, except
+/// plain sphere tracing (1) where it did not pay or would change the picture: scenes shaded by
+/// step-count occlusion, whose step counts it shortens, and the cells tiling.
+inline constexpr double kAutoOverRelaxation = 1.2;
+double camera_over_relaxation(const Scene& scene);
 
 }  // namespace clmarch

@@ -6,7 +6,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -100,11 +102,24 @@ class SceneReader {
     return render;
   }
 
+  /// A number in [1, 2), or auto (empty). A bare word other than auto and the time t is a misspelt
+  /// name rather than an expression, so its error names the choices.
+  std::optional<double> read_over_relaxation(const YAML::Node& omega) const {
+    const Range below_two{1.0, 2.0, false, true};
+    if (!omega.IsScalar()) return yaml_.number(omega, "render.over_relaxation", below_two);
+    const std::string& text = omega.Scalar();
+    if (text == "auto") return std::nullopt;
+    const bool bare_word = !text.empty() && std::all_of(text.begin(), text.end(), [](char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; });
+    if (bare_word && text != "t") {
+      yaml_.fail(omega, fmt::format("render.over_relaxation must be a number in [1, 2) or auto (got '{}')", text));
+    }
+    return yaml_.number(omega, "render.over_relaxation", below_two);
+  }
+
   /// over_relaxation, hit_threshold and cone_factor; cone_factor without the pixel cone is unused,
   /// so an error like an unknown key.
   void read_march_acceleration(const YAML::Node& node, RenderSettings& render) {
-    const Range below_two{1.0, 2.0, false, true};
-    yaml_.optional_number(node, "over_relaxation", "render.over_relaxation", render.over_relaxation, below_two);
+    if (const YAML::Node omega = node["over_relaxation"]) render.over_relaxation = read_over_relaxation(omega);
     if (node["hit_threshold"]) {
       render.hit_threshold = static_cast<HitThreshold>(yaml_.choice(node["hit_threshold"], "render.hit_threshold", kHitThresholdNames));
     }
