@@ -22,6 +22,29 @@ const std::string kScene = "sdf: {sphere: {radius: 1}}\nrender: {width: 16, heig
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
+// Settings given in the scene are named without "(auto)"; the floor is unbounded, and the cone pass
+// with step-count occlusion only when asked for.
+TEST(Verbosity, VerboseNamesTheMarchSettingsInForce) {
+  TempDir dir;
+  std::ofstream(dir / "s.yaml") << "sdf: {plane: {}}\ncamera: {position: [0, 1, 3]}\nrender: {width: 8, height: 8}\n"
+                                   "shading: {step_ao: 1000}\n";
+  const auto run = [&](const std::vector<std::string>& sets) {
+    std::vector<std::string> args = {"--verbose", "render", (dir / "s.yaml").string(), "-o", (dir / "o.png").string()};
+    for (const std::string& set : sets) args.insert(args.end(), {"--set", set});
+    const auto result = run_clmarch(args);
+    EXPECT_EQ(result.exit_code, kExitOk) << result.err;
+    return result.err;
+  };
+  const std::string automatic = run({});
+  EXPECT_TRUE(contains(automatic, "clmarch: march: from the camera (unbounded), coarse pass none (auto), over-relaxation 1 (auto)\n"))
+      << automatic;
+  const std::string given = run({"render.coarse_pass=cone", "render.over_relaxation=1.5"});
+  EXPECT_TRUE(contains(given, "clmarch: march: from the camera (unbounded), coarse pass cone, over-relaxation 1.5\n")) << given;
+  const std::string tiled = run({"tiling={cell: [4, 4, 4]}"});
+  EXPECT_TRUE(contains(tiled, "clmarch: march: through the cells of the tiling, coarse pass none (auto), over-relaxation 1 (auto)\n"))
+      << tiled;
+}
+
 TEST(Verbosity, NormalSaysWhatItWrote) {
   TempDir dir;
   std::ofstream(dir / "s.yaml") << kScene;
@@ -68,6 +91,9 @@ TEST(Verbosity, VerboseNamesDeviceBuildLanesLocalSizeAndCache) {
                                       std::to_string(default_local_size(device)) + ", 1 chunk, kernel "))
       << first.err;
   EXPECT_TRUE(contains(first.err, "clmarch: wrote ")) << first.err;
+  // What the automatic march settings chose: a lone sphere, bounded, needs no cone pass.
+  EXPECT_TRUE(contains(first.err, "clmarch: march: inside a bounding sphere of radius 1")) << first.err;
+  EXPECT_TRUE(contains(first.err, ", coarse pass none (auto), over-relaxation 1.2 (auto)\n")) << first.err;
   if (device.platform_name != "Portable Computing Language") GTEST_SKIP() << "the cache is only known for PoCL";
   // An empty cache folder: the first build compiles, the second finds it.
   EXPECT_TRUE(contains(first.err, "driver cache miss (" + cache.path().string() + ")")) << first.err;

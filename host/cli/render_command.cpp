@@ -168,6 +168,19 @@ RenderResult render_scene(const RenderCommandOptions& options, const Scene& scen
   return result;
 }
 
+/// How camera rays march, and what the automatic settings chose, for --verbose.
+std::string march_summary(const Scene& scene) {
+  std::string where = "from the camera (unbounded)";
+  if (uses_cells_tiling(scene)) {
+    where = "through the cells of the tiling";
+  } else if (const std::optional<BoundingSphere> bounds = camera_ray_bounds(scene)) {
+    where = fmt::format("inside a bounding sphere of radius {:.4g}", bounds->radius);
+  }
+  return fmt::format("march: {}, coarse pass {}{}, over-relaxation {:g}{}", where, uses_cone_pass(scene) ? "cone" : "none",
+                     scene.render.coarse_pass == CoarsePass::Auto ? " (auto)" : "", camera_over_relaxation(scene),
+                     scene.render.over_relaxation ? "" : " (auto)");
+}
+
 /// Renders and writes one image (and its buffers); frame is set for sequences.
 void render_image(const RenderCommandOptions& options, const Scene& scene, const FrameFiles& files,
                   std::optional<int> frame, SequenceState* sequence = nullptr) {
@@ -236,6 +249,7 @@ int run_render_command(const RenderCommandOptions& options) {
   const Scene scene = load_scene_with_options(options.scene);
   log_verbose(fmt::format("scene {}: {}x{} pixels, max_steps {}", options.scene.scene_path, scene.render.width,
                           scene.render.height, scene.render.max_steps));
+  log_verbose(march_summary(scene));
   render_image(options, scene, FrameFiles{output, options.buffers, options.dump_kernel}, std::nullopt);
   return kExitOk;
 }
