@@ -16,12 +16,12 @@ for name in "${scenes[@]}"; do
   csv=docs/sweeps/$name.csv
   rm -f "$csv"
   # The coarse cone pass does not combine with the cells tiling (the loader refuses it).
-  coarse=(--sweep render.coarse_pass=cone)
+  coarse=(--sweep render.coarse_pass=none,cone)
   if grep -q '^tiling:' "scenes/$name.yaml"; then coarse=(); fi
   "$clmarch" bench "scenes/$name.yaml" --size "$size" --repeat "$repeat" --csv "$csv" --one-at-a-time \
     --sweep render.epsilon=1e-2,1e-3,1e-4,1e-5 \
     --sweep render.max_steps=64,128,256,512 \
-    --sweep render.over_relaxation=1.2,1.5 \
+    --sweep render.over_relaxation=1,1.2,1.5 \
     --sweep render.bounds=none \
     --sweep render.subtree_bounds=none \
     "${coarse[@]}" \

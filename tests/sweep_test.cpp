@@ -216,6 +216,20 @@ TEST(SweepCommand, AutomaticChoicesAreThoseOfTheRender) {
   ASSERT_EQ(both.size(), 2u);
   EXPECT_EQ(both[1].at("over_relaxation"), "1.2");
   EXPECT_LT(std::stod(both[1].at("steps_per_pixel")), std::stod(rows[0].at("steps_per_pixel")));
+
+  // One at a time, a value that auto chose already restates the base and is not rendered again.
+  const std::filesystem::path around = dir / "around.csv";
+  const testing::CommandResult one =
+      run_clmarch({"bench", scene, "--repeat", "1", "-q", "--one-at-a-time", "--sweep", "render.over_relaxation=1,1.2",
+                   "--sweep", "render.coarse_pass=none,cone", "--csv", around.string()});
+  ASSERT_EQ(one.exit_code, kExitOk) << one.err;
+  const auto cases = read_csv(around, &header);
+  ASSERT_EQ(cases.size(), 3u);
+  EXPECT_EQ(cases[0].at("combination"), "");
+  EXPECT_EQ(cases[0].at("defaults"), "1");
+  EXPECT_EQ(cases[1].at("combination"), "render.over_relaxation=1.2");
+  EXPECT_EQ(cases[2].at("combination"), "render.coarse_pass=cone");
+  EXPECT_LT(std::stod(cases[2].at("steps_per_pixel")), std::stod(cases[0].at("steps_per_pixel")));
 }
 
 }  // namespace

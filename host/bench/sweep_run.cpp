@@ -19,8 +19,7 @@ namespace {
 /// counts that the reference's tiny epsilon changes, but with the automatic choices (coarse pass,
 /// over-relaxation) made for the scene as it renders, occlusion included.
 Scene without_step_ao(Scene scene) {
-  scene.render.coarse_pass = uses_cone_pass(scene) ? CoarsePass::Cone : CoarsePass::None;
-  scene.render.over_relaxation = camera_over_relaxation(scene);
+  scene.render = resolved_render_settings(scene);
   scene.shading.step_ao = 0.0;
   return scene;
 }

@@ -7,6 +7,7 @@
 #include "common/errors.hpp"
 #include "common/log.hpp"
 #include "image/atomic_file.hpp"
+#include "scene/scene_bounds.hpp"
 
 #include <fmt/format.h>
 
@@ -19,10 +20,13 @@ bool has_fp64(const DeviceEntry& device) {
   return device.device.getInfo<CL_DEVICE_EXTENSIONS>().find("cl_khr_fp64") != std::string::npos;
 }
 
-/// True when the case renders with march settings and a program equal to scene's with options.
+/// True when the case renders with march settings and a program equal to scene's with options
+/// (automatic settings compared by what they chose: coarse_pass=none on a scene whose auto runs
+/// none restates it).
 bool same_settings(const SweepCase& c, const Scene& scene, const OpenClOptions& options, const DeviceEntry& device) {
   const auto lanes = [&](const OpenClOptions& o) { return o.lanes.value_or(default_lanes(device)); };
-  return c.scene.render == scene.render && lanes(c.options) == lanes(options) && c.options.variant == options.variant;
+  return resolved_render_settings(c.scene) == resolved_render_settings(scene) && lanes(c.options) == lanes(options) &&
+         c.options.variant == options.variant;
 }
 
 /// True when a case of a one-at-a-time sweep only restates the base's settings (render.epsilon=1e-4

@@ -122,6 +122,13 @@ bool uses_cone_pass(const Scene& scene) {
   return !camera_ray_bounds(scene) && scene.shading.step_ao == 0.0;
 }
 
+RenderSettings resolved_render_settings(const Scene& scene) {
+  RenderSettings render = scene.render;
+  render.coarse_pass = uses_cone_pass(scene) ? CoarsePass::Cone : CoarsePass::None;
+  render.over_relaxation = camera_over_relaxation(scene);
+  return render;
+}
+
 std::optional<RaySpan> ray_sphere_span(const glm::dvec3& origin, const glm::dvec3& dir, const BoundingSphere& sphere) {
   const glm::dvec3 offset = origin - sphere.center;
   const double b = glm::dot(offset, dir);

@@ -30,6 +30,10 @@ std::optional<BoundingSphere> camera_ray_bounds(const Scene& scene);
 /// loader refuses it with the cells tiling, whose march keeps to one cell at a time).
 bool uses_cone_pass(const Scene& scene);
 
+/// scene.render with its automatic choices made (coarse_pass and over_relaxation as the march
+/// runs them): two scenes march alike when these are equal.
+RenderSettings resolved_render_settings(const Scene& scene);
+
 /// The part [t_enter, t_exit] of the ray origin + t dir (dir unit) inside sphere; nothing if the
 /// ray's line misses it. t_enter may be negative (origin inside).
 struct RaySpan {
