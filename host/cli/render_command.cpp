@@ -176,8 +176,10 @@ std::string march_summary(const Scene& scene) {
   } else if (const std::optional<BoundingSphere> bounds = camera_ray_bounds(scene)) {
     where = fmt::format("inside a bounding sphere of radius {:.4g}", bounds->radius);
   }
-  return fmt::format("march: {}, coarse pass {}{}, over-relaxation {:g}{}", where, uses_cone_pass(scene) ? "cone" : "none",
-                     scene.render.coarse_pass == CoarsePass::Auto ? " (auto)" : "", camera_over_relaxation(scene),
+  const RenderSettings chosen = resolved_render_settings(scene);
+  return fmt::format("march: {}, coarse pass {}{}, over-relaxation {:g}{}", where,
+                     kCoarsePassNames[static_cast<int>(chosen.coarse_pass)],
+                     scene.render.coarse_pass == CoarsePass::Auto ? " (auto)" : "", *chosen.over_relaxation,
                      scene.render.over_relaxation ? "" : " (auto)");
 }
 

@@ -109,7 +109,8 @@ class SceneReader {
     if (!omega.IsScalar()) return yaml_.number(omega, "render.over_relaxation", below_two);
     const std::string& text = omega.Scalar();
     if (text == "auto") return std::nullopt;
-    const bool bare_word = !text.empty() && std::all_of(text.begin(), text.end(), [](char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; });
+    const auto letter = [](char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; };
+    const bool bare_word = !text.empty() && std::all_of(text.begin(), text.end(), letter);
     if (bare_word && text != "t") {
       yaml_.fail(omega, fmt::format("render.over_relaxation must be a number in [1, 2) or auto (got '{}')", text));
     }
