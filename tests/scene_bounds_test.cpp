@@ -48,6 +48,12 @@ const BoundCase kBoundedCases[] = {
     {"smooth_subtraction",
      "  smooth_subtraction:\n    k: 0.3\n    children:\n      - box: {half_size: [1, 1, 1]}\n      - sphere: {radius: 1.2}"},
     {"displace", "  displace:\n    amplitude: 0.2\n    frequency: 5\n    children:\n      - sphere: {radius: 1}"},
+    // The child's gain scales the amplitude: a child that steps short, and displacement twice.
+    {"displace_of_short_steps",
+     "  displace:\n    amplitude: 0.5\n    frequency: 3\n    children:\n      - sphere: {radius: 1, step_factor: 0.25}"},
+    {"displace_of_displace",
+     "  displace:\n    amplitude: 0.3\n    frequency: 3\n    children:\n      - displace:\n          amplitude: 0.3\n"
+     "          frequency: 4\n          children:\n            - sphere: {radius: 1}"},
 };
 
 class NodeBounds : public ::testing::TestWithParam<BoundCase> {};
@@ -95,6 +101,10 @@ TEST(NodeBounds, StepFactorAndDisplacementRaiseTheGain) {
   const BoundingSphere b = *node_bounds(displaced);
   EXPECT_DOUBLE_EQ(b.radius, 1.1);
   EXPECT_DOUBLE_EQ(b.gain, displacement_lipschitz(displaced));
+  // Under a child whose field is scaled down 4×, the amplitude reaches 4× as far.
+  const BoundingSphere short_steps =
+      *node_bounds(tree("  displace:\n    amplitude: 0.1\n    frequency: 2\n    children:\n      - sphere: {radius: 1, step_factor: 0.25}"));
+  EXPECT_DOUBLE_EQ(short_steps.radius, 1.4);
 }
 
 TEST(RaySphereSpan, MatchesTheClosedForm) {

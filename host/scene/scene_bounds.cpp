@@ -55,10 +55,11 @@ std::optional<BoundingSphere> operator_bounds(const Node& node) {
   switch (node.kind) {
     case NodeKind::Repeat: return std::nullopt;
     case NodeKind::Displace: {
-      // (d + displacement) / L < tau needs d < L tau + amplitude.
+      // (d + displacement) / L < tau needs d < L tau + amplitude, and the child's field is below
+      // that within radius + gain (L tau + amplitude): the amplitude counts with the child's gain.
       std::optional<BoundingSphere> child = node_bounds(node.children.front());
       if (!child) return std::nullopt;
-      child->radius += node.displace_amplitude;
+      child->radius += child->gain * node.displace_amplitude;
       child->gain *= displacement_lipschitz(node);
       return child;
     }
