@@ -37,5 +37,20 @@ TEST(OutputFailure, WriteFailingHalfwayLeavesNoPartialFile) {
   EXPECT_EQ(dir.files(), std::vector<std::string>{}) << "the temporary file must be gone";
 }
 
+// The 128x72 PNG takes about 2 KB, so a limit of one block falls in the encoder's last buffer,
+// whose failed flush at close OpenImageIO does not report: the file must still count as failed.
+// Without `trap '' XFSZ` the signal would kill the process, leaving its temporary file; clmarch
+// ignores it itself.
+TEST(OutputFailure, LimitInTheLastBufferFailsTooWithOrWithoutTheSignalIgnored) {
+  for (const char* shell_prefix : {"trap '' XFSZ; ulimit -f 1; ", "ulimit -f 1; "}) {
+    TempDir dir;
+    const auto result = run_clmarch_in_shell(shell_prefix, {"render", source_path("scenes/torus.yaml").string(), "--backend",
+                                                            "reference", "--size", "128x72", "-o", (dir / "out.png").string()});
+    EXPECT_EQ(result.exit_code, kExitOutputFailed) << shell_prefix << result.err;
+    EXPECT_EQ(result.err, (dir / "out.png").string() + ": cannot write: File too large\n") << shell_prefix;
+    EXPECT_EQ(dir.files(), std::vector<std::string>{}) << shell_prefix << "no partial file, no temporary file";
+  }
+}
+
 }  // namespace
 }  // namespace clmarch

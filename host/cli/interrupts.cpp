@@ -42,6 +42,7 @@ void install_interrupt_handlers() {
     if (previous.sa_handler == SIG_IGN) continue;
     sigaction(signal, &action, nullptr);
   }
+  std::signal(SIGXFSZ, SIG_IGN);
 }
 
 int interrupted_exit_code() {

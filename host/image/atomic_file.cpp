@@ -10,7 +10,6 @@
 
 #include <cerrno>
 #include <cstring>
-#include <fstream>
 #include <system_error>
 
 #include <fcntl.h>
@@ -37,13 +36,30 @@ void write_atomically(const std::filesystem::path& target,
   }
 }
 
+void write_bytes(const std::filesystem::path& file, const void* data, std::size_t size,
+                 const std::filesystem::path& target) {
+  const auto fail = [&](int error) {
+    return OutputError(fmt::format("{}: cannot write: {}", target.string(), std::strerror(error)));
+  };
+  const int fd = open(file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (fd < 0) throw fail(errno);
+  const char* bytes = static_cast<const char*>(data);
+  while (size > 0) {
+    const ssize_t written = write(fd, bytes, size);
+    if (written < 0 && errno == EINTR) continue;
+    if (written <= 0) {
+      const int error = written < 0 ? errno : EIO;
+      close(fd);
+      throw fail(error);
+    }
+    bytes += written;
+    size -= static_cast<std::size_t>(written);
+  }
+  if (close(fd) != 0) throw fail(errno);
+}
+
 void write_file_atomically(const std::filesystem::path& path, const std::string& text) {
-  write_atomically(path, [&](const std::filesystem::path& temp) {
-    std::ofstream out(temp, std::ios::binary);
-    out << text;
-    out.close();
-    if (!out) throw OutputError(fmt::format("{}: cannot write", path.string()));
-  });
+  write_atomically(path, [&](const std::filesystem::path& temp) { write_bytes(temp, text.data(), text.size(), path); });
 }
 
 void check_output_folder(const std::filesystem::path& path, const std::string& option) {

@@ -15,6 +15,12 @@ namespace clmarch {
 void write_atomically(const std::filesystem::path& target,
                       const std::function<void(const std::filesystem::path& temp)>& write);
 
+/// Writes size bytes to file with write(2), checking every call and the close (a file size limit,
+/// a full disk): stdio and the libraries writing through it lose the error of the last buffer's
+/// flush. Throws OutputError naming target, the file the user asked for.
+void write_bytes(const std::filesystem::path& file, const void* data, std::size_t size,
+                 const std::filesystem::path& target);
+
 /// Writes text to path atomically. Throws OutputError on failure.
 void write_file_atomically(const std::filesystem::path& path, const std::string& text);
 

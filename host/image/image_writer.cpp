@@ -4,6 +4,7 @@
 #include "common/errors.hpp"
 #include "image/atomic_file.hpp"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
@@ -26,6 +27,19 @@ bool is_float_format(const std::filesystem::path& path) {
   return ext == ".exr" || ext == ".hdr";
 }
 
+/// Fails with OutputError unless file reads back as a whole image of spec's size.
+void expect_reads_back(const std::filesystem::path& file, const OIIO::ImageSpec& spec, const std::filesystem::path& target) {
+  auto in = OIIO::ImageInput::open(file.string());
+  std::vector<float> pixels(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
+  const bool ok = in && in->spec().width == spec.width && in->spec().height == spec.height &&
+                  in->spec().nchannels == spec.nchannels && in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data());
+  if (!ok) {
+    const std::string why = in ? in->geterror() : OIIO::geterror();
+    throw OutputError(fmt::format("{}: cannot write: the written file does not read back{}", target.string(),
+                                  why.empty() ? "" : ": " + one_line(why)));
+  }
+}
+
 /// Interleaves the given planes and writes them with OpenImageIO as format.
 void write_interleaved(const std::filesystem::path& path, const FrameBuffers& buffers, const std::vector<Channel>& channels,
                        OIIO::TypeDesc format, bool srgb) {
@@ -43,9 +57,19 @@ void write_interleaved(const std::filesystem::path& path, const FrameBuffers& bu
     spec.channelnames.clear();
     for (Channel c : channels) spec.channelnames.emplace_back(kChannelNames[static_cast<int>(c)]);
     if (srgb) spec.attribute("oiio:ColorSpace", "sRGB");
+    // The file is encoded in memory and written by write_bytes, which sees every write's error;
+    // OpenImageIO's own file output ignores a failed flush at close (a full disk, a size limit).
+    // The few formats that cannot encode to memory are read back instead.
+    OIIO::Filesystem::IOVecOutput memory;
+    const bool in_memory = out->supports("ioproxy") && out->set_ioproxy(&memory);
     const bool ok = out->open(temp.string(), spec) && out->write_image(OIIO::TypeDesc::FLOAT, interleaved.data()) &&
                     out->close();
     if (!ok) throw OutputError(fmt::format("{}: cannot write: {}", path.string(), one_line(out->geterror())));
+    if (in_memory) {
+      write_bytes(temp, memory.buffer().data(), memory.buffer().size(), path);
+    } else {
+      expect_reads_back(temp, spec, path);
+    }
   });
 }
 
