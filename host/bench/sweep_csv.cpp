@@ -55,7 +55,7 @@ std::string row_line(const std::string& scene, const SweepResult& result, const 
       std::to_string(e.both_hit), number(e.depth_abs.rms), number(e.depth_abs.p99), number(e.depth_abs.max),
       number(e.depth_rel.rms), number(e.depth_rel.p99), number(e.depth_rel.max),
       number(e.mask_mismatch_silhouette / pixels), number(e.mask_mismatch_interior / pixels), number(e.normal_angle_p99),
-      number(e.color_psnr_db), number(result.reference_epsilon), std::to_string(result.reference_max_steps)};
+      number(e.color_psnr_db), number(row.reference_epsilon), std::to_string(result.reference_max_steps)};
   return fmt::format("{}\n", fmt::join(fields, ","));
 }
 

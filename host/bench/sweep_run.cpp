@@ -1,4 +1,4 @@
-// The sweep's measurements: the reference first (it loads every core), then the OpenCL renders,
+// The sweep's measurements: the references first (they load every core), then the OpenCL renders,
 // timed in interleaved rounds so that a change of the machine's load spreads over all combinations.
 #include "bench/sweep_run.hpp"
 
@@ -8,9 +8,10 @@
 #include "scene/scene_bounds.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <glm/glm.hpp>
 
-#include <chrono>
+#include <map>
 
 namespace clmarch {
 namespace {
@@ -38,21 +39,25 @@ Scene high_accuracy_scene(const Scene& scene, const SweepSettings& settings) {
   return out;
 }
 
-SweepResult run_sweep(const Scene& base, const std::vector<SweepCase>& cases, const SweepSettings& settings) {
+SweepResult run_sweep(const std::vector<SweepCase>& cases, const SweepSettings& settings) {
   SweepResult result;
-  const Scene reference_scene = high_accuracy_scene(base, settings);
-  result.reference_epsilon = reference_scene.render.epsilon;
-  result.reference_max_steps = reference_scene.render.max_steps;
-  log_info(fmt::format("sweep: CPU reference, epsilon {:.3g}, max_steps {}", result.reference_epsilon,
-                       result.reference_max_steps));
-  const auto start = std::chrono::steady_clock::now();
-  const FrameBuffers reference = render_reference(reference_scene);
-  result.reference_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  result.reference_max_steps = settings.reference_max_steps;
+  // Cases that draw the same picture (the same keys outside render.*) share its reference.
+  std::map<std::vector<std::string>, std::pair<FrameBuffers, double>> references;
+  for (const SweepCase& c : cases) {
+    const std::vector<std::string> picture = picture_sets(c.combination);
+    if (references.contains(picture)) continue;
+    const Scene reference_scene = high_accuracy_scene(c.picture, settings);
+    log_info(fmt::format("sweep: CPU reference{}, epsilon {:.3g}, max_steps {}",
+                         picture.empty() ? "" : fmt::format(" of {}", fmt::join(picture, " ")),
+                         reference_scene.render.epsilon, reference_scene.render.max_steps));
+    references.emplace(picture, std::pair(render_reference(reference_scene), reference_scene.render.epsilon));
+  }
 
   std::vector<Scene> scenes;
   for (const SweepCase& c : cases) scenes.push_back(without_step_ao(c.scene));
-  const double pixels = static_cast<double>(base.render.width) * base.render.height;
   for (std::size_t k = 0; k < cases.size(); ++k) {
+    const double pixels = static_cast<double>(scenes[k].render.width) * scenes[k].render.height;
     log_info(fmt::format("sweep {}/{}: {}", k + 1, cases.size(), combination_label(cases[k].combination)));
     // The first render pays the build and PoCL's work-group compile; its buffers are the ones compared.
     const RenderResult first = render_opencl(scenes[k], cases[k].options);
@@ -64,7 +69,9 @@ SweepResult run_sweep(const Scene& base, const std::vector<SweepCase>& cases, co
     row.device = first.stats.device;
     row.steps_per_pixel = static_cast<double>(first.stats.steps) / pixels;
     row.is_defaults = cases[k].is_defaults;
+    const auto& [reference, reference_epsilon] = references.at(picture_sets(cases[k].combination));
     row.error = cross_check(scenes[k], first.buffers, reference);
+    row.reference_epsilon = reference_epsilon;
     result.rows.push_back(std::move(row));
   }
   for (int round = 0; round < settings.repeat; ++round) {

@@ -1,5 +1,5 @@
 // `clmarch bench --sweep`: every combination of settings rendered on OpenCL, timed, and compared
-// with one high-accuracy CPU reference of the scene (docs/accuracy.md, "Time against error").
+// with a high-accuracy CPU reference of its picture (docs/accuracy.md, "Time against error").
 #pragma once
 
 #include "bench/sweep_spec.hpp"
@@ -17,6 +17,9 @@ namespace clmarch {
 struct SweepCase {
   SweepCombination combination;
   Scene scene;
+  /// What the reference draws: the scene as given with only the combination's picture_sets
+  /// applied, so that render.* is measured against the march settings' converged picture.
+  Scene picture;
   OpenClOptions options;
   /// True when these are the defaults: the scene file's own settings and the default program.
   bool is_defaults = false;
@@ -50,12 +53,12 @@ struct SweepRow {
   /// The render against the reference: depth, mask, normal and color figures (the pass/fail
   /// verdict of `clmarch check` does not apply here).
   CheckReport error;
+  /// The epsilon of the reference it was compared with (scaled to its camera's distance).
+  double reference_epsilon = 0.0;
 };
 
 struct SweepResult {
-  double reference_epsilon = 0.0;
   int reference_max_steps = 0;
-  double reference_ms = 0.0;
   std::vector<SweepRow> rows;
 };
 
@@ -66,10 +69,11 @@ struct SweepResult {
 /// against the normal the scene asks for. Step-count AO is off (see run_sweep).
 Scene high_accuracy_scene(const Scene& scene, const SweepSettings& settings);
 
-/// Renders the reference of base (the scene without the sweep) once, then every case: one untimed render whose buffers are
-/// compared with the reference, then settings.repeat timed rounds over all cases. Step-count
-/// ambient occlusion is turned off in every render: it makes the color a function of the step
-/// count, which is what a sweep changes, so it would hide the errors being measured.
-SweepResult run_sweep(const Scene& base, const std::vector<SweepCase>& cases, const SweepSettings& settings);
+/// Renders the reference of each distinct picture once (one for a sweep of render.* and kernel keys
+/// alone), then every case: one untimed render whose buffers are compared with its picture's
+/// reference, then settings.repeat timed rounds over all cases. Step-count ambient occlusion is
+/// turned off in every render: it makes the color a function of the step count, which is what a
+/// sweep changes, so it would hide the errors being measured.
+SweepResult run_sweep(const std::vector<SweepCase>& cases, const SweepSettings& settings);
 
 }  // namespace clmarch

@@ -64,6 +64,11 @@ SweepAxis parse_sweep_axis(const std::string& text) {
     throw InputError(fmt::format("--sweep {}: unknown key '{}' (expected a scene key path such as render.epsilon, or one of: {})",
                                  text, axis.key, fmt::join(kSweepKernelKeys, ", ")));
   }
+  if (axis.key == "render.width" || axis.key == "render.height") {
+    throw InputError(fmt::format("--sweep {}: the image size is --size's, one for the whole sweep (every row is compared "
+                                 "pixel by pixel with a reference of that size)",
+                                 axis.key));
+  }
   axis.values = split_values(text.substr(equals + 1));
   for (const std::string& value : axis.values) {
     if (value.empty()) throw InputError(fmt::format("--sweep {}: empty value ({})", text, kSyntax));
@@ -114,6 +119,12 @@ std::vector<std::string> scene_sets(const SweepCombination& combination) {
   for (const auto& [key, value] : combination) {
     if (!is_kernel_key(key)) sets.push_back(key + "=" + value);
   }
+  return sets;
+}
+
+std::vector<std::string> picture_sets(const SweepCombination& combination) {
+  std::vector<std::string> sets = scene_sets(combination);
+  std::erase_if(sets, [](const std::string& set) { return set.rfind("render.", 0) == 0; });
   return sets;
 }
 

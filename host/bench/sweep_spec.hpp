@@ -33,7 +33,7 @@ bool is_kernel_key(const std::string& key);
 
 /// Parses "KEY=V1,V2,..." (commas inside [] or {} belong to the value: camera.position=[0,0,5],[0,0,9]).
 /// Kernel keys' values are checked here; scene keys' when the scene is loaded. Throws InputError
-/// naming --sweep.
+/// naming --sweep, also for render.width and render.height (the size is --size's).
 SweepAxis parse_sweep_axis(const std::string& text);
 
 /// Every combination of the axes' values (the Cartesian product, the last axis varying fastest).
@@ -46,6 +46,10 @@ std::vector<SweepCombination> expand_one_at_a_time(const std::vector<SweepAxis>&
 
 /// The scene keys of a combination as --set texts ("render.epsilon=1e-3").
 std::vector<std::string> scene_sets(const SweepCombination& combination);
+
+/// The scene keys of a combination that change what is drawn: all but render.* (camera, sdf,
+/// lights, shading, tiling). render.* only changes how exactly the march draws it.
+std::vector<std::string> picture_sets(const SweepCombination& combination);
 
 /// options with the combination's kernel keys applied. Throws InputError for native_math=on with
 /// precision=double (OpenCL has no native_* for double).

@@ -59,9 +59,13 @@ int run_bench_sweep(const BenchCommandOptions& options) {
   default_options.device = base_options.device;
   std::vector<SweepCase> cases;
   for (const SweepCombination& combination : combinations) {
-    SceneOptions scene_options = options.scene;
-    for (const std::string& set : scene_sets(combination)) scene_options.sets.push_back(set);
-    SweepCase c{combination, load_scene_with_options(scene_options), with_kernel_settings(base_options, combination), false};
+    const auto with_sets = [&](const std::vector<std::string>& sets) {
+      SceneOptions scene_options = options.scene;
+      scene_options.sets.insert(scene_options.sets.end(), sets.begin(), sets.end());
+      return load_scene_with_options(scene_options);
+    };
+    SweepCase c{combination, with_sets(scene_sets(combination)), with_sets(picture_sets(combination)),
+                with_kernel_settings(base_options, combination), false};
     if (options.one_at_a_time && !cases.empty() && repeats_base(c, base, base_options, device)) continue;
     c.is_defaults = same_settings(c, defaults, default_options, device);
     cases.push_back(std::move(c));
@@ -76,7 +80,7 @@ int run_bench_sweep(const BenchCommandOptions& options) {
 
   SweepSettings settings;
   settings.repeat = options.repeat;
-  const SweepResult result = run_sweep(base, cases, settings);
+  const SweepResult result = run_sweep(cases, settings);
   write_sweep_csv(options.csv, options.scene.scene_path, result, options.append);
   log_info(fmt::format("wrote {} rows to {}", result.rows.size(), options.csv));
   return kExitOk;
