@@ -81,6 +81,23 @@ TEST(CheckTeeth, FailsWhenTheNormalMethodIsSwapped) {
   EXPECT_FALSE(report.passed()) << report.to_text();
 }
 
+// Misses are compared too: a background 3 steps of 8 bits off, and a glow of misses 5 % weaker,
+// each fail the check on the miss criterion alone.
+TEST(CheckTeeth, FailsWhenTheColorOfMissesDiffers) {
+  const Scene scene = small_scene("torus.yaml");
+  const CheckReport background = check_against(scene, small_scene("torus.yaml", {{"shading.background", "[0.012, 0, 0]"}}));
+  EXPECT_FALSE(background.passed()) << background.to_text();
+  ASSERT_EQ(background.failures.size(), 1u) << background.to_text();
+  EXPECT_NE(background.failures[0].find("color error of misses"), std::string::npos) << background.to_text();
+
+  const Scene bulb = small_scene("mandelbulb.yaml");
+  const CheckReport glow = check_against(bulb, small_scene("mandelbulb.yaml", {{"shading.glow.color", "[0.3325, 0.285, 0.855]"}}));
+  EXPECT_FALSE(glow.passed()) << glow.to_text();
+  ASSERT_EQ(glow.failures.size(), 1u) << glow.to_text();
+  EXPECT_NE(glow.failures[0].find("color error of misses"), std::string::npos) << glow.to_text();
+  EXPECT_GT(glow.color_compared, glow.both_hit) << "misses must be among the pixels compared";
+}
+
 TEST(CheckCli, ReportsAndExitsZeroWhenWithinTolerance) {
   const auto result = testing::run_clmarch({"check", source_path("scenes/torus.yaml").string(), "--size", "64x36", "--json"});
   ASSERT_EQ(result.exit_code, 0) << result.err << result.out;

@@ -73,6 +73,21 @@ double color_per_radian(const Scene& scene) {
   return radiance * (s.diffuse + specular_slope);
 }
 
+/// Largest change of a miss's color per unit of its closest approach: Crum's glow adds
+/// color (1 - closest / radius)^2, whose slope is at most 2 color / radius.
+double color_per_closest_approach(const Shading& s) {
+  if (!s.glow) return 0.0;
+  return 2.0 * std::max({s.glow->color.r, s.glow->color.g, s.glow->color.b}) / s.glow->radius;
+}
+
+double max_color_difference(const FrameBuffers& a, const FrameBuffers& b, int i, int j) {
+  double diff = 0.0;
+  for (Channel c : {Channel::R, Channel::G, Channel::B}) {
+    diff = std::max(diff, static_cast<double>(std::abs(a.at(c, i, j) - b.at(c, i, j))));
+  }
+  return diff;
+}
+
 }  // namespace
 
 CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const FrameBuffers& reference) {
@@ -85,10 +100,12 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
   const double normal_h = scene.render.normal_epsilon;
   const double origin_size = glm::length(basis.origin);
   const double color_slope = color_per_radian(scene);
+  const double glow_slope = color_per_closest_approach(scene.shading);
 
   std::vector<double> depth_abs, depth_rel, depth_eps, depth_tol, normal_deg, normal_tol, color_abs, color_tol;
+  std::vector<double> miss_color_abs, miss_color_tol;
   double steps_sum = 0.0, squared_color = 0.0;
-  int edge_pixels = 0, color_samples = 0;
+  int edge_pixels = 0;
   for (int j = 0; j < h; ++j) {
     for (int i = 0; i < w; ++i) {
       const bool hit_cl = is_hit(opencl, i, j), hit_ref = is_hit(reference, i, j);
@@ -113,7 +130,19 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
         (edge ? r.mask_mismatch_silhouette : r.mask_mismatch_interior) += 1;
         continue;
       }
-      if (!hit_ref) continue;
+      if (!hit_ref) {
+        // A miss's color is the sky's, a function of the ray's direction alone, plus the glow of
+        // its closest approach, which both marches find at the same steps when they take the same
+        // number, up to the rounding of each step's t.
+        if (edge || (glow_slope > 0.0 && step_diff != 0.0)) continue;
+        const double steps = reference.at(Channel::Steps, i, j);
+        const double closest_rounding =
+            (kRoundingSteps + steps) * kUnitRoundoff * (origin_size + scene.render.max_distance);
+        const double diff = max_color_difference(opencl, reference, i, j);
+        miss_color_abs.push_back(diff);
+        miss_color_tol.push_back(diff / (glow_slope * closest_rounding + kColorQuantum));
+        continue;
+      }
       ++r.both_hit;
       const double t_ref = reference.at(Channel::Depth, i, j);
       const double dt = std::abs(static_cast<double>(opencl.at(Channel::Depth, i, j)) - t_ref);
@@ -136,13 +165,9 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
       normal_deg.push_back(angle * 180.0 / M_PI);
       normal_tol.push_back(angle / normal_tolerance);
       if (step_diff == 0.0) {
-        double diff = 0.0;
-        for (Channel c : {Channel::R, Channel::G, Channel::B}) {
-          diff = std::max(diff, static_cast<double>(std::abs(opencl.at(c, i, j) - reference.at(c, i, j))));
-        }
+        const double diff = max_color_difference(opencl, reference, i, j);
         color_abs.push_back(diff);
         color_tol.push_back(diff / (color_slope * normal_tolerance + kColorQuantum));
-        ++color_samples;
       }
     }
   }
@@ -153,6 +178,8 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
   r.steps_diff_mean = r.pixels ? steps_sum / r.pixels : 0.0;
   r.normal_angle_p99 = summarise(normal_deg).p99;
   r.color_p99_abs = summarise(color_abs).p99;
+  r.miss_color_p99_abs = summarise(miss_color_abs).p99;
+  r.color_compared = static_cast<int>(color_abs.size() + miss_color_abs.size());
   const double mse = squared_color / (3.0 * std::max(r.pixels, 1));
   r.color_psnr_db = mse > 0.0 ? 10.0 * std::log10(1.0 / mse) : std::numeric_limits<double>::infinity();
 
@@ -163,8 +190,10 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
   t.steps_diff_mean = 1.0;
   const double normal_ratio_p99 = summarise(normal_tol).p99;
   const double color_ratio_p99 = summarise(color_tol).p99;
+  const double miss_color_ratio_p99 = summarise(miss_color_tol).p99;
   t.normal_angle_p99 = r.normal_angle_p99 / std::max(normal_ratio_p99, 1e-300);
   t.color_p99_abs = r.color_p99_abs / std::max(color_ratio_p99, 1e-300);
+  t.miss_color_p99_abs = r.miss_color_p99_abs / std::max(miss_color_ratio_p99, 1e-300);
 
   if (r.mask_mismatch_interior > t.mask_mismatch_interior) {
     r.failures.push_back(fmt::format("{} interior pixels hit on one side only (at most {})", r.mask_mismatch_interior,
@@ -187,10 +216,14 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
   if (color_ratio_p99 > 1.0) {
     r.failures.push_back(fmt::format("color error p99 is {:.3g} times its per-pixel tolerance", color_ratio_p99));
   }
+  if (miss_color_ratio_p99 > 1.0) {
+    r.failures.push_back(fmt::format("color error of misses p99 is {:.3g} times its per-pixel tolerance", miss_color_ratio_p99));
+  }
   if (!r.failures.empty()) return r;
   // Ratios at most 1 mean the tolerance in absolute units is at least the measured p99.
   if (normal_ratio_p99 == 0.0) t.normal_angle_p99 = 0.0;
   if (color_ratio_p99 == 0.0) t.color_p99_abs = 0.0;
+  if (miss_color_ratio_p99 == 0.0) t.miss_color_p99_abs = 0.0;
   return r;
 }
 
@@ -206,7 +239,12 @@ nlohmann::json CheckReport::to_json() const {
           {"depth_in_tolerances", summary(depth_in_tolerances)},
           {"steps_diff", {{"mean", steps_diff_mean}, {"max", steps_diff_max}}},
           {"normal_angle_deg_p99", normal_angle_p99},
-          {"color", {{"max_abs", color_max_abs}, {"p99_abs", color_p99_abs}, {"psnr_db", color_psnr_db}}},
+          {"color",
+           {{"max_abs", color_max_abs},
+            {"p99_abs", color_p99_abs},
+            {"psnr_db", color_psnr_db},
+            {"miss_p99_abs", miss_color_p99_abs},
+            {"compared", color_compared}}},
           {"tolerances",
            {{"mask_mismatch_interior", tolerances.mask_mismatch_interior},
             {"mask_mismatch_silhouette", tolerances.mask_mismatch_silhouette},
@@ -229,6 +267,8 @@ std::string CheckReport::to_text() const {
   out += fmt::format("steps difference  mean {:.3g} (max {})  max {}\n", steps_diff_mean, tolerances.steps_diff_mean, steps_diff_max);
   out += fmt::format("normal angle p99  {:.3g} deg\n", normal_angle_p99);
   out += fmt::format("color             max abs {:.3g}  p99 abs {:.3g}  PSNR {:.1f} dB\n", color_max_abs, color_p99_abs, color_psnr_db);
+  out += fmt::format("color of misses   p99 abs {:.3g}  ({} pixels compared, hits and misses)\n", miss_color_p99_abs,
+                     color_compared);
   out += passed() ? "check passed\n" : "check FAILED:\n";
   for (const std::string& f : failures) out += "  " + f + "\n";
   return out;

@@ -38,8 +38,14 @@ struct CheckReport {
   /// Degrees, over pixels both hit.
   double normal_angle_p99 = 0.0;
   double color_max_abs = 0.0;
+  /// Over the pixels both hit with equal steps.
   double color_p99_abs = 0.0;
   double color_psnr_db = 0.0;
+  /// Over the pixels both miss away from edges (the sky, the background, the glow of misses), those
+  /// with equal steps where the scene has Crum's glow.
+  double miss_color_p99_abs = 0.0;
+  /// Pixels whose color the hit and miss criteria compared.
+  int color_compared = 0;
 
   /// The tolerances in force, and what failed.
   struct Tolerances {
@@ -49,6 +55,7 @@ struct CheckReport {
     double steps_diff_mean = 1.0;
     double normal_angle_p99 = 0.0;
     double color_p99_abs = 0.0;
+    double miss_color_p99_abs = 0.0;
   } tolerances;
   std::vector<std::string> failures;
 
