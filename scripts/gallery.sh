@@ -10,13 +10,13 @@ mkdir -p docs/images/gallery
   echo "Every scene in \`scenes/\`, rendered by \`scripts/gallery.sh\` with the OpenCL path on PoCL"
   echo "(480×270; kernel time from \`--stats\`, on a 2-core machine)."
   echo
-  echo "| article (\`../shared/seeds/\`) | scenes |"
+  echo "| article | scenes |"
   echo "|---|---|"
-  echo "| Crum, ray marching (000) | torus, smooth_blend, scaffold, mandelbulb, crum_normals |"
-  echo "| Heckel, Painting with Math (001) | sphere_shadows, operators_demo, moving_shapes, menger, terrain_fbm, terrain_derivative, martian_landscape |"
-  echo "| Ray Marching in Three.js (002) | two_spheres |"
-  echo "| An Introduction to Raymarching, the PBR course (003) | pbr_sphere, lava_lamp |"
-  echo "| Infinite tiling by unit cells (004) | tiled_spheres, tiled_boxes |"
+  echo "| Crum, ray marching | torus, smooth_blend, scaffold, mandelbulb, crum_normals |"
+  echo "| Heckel, Painting with Math | sphere_shadows, operators_demo, moving_shapes, menger, terrain_fbm, terrain_derivative, martian_landscape |"
+  echo "| Ray Marching in Three.js | two_spheres |"
+  echo "| An Introduction to Raymarching, the PBR course | pbr_sphere, lava_lamp |"
+  echo "| Ray Marching in Infinitely Tiling Space (zebra-north.com) | tiled_spheres, tiled_boxes |"
   echo
   for scene in scenes/*.yaml; do
     name=$(basename "$scene" .yaml)

@@ -21,7 +21,7 @@ CLI::App* add_check_command(CLI::App& app, CheckCommandOptions& options) {
       "Exit code 0 when every figure is within its tolerance (docs/accuracy.md), 1 otherwise.\n"
       "Examples:\n"
       "  clmarch check scenes/torus.yaml --size 160x90\n"
-      "  clmarch check scenes/torus.yaml --json --out-dir /tmp/torus-check\n"
+      "  mkdir -p /tmp/torus-check && clmarch check scenes/torus.yaml --json --out-dir /tmp/torus-check\n"
       "  clmarch check scenes/two_spheres.yaml --set shading.view=normals --lanes 1 --device 0\n"
       "  clmarch check scenes/moving_shapes.yaml --time 0.5");
   add_scene_options(*check, options.scene);

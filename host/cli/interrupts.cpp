@@ -37,8 +37,8 @@ void install_interrupt_handlers() {
   for (int signal : {SIGINT, SIGTERM}) {
     struct sigaction previous = {};
     sigaction(signal, nullptr, &previous);
-    // A signal the parent ignores stays ignored (`nohup`, `cmd &` in a script): Ctrl-C in that
-    // terminal is meant for the foreground job, not for us.
+    // A signal the parent ignores stays ignored (`cmd &` in a script, whose shell ignores SIGINT
+    // for background jobs): Ctrl-C in that terminal is meant for the foreground job, not for us.
     if (previous.sa_handler == SIG_IGN) continue;
     sigaction(signal, &action, nullptr);
   }

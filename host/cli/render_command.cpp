@@ -71,7 +71,7 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& options) {
                      "Write the exact OpenCL C source that is built, before building it (e.g. --dump-kernel torus.cl)");
   CLI::Option* frames = render->add_option("--frames", options.frames,
                      "Render frames FIRST:LAST (both included) of an animation, frame n at t = n / fps, to numbered "
-                     "files: a run of # in -o/--buffers is the frame number (-o shot_####.png), else _NNNN goes "
+                     "files: a run of # in -o/--buffers/--dump-kernel is the frame number (-o shot_####.png), else _NNNN goes "
                      "before the extension (e.g. --frames 0:47 --fps 24)");
   render->add_option("--fps", options.fps, "Frames per second of --frames (default 24; e.g. --fps 30)")
       ->check(CLI::PositiveNumber)
