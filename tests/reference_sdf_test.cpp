@@ -359,7 +359,6 @@ TEST(ReferenceSdf, EveryNodeKindIsEvaluated) {
       ASSERT_NO_THROW(s = reference_sample(node, p));
       ASSERT_TRUE(std::isfinite(s.distance));
       ASSERT_TRUE(std::isfinite(s.color.r) && std::isfinite(s.color.g) && std::isfinite(s.color.b));
-      EXPECT_EQ(reference_distance(node, p), s.distance);
       EXPECT_LE(std::abs(reference_distance(node, q) - s.distance), glm::length(q - p) + kLipschitzSlack);
     }
   }
