@@ -299,5 +299,32 @@ TEST(DegenerateSettings, OutOfRangeValuesAreOneLineErrors) {
   }
 }
 
+// Each value is within float's range, but the kernels need numbers made from them: 1 / scale, and
+// a position relative to the camera's map frame. Past float's range they are one-line input errors
+// (the OpenCL build saw "inff" and failed with exit 3 and the compiler's log); the reference,
+// in double, renders the far scene.
+TEST(DegenerateSettings, NumbersTheKernelsDeriveStayWithinFloat) {
+  testing::TempDir dir;
+  const auto render = [&](const std::string& scene, const std::string& backend) {
+    std::ofstream(dir / "scene.yaml") << scene;
+    return testing::run_clmarch({"render", (dir / "scene.yaml").string(), "--size", "16x9", "--backend", backend, "-o",
+                                 (dir / "out.png").string()});
+  };
+  const testing::CommandResult tiny = render("sdf: {sphere: {scale: 1.0e-40}}\n", "opencl");
+  EXPECT_EQ(tiny.exit_code, kExitBadInput) << tiny.err;
+  EXPECT_EQ(tiny.err, (dir / "scene.yaml").string() +
+                          ":1:23: sdf.sphere.scale must be in [2.93874e-39, 3.40282e+38] (got 1.0e-40)\n");
+
+  const std::string far = "sdf: {sphere: {center: [3.0e+38, 0, 0]}}\ncamera: {position: [-3.0e+38, 0, 0], look_at: [0, 0, 0]}\n";
+  const testing::CommandResult opencl = render(far, "opencl");
+  EXPECT_EQ(opencl.exit_code, kExitBadInput) << opencl.err;
+  EXPECT_EQ(std::count(opencl.err.begin(), opencl.err.end(), '\n'), 1) << opencl.err;
+  EXPECT_NE(opencl.err.find("the scene needs the number 6e+38 in its OpenCL program, beyond float's range"), std::string::npos)
+      << opencl.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out.png"));
+  const testing::CommandResult reference = render(far, "reference");
+  EXPECT_EQ(reference.exit_code, kExitOk) << reference.err;
+}
+
 }  // namespace
 }  // namespace clmarch

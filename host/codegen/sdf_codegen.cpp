@@ -3,6 +3,7 @@
 #include "codegen/sdf_codegen.hpp"
 
 #include "codegen/cl_literals.hpp"
+#include "common/errors.hpp"
 #include "scene/scene_bounds.hpp"
 
 #include <fmt/format.h>
@@ -10,6 +11,7 @@
 #include <glm/gtc/matrix_access.hpp>
 
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -358,6 +360,13 @@ class SdfEmitter {
 }  // namespace
 
 std::string Literals::f(double value) {
+  // Each value of the file is a float, but numbers made from them (a position relative to the
+  // camera's map frame) can pass float's range; OpenCL C would see "inff".
+  if (!std::isfinite(static_cast<float>(value))) {
+    throw InputError(fmt::format("the scene needs the number {:g} in its OpenCL program, beyond float's range (+-{:g}): "
+                                 "positions too far apart; the CPU reference renders it (--backend reference)",
+                                 value, std::numeric_limits<float>::max()));
+  }
   values_.push_back(static_cast<float>(value));
   return fmt::format("@{}@", values_.size() - 1);
 }

@@ -318,7 +318,8 @@ class SceneReader {
     }
     yaml_.optional_vec3(params, "translate", path + ".translate", node.transform.translate);
     yaml_.optional_vec3(params, "rotate", path + ".rotate", node.transform.rotate_degrees);
-    yaml_.optional_number(params, "scale", path + ".scale", node.transform.scale, Range::positive());
+    // The kernels divide by the scale in float: 1 / scale must be a float too.
+    yaml_.optional_number(params, "scale", path + ".scale", node.transform.scale, Range::closed(1.0 / kMaxSceneNumber, kMaxSceneNumber));
     yaml_.optional_number(params, "step_factor", path + ".step_factor", node.step_factor, Range{0.0, 1.0, true, false});
   }
 
