@@ -81,8 +81,10 @@ std::optional<std::uint64_t> address_space_room() {
     std::uint64_t kib = 0;
     if (fields >> key >> kib && key == "VmSize:") used = kib * 1024;
   }
-  const auto cap = static_cast<std::uint64_t>(limit.rlim_cur);
-  return used < cap ? cap - used : 0;
+  // Checked before OpenCL starts: the driver's own reservation is still to come.
+  const std::uint64_t cap = static_cast<std::uint64_t>(limit.rlim_cur);
+  const std::uint64_t taken = used + kOpenClDriverAddressSpace;
+  return taken < cap ? cap - taken : 0;
 }
 
 std::string gibibytes(std::uint64_t bytes) { return fmt::format("{:.1f} GiB", static_cast<double>(bytes) / (1024.0 * 1024.0 * 1024.0)); }
@@ -90,7 +92,7 @@ std::string gibibytes(std::uint64_t bytes) { return fmt::format("{:.1f} GiB", st
 }  // namespace
 
 std::uint64_t host_bytes_per_pixel() {
-  return kChannelCount * sizeof(float) + 2 * kWrittenChannels * sizeof(float);
+  return 2 * kChannelCount * sizeof(float) + 3 * kWrittenChannels * sizeof(float);
 }
 
 std::uint64_t render_host_bytes(int width, int height) {
