@@ -106,7 +106,7 @@ const std::vector<BadInputCase>& bad_input_cases() {
       {"number_beyond_double", "sdf: {sphere: {radius: 1e400}}\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
        {"DIR/scene.yaml:1:24:", "the float range (got 1e400)"}},
       {"fraction_for_integer", kValidScene + "shading: {reflections: 1.5}\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
-       {"DIR/scene.yaml:3:24:", "shading.reflections must be an integer (got '1.5')"}},
+       {"DIR/scene.yaml:3:24:", "shading.reflections must be an integer in decimal digits (got '1.5')"}},
       {"unknown_top_level_key", kValidScene + "rendr: {}\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
        {"DIR/scene.yaml:3:1:", "unknown key 'rendr' in the scene"}},
       {"missing_required_key", kValidScene + "lights: [{point: {intensity: 2}}]\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},

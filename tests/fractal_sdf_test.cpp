@@ -276,7 +276,7 @@ TEST(FractalKeys, DefaultsAndRanges) {
   EXPECT_EQ(error_of("sdf: {mandelbulb: {iterations: 0}}\n"),
             "s.yaml:1:32: sdf.mandelbulb.iterations must be in [1, 64] (got 0)");
   EXPECT_EQ(error_of("sdf: {mandelbulb: {iterations: 8.5}}\n"),
-            "s.yaml:1:32: sdf.mandelbulb.iterations must be an integer (got '8.5')");
+            "s.yaml:1:32: sdf.mandelbulb.iterations must be an integer in decimal digits (got '8.5')");
   EXPECT_EQ(error_of("sdf: {mandelbulb: {bailout: 1}}\n"), "s.yaml:1:29: sdf.mandelbulb.bailout must be > 1 (got 1)");
   EXPECT_EQ(error_of("sdf: {mandelbulb: {power: 16, bailout: 20}}\n"),
             "s.yaml:1:40: sdf.mandelbulb.bailout must be at most 10^(18/power) = 13.3 for power 16 so that |z|^2 "

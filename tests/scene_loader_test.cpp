@@ -75,6 +75,17 @@ TEST(SceneLoader, OverrideErrorsNameTheOption) {
   EXPECT_NE(error_of(yaml, {{"render.width", "0"}}).find("s.yaml (--set): render.width"), std::string::npos);
 }
 
+// Integers are decimal, as YAML 1.2 reads them: yaml-cpp alone took 0640 for octal 416 and 0x40
+// for 64, silently.
+TEST(SceneLoader, IntegersAreDecimal) {
+  EXPECT_EQ(scene_from_yaml("sdf: {sphere: {}}\nrender: {max_steps: 0640, width: +32}\n").render.max_steps, 640);
+  EXPECT_EQ(scene_from_yaml("sdf: {sphere: {}}\nrender: {max_steps: 0640, width: +32}\n").render.width, 32);
+  EXPECT_EQ(error_of("sdf: {sphere: {}}\nrender: {max_steps: 0x40}\n"),
+            "s.yaml:2:21: render.max_steps must be an integer in decimal digits (got '0x40')");
+  EXPECT_EQ(error_of("sdf: {sphere: {}}\nrender: {max_steps: 99999999999999999999}\n"),
+            "s.yaml:2:21: render.max_steps must be in [1, 1000000] (got 99999999999999999999)");
+}
+
 TEST(SceneLoader, RejectsBadScenes) {
   EXPECT_NE(error_of("").find("the scene is empty"), std::string::npos);
   EXPECT_NE(error_of("[1, 2]").find("the scene must be a map"), std::string::npos);

@@ -8,6 +8,7 @@
 #include <yaml-cpp/eventhandler.h>
 
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <set>
@@ -163,11 +164,16 @@ double YamlReader::number(const YAML::Node& node, const std::string& what, Range
 }
 
 int YamlReader::integer(const YAML::Node& node, const std::string& what, Range range) const {
-  long long value = 0;
-  if (!node.IsScalar() || !YAML::convert<long long>::decode(node, value)) {
-    fail(node, fmt::format("{} must be an integer (got {})", what, describe_yaml(node)));
+  // Decimal digits only, as YAML 1.2 reads them: yaml-cpp would take 010 for octal 8 and 0x40 for 64.
+  const std::string text = node.IsScalar() ? node.Scalar() : std::string();
+  const std::size_t sign = !text.empty() && (text[0] == '+' || text[0] == '-') ? 1 : 0;
+  if (text.size() == sign || text.find_first_not_of("0123456789", sign) != std::string::npos) {
+    fail(node, fmt::format("{} must be an integer in decimal digits (got {})", what, describe_yaml(node)));
   }
-  if (!range.contains(static_cast<double>(value))) {
+  long long value = 0;
+  const char* digits = text.data() + (text[0] == '+' ? 1 : 0);
+  const bool too_large = std::from_chars(digits, text.data() + text.size(), value).ec == std::errc::result_out_of_range;
+  if (too_large || !range.contains(static_cast<double>(value))) {
     fail(node, fmt::format("{} must be {} (got {})", what, range.describe(), node.Scalar()));
   }
   return static_cast<int>(value);
