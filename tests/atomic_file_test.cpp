@@ -39,6 +39,21 @@ TEST(AtomicFile, WritesThroughATemporaryFileInTheSameFolder) {
   EXPECT_EQ(read(dir / "out.txt"), "new");
 }
 
+// A target name at the folder's limit of 255 characters: the temporary name, which adds a dot and
+// ".clmarch-PID", cuts the stem instead of failing after the render.
+TEST(AtomicFile, TargetNameAtTheLimitStillGetsATemporaryName) {
+  TempDir dir;
+  const std::string name = std::string(251, 'n') + ".png";
+  std::string temporary;
+  write_atomically(dir / name, [&](const std::filesystem::path& temp) {
+    temporary = temp.filename().string();
+    std::ofstream(temp) << "new";
+  });
+  EXPECT_LE(temporary.size(), 255u) << temporary;
+  EXPECT_TRUE(temporary.ends_with(".png")) << temporary;
+  EXPECT_EQ(dir.files(), std::vector<std::string>{name});
+}
+
 TEST(AtomicFile, FailedWriteLeavesTheOldFileAndNoTemporary) {
   TempDir dir;
   std::ofstream(dir / "out.txt") << "old";

@@ -33,8 +33,16 @@ CLI::App* add_check_command(CLI::App& app, CheckCommandOptions& options) {
 }
 
 int run_check_command(const CheckCommandOptions& options) {
-  if (!options.out_dir.empty() && !std::filesystem::is_directory(options.out_dir)) {
-    throw InputError(fmt::format("--out-dir {}: no such folder", options.out_dir));
+  if (!options.out_dir.empty()) {
+    std::error_code error;
+    if (std::filesystem::exists(options.out_dir, error) && !std::filesystem::is_directory(options.out_dir, error)) {
+      throw InputError(fmt::format("--out-dir {}: is a file, expected a folder", options.out_dir));
+    }
+    if (!std::filesystem::is_directory(options.out_dir, error)) {
+      throw InputError(fmt::format("--out-dir {}: no such folder", options.out_dir));
+    }
+    // The folder must take the files a failed check writes, before two renders are spent on it.
+    check_output_folder(std::filesystem::path(options.out_dir) / "difference.exr", "--out-dir");
   }
   const Scene scene = load_scene_with_options(options.scene);
   OpenClOptions cl = opencl_options(options.scene);

@@ -102,6 +102,22 @@ void check_render_options(const RenderCommandOptions& options, const std::string
     check_output_folder(options.buffers, "--buffers");
   }
   if (!options.dump_kernel.empty()) check_output_folder(options.dump_kernel, "--dump-kernel");
+  const std::pair<std::string, const char*> outputs[] = {
+      {output, "--output"}, {options.buffers, "--buffers"}, {options.dump_kernel, "--dump-kernel"}};
+  for (std::size_t a = 0; a < std::size(outputs); ++a) {
+    for (std::size_t b = a + 1; b < std::size(outputs); ++b) {
+      if (outputs[a].first.empty() || outputs[b].first.empty()) continue;
+      std::error_code error;
+      const auto resolved = [&](const std::string& path) {
+        return std::filesystem::weakly_canonical(std::filesystem::absolute(path, error), error);
+      };
+      const bool same = resolved(outputs[a].first) == resolved(outputs[b].first);
+      if (same) {
+        throw InputError(fmt::format("{} and {} are the same file {}: one would overwrite the other", outputs[a].second,
+                                     outputs[b].second, outputs[b].first));
+      }
+    }
+  }
   if (!options.frames.empty() && options.scene.time) {
     throw InputError("--time and --frames both set the time: --frames renders frame n at t = n / fps");
   }

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <fmt/std.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <system_error>
@@ -16,11 +17,22 @@
 #include <unistd.h>
 
 namespace clmarch {
+namespace {
+
+/// NAME_MAX of Linux's file systems.
+constexpr std::size_t kMaxFileNameLength = 255;
+
+}  // namespace
 
 void write_atomically(const std::filesystem::path& target,
                       const std::function<void(const std::filesystem::path& temp)>& write) {
+  // The temporary name adds a dot and ".clmarch-PID" to the target's; the stem is cut so that it
+  // stays within the folder's name limit when the target's own name is near it.
+  const std::string tag = fmt::format(".clmarch-{}{}", getpid(), target.extension().string());
+  std::string stem = target.stem().string();
+  stem.resize(std::min(stem.size(), kMaxFileNameLength - std::min(kMaxFileNameLength, tag.size() + 1)));
   std::filesystem::path temp = target;
-  temp.replace_filename(fmt::format(".{}.clmarch-{}{}", target.stem().string(), getpid(), target.extension().string()));
+  temp.replace_filename("." + stem + tag);
   const PendingFile pending(temp);
   try {
     write(temp);
@@ -74,6 +86,10 @@ void check_output_folder(const std::filesystem::path& path, const std::string& o
   }
   if (std::filesystem::is_directory(path, error)) {
     throw InputError(fmt::format("{} {}: is a folder, expected a file name", option, path.string()));
+  }
+  if (path.filename().native().size() > kMaxFileNameLength) {
+    throw InputError(fmt::format("{} {}: the file name has {} characters, more than the {} a folder takes", option,
+                                 path.string(), path.filename().native().size(), kMaxFileNameLength));
   }
   // access() says yes to root everywhere, and to anyone on /proc or a read-only mount: creating
   // a file is the only test that a render's result will find a place.
