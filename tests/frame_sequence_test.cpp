@@ -157,5 +157,21 @@ TEST(FrameSequence, BadOptionsWriteNothing) {
   }
 }
 
+// A scene that breaks at one time fails before any frame is written, on both backends, also at a
+// frame between the 64 the OpenCL path compares (frame 121 of 0:200 is t = 5.04 at 24 fps).
+TEST(FrameSequence, AFrameThatFailsToLoadStopsTheSequenceBeforeAnyIsWritten) {
+  TempDir dir;
+  std::ofstream(dir / "scene.yaml") << "camera: {position: [0, 0, 5]}\n"
+                                       "sdf: {sphere: {radius: \"(t > 5.03 && t < 5.05) ? -1 : 1\"}}\n";
+  for (const char* backend : {"opencl", "reference"}) {
+    const auto result = run_clmarch({"render", (dir / "scene.yaml").string(), "--size", "4x4", "--frames", "0:200",
+                                     "--backend", backend, "-q", "-o", (dir / "f_###.png").string()});
+    EXPECT_EQ(result.exit_code, kExitBadInput) << backend << ": " << result.err;
+    EXPECT_NE(result.err.find("sdf.sphere.radius must be > 0"), std::string::npos) << result.err;
+    EXPECT_NE(result.err.find("at t = 5.04"), std::string::npos) << result.err;
+    EXPECT_EQ(dir.files(), std::vector<std::string>{"scene.yaml"}) << backend;
+  }
+}
+
 }  // namespace
 }  // namespace clmarch

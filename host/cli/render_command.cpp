@@ -226,8 +226,8 @@ void render_image(const RenderCommandOptions& options, const Scene& scene, const
   }
 }
 
-/// Frames loaded before a sequence renders, to find the literals that vary (a load costs little next
-/// to a program build).
+/// Frames compared before a sequence renders, to find the literals that vary (a load costs little
+/// next to a program build).
 constexpr int kSampledFrames = 64;
 
 /// Every frame of --frames in turn; each image is complete before the next begins, so a Ctrl-C
@@ -236,10 +236,15 @@ void render_sequence(const RenderCommandOptions& options, const std::string& out
   const FrameRange range = parse_frame_range(options.frames, options.fps);
   std::optional<ProgressLine> progress;
   SequenceState sequence;
-  if (options.backend == "opencl") {
-    // Knowing up front which literals vary, the frames of one shape build one program between them.
-    for (int frame : sample_frames(range, kSampledFrames)) {
-      sequence.varying.add(load_scene_with_options(options.scene, range.time_of(frame)));
+  // Every frame is loaded, and so checked, before the first renders: a scene that breaks at some
+  // time fails with nothing written (a load costs little next to a render). Knowing up front
+  // which literals vary, the frames of one shape build one program between them (OpenCL).
+  const std::vector<int> sampled = sample_frames(range, kSampledFrames);
+  for (int frame = range.first; frame <= range.last; ++frame) {
+    throw_if_cancelled();
+    const Scene scene = load_scene_with_options(options.scene, range.time_of(frame));
+    if (options.backend == "opencl" && std::binary_search(sampled.begin(), sampled.end(), frame)) {
+      sequence.varying.add(scene);
     }
   }
   for (int frame = range.first; frame <= range.last; ++frame) {
