@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include <charconv>
 #include <iostream>
 
 namespace clmarch {
@@ -29,7 +30,14 @@ CLI::App* add_bench_command(CLI::App& app, BenchCommandOptions& options) {
       "  clmarch bench scenes/torus.yaml --set render.hit_threshold=pixel_cone --sweep render.cone_factor=0.5,1,2 --append --csv t.csv");
   add_scene_options(*bench, options.scene);
   bench->add_option("--repeat", options.repeat, "Timed runs of each kernel, after one untimed run (default 5; e.g. --repeat 9)")
-      ->check(CLI::Range(1, 1000));
+      ->check(CLI::Validator(
+          [](std::string& value) {
+            int repeat = 0;
+            const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), repeat);
+            const bool ok = error == std::errc() && end == value.data() + value.size() && repeat >= 1 && repeat <= 1000;
+            return ok ? std::string() : "must be an integer from 1 to 1000 (got '" + value + "')";
+          },
+          "1..1000", "REPEAT"));
   bench->add_flag("--json", options.json, "Print the figures as one JSON object on stdout");
   bench->add_flag("--no-reference", options.no_reference, "Skip the CPU reference render (slow for large or fractal scenes)");
   bench->add_option("--sweep", options.sweeps,

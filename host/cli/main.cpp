@@ -13,6 +13,20 @@
 
 #include <iostream>
 
+namespace {
+
+/// An empty value (--size '', -o '') is a mistake, not the option left out, which is what CLI11
+/// would take it for.
+void reject_empty_values(CLI::App& command) {
+  const CLI::Validator non_empty([](std::string& value) { return value.empty() ? std::string("the value is empty") : std::string(); },
+                                 "", "NON_EMPTY");
+  for (CLI::Option* option : command.get_options()) {
+    if (option->get_expected_max() > 0) option->check(non_empty);
+  }
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   using namespace clmarch;
   install_interrupt_handlers();
@@ -45,6 +59,7 @@ int main(int argc, char** argv) {
   CLI::App* devices = add_devices_command(app);
   BenchCommandOptions bench_options;
   CLI::App* bench = add_bench_command(app, bench_options);
+  for (CLI::App* command : {render, check, bench}) reject_empty_values(*command);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -23,7 +23,13 @@ void add_scene_options(CLI::App& command, SceneOptions& options) {
                      "OpenCL device index from `clmarch devices` (default: first GPU, else first CPU; e.g. --device 0)");
   command.add_option("--lanes", options.lanes,
                      "Pixels each work-item marches as one vector (default: 16 on CPUs, 1 on GPUs; e.g. --lanes 1)")
-      ->check(CLI::IsMember({1, 4, 8, 16}));
+      ->check(CLI::Validator(
+          [](std::string& value) {
+            return value == "1" || value == "4" || value == "8" || value == "16"
+                       ? std::string()
+                       : "must be 1, 4, 8 or 16 (got '" + value + "')";
+          },
+          "1|4|8|16", "LANES"));
   command.add_option("--time", options.time, "Time t in seconds for expressions in the scene, e.g. center: [cos(t), sin(t), 0]")
       ->check(CLI::Number);
 }
