@@ -73,6 +73,13 @@ TEST(SceneLoader, OverrideErrorsNameTheOption) {
   EXPECT_NE(error_of(yaml, {{"render..width", "1"}}).find("empty component"), std::string::npos);
   EXPECT_NE(error_of(yaml, {{"render.width", "[1"}}).find("not valid YAML"), std::string::npos);
   EXPECT_NE(error_of(yaml, {{"render.width", "0"}}).find("s.yaml (--set): render.width"), std::string::npos);
+  EXPECT_NE(error_of(yaml, {{"sdf.union.-1.sphere.radius", "1"}}).find("'-1' must be a list index"), std::string::npos);
+  EXPECT_NE(error_of(yaml, {{"lights.0.point.intensity", "2"}}).find("the scene has no lights, so index 0 reaches nothing"),
+            std::string::npos);
+  // An override that adds a second node kind is blamed on --set, not on the file's line.
+  EXPECT_EQ(error_of(yaml, {{"sdf.sphere.radius", "1"}}),
+            "s.yaml (--set): sdf must be a map with one key naming the node kind, e.g. sphere: {radius: 1} (got 2 keys: "
+            "union, sphere)");
 }
 
 // Integers are decimal, as YAML 1.2 reads them: yaml-cpp alone took 0640 for octal 416 and 0x40

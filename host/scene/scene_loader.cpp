@@ -287,8 +287,18 @@ class SceneReader {
                                    path, node_count_, kMaxTreeNodes));
     }
     if (!yaml.IsMap() || yaml.size() != 1) {
-      yaml_.fail(yaml, fmt::format("{} must be a map with one key naming the node kind, e.g. sphere: {{radius: 1}} (got {})",
-                                   path, yaml.IsMap() ? fmt::format("{} keys", yaml.size()) : describe_yaml(yaml)));
+      // Blamed on a key that --set added, if any (--set sdf.sphere.radius=1 on a torus adds a kind).
+      YAML::Node at = yaml;
+      std::vector<std::string> keys;
+      for (const auto& entry : yaml) {
+        if (!yaml.IsMap()) break;
+        keys.push_back(entry.first.Scalar());
+        if (entry.first.Mark().is_null() && !yaml.Mark().is_null()) at.reset(entry.first);
+      }
+      yaml_.fail(at, fmt::format("{} must be a map with one key naming the node kind, e.g. sphere: {{radius: 1}} (got {})",
+                                 path, !yaml.IsMap() ? describe_yaml(yaml)
+                                       : keys.empty() ? std::string("0 keys")
+                                                      : fmt::format("{} keys: {}", yaml.size(), fmt::join(keys, ", "))));
     }
     const auto entry = yaml.begin();
     const std::string name = entry->first.Scalar();
@@ -563,14 +573,20 @@ void apply_override(YAML::Node& root, const SceneOverride& override_) {
     const std::string& segment = segments[i];
     const bool last = i + 1 == segments.size();
     YAML::Node next;
+    const bool is_index = segment.find_first_not_of("0123456789") == std::string::npos;
     // A key the file does not have yet becomes a map; assigning through current fills the parent.
-    if (!current.IsDefined() || current.IsNull()) current = YAML::Node(YAML::NodeType::Map);
+    if (!current.IsDefined() || current.IsNull()) {
+      if (is_index && i > 0) {
+        throw InputError(fmt::format("{}: the scene has no {}, so index {} reaches nothing (set the whole list, e.g. --set {}=[...])",
+                                     option, segments[i - 1], segment, fmt::join(segments.begin(), segments.begin() + i, ".")));
+      }
+      current = YAML::Node(YAML::NodeType::Map);
+    }
     if (current.IsSequence()) {
       std::size_t index = 0;
       try {
-        std::size_t used = 0;
-        index = std::stoul(segment, &used);
-        if (used != segment.size()) throw std::invalid_argument(segment);
+        if (!is_index) throw std::invalid_argument(segment);
+        index = std::stoul(segment);
       } catch (const std::exception&) {
         throw InputError(fmt::format("{}: '{}' must be a list index (a number)", option, segment));
       }
