@@ -132,6 +132,13 @@ const std::vector<BadInputCase>& bad_input_cases() {
       {"buffers_folder_missing", kValidScene, {"render", "DIR/scene.yaml", "--buffers", "DIR/no/b.exr", "-o", "DIR/out.png"},
        {"--buffers DIR/no/b.exr", "does not exist"}},
       {"check_out_dir_missing", kValidScene, {"check", "DIR/scene.yaml", "--out-dir", "DIR/none"}, {"--out-dir DIR/none: no such folder"}},
+      // Messages stay one line whatever they quote: a NUL in the file (yaml-cpp called it an escape,
+      // a line later), a newline in a file name or option value.
+      {"nul_byte_in_file", std::string("sdf: {sphere: {}}\0\nfoo: 1\n", 26), {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
+       {"DIR/scene.yaml:1:18: the file holds a NUL byte"}},
+      {"newline_in_file_name", "", {"render", "DIR/no\nne.yaml", "-o", "DIR/out.png"}, {"DIR/no\\nne.yaml: cannot read"}},
+      {"newline_in_size", kValidScene, {"render", "DIR/scene.yaml", "--size", "64\nx36", "-o", "DIR/out.png"},
+       {"--size 64\\nx36: expected WIDTHxHEIGHT"}},
       // An empty value is a mistake, not the option left out (it rendered with the defaults).
       {"empty_size", kValidScene, {"render", "DIR/scene.yaml", "--size", "", "-o", "DIR/out.png"}, {"--size: the value is empty"}},
       {"empty_output", kValidScene, {"render", "DIR/scene.yaml", "-o", ""}, {"--output: the value is empty"}},

@@ -67,7 +67,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "clmarch: " << e.what() << " (see clmarch --help)\n";
+    std::cerr << "clmarch: " << one_line(e.what()) << " (see clmarch --help)\n";
     return kExitBadInput;
   }
   set_verbosity(quiet ? Verbosity::Quiet : verbose ? Verbosity::Verbose : Verbosity::Normal);

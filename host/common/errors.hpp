@@ -3,6 +3,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace clmarch {
 
@@ -23,10 +24,14 @@ enum ExitCode : int {
   kExitInterrupted = 130,
 };
 
+/// text with its control characters written as escapes (\n, \r, \0, \x1b): a message that quotes
+/// a user's value (a file name with a newline, a NUL in a scene) stays one line and is not cut short.
+std::string one_line(std::string_view text);
+
 /// Bad input from the user; the message is one line naming the file or option, what and why.
 class InputError : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit InputError(std::string_view message) : std::runtime_error(one_line(message)) {}
 };
 
 /// An OpenCL failure; the message names the device and the failing call (and may carry a build log).
@@ -35,10 +40,10 @@ class DeviceError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// Writing a result failed (disk full, permissions changed under us).
+/// Writing a result failed (disk full, permissions changed under us); one line, as InputError.
 class OutputError : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit OutputError(std::string_view message) : std::runtime_error(one_line(message)) {}
 };
 
 }  // namespace clmarch

@@ -15,7 +15,7 @@ namespace clmarch {
 namespace {
 
 /// OpenImageIO's error text on one line, as every message of ours is.
-std::string one_line(std::string text) {
+std::string joined_lines(std::string text) {
   while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
   for (std::size_t at; (at = text.find('\n')) != std::string::npos;) text.replace(at, 1, "; ");
   return text;
@@ -36,7 +36,7 @@ void expect_reads_back(const std::filesystem::path& file, const OIIO::ImageSpec&
   if (!ok) {
     const std::string why = in ? in->geterror() : OIIO::geterror();
     throw OutputError(fmt::format("{}: cannot write: the written file does not read back{}", target.string(),
-                                  why.empty() ? "" : ": " + one_line(why)));
+                                  why.empty() ? "" : ": " + joined_lines(why)));
   }
 }
 
@@ -52,7 +52,7 @@ void write_interleaved(const std::filesystem::path& path, const FrameBuffers& bu
   }
   write_atomically(path, [&](const std::filesystem::path& temp) {
     auto out = OIIO::ImageOutput::create(temp.string());
-    if (!out) throw OutputError(fmt::format("{}: cannot write: {}", path.string(), one_line(OIIO::geterror())));
+    if (!out) throw OutputError(fmt::format("{}: cannot write: {}", path.string(), joined_lines(OIIO::geterror())));
     OIIO::ImageSpec spec(buffers.width, buffers.height, static_cast<int>(nc), format);
     spec.channelnames.clear();
     for (Channel c : channels) spec.channelnames.emplace_back(kChannelNames[static_cast<int>(c)]);
@@ -68,7 +68,7 @@ void write_interleaved(const std::filesystem::path& path, const FrameBuffers& bu
     const bool in_memory = out->supports("ioproxy") && out->set_ioproxy(&memory);
     const bool ok = out->open(temp.string(), spec) && out->write_image(OIIO::TypeDesc::FLOAT, interleaved.data()) &&
                     out->close();
-    if (!ok) throw OutputError(fmt::format("{}: cannot write: {}", path.string(), one_line(out->geterror())));
+    if (!ok) throw OutputError(fmt::format("{}: cannot write: {}", path.string(), joined_lines(out->geterror())));
     if (in_memory) {
       write_bytes(temp, memory.buffer().data(), memory.buffer().size(), path);
     } else {

@@ -627,6 +627,17 @@ SceneOverride parse_override(const std::string& option_text) {
 
 Scene load_scene_text(const std::string& text, const std::string& source_name, const std::vector<SceneOverride>& overrides,
                       double time) {
+  // yaml-cpp takes a NUL in UTF-8 text for an escape and reports it a line later ("unknown escape
+  // character"). UTF-16 and UTF-32, which it reads, show by a byte-order mark or a NUL in the first
+  // two bytes (YAML's encoding detection).
+  const bool wide = text.starts_with("\xff\xfe") || text.starts_with("\xfe\xff") ||
+                    text.substr(0, 2).find('\0') != std::string::npos;
+  if (const std::size_t nul = text.find('\0'); nul != std::string::npos && !wide) {
+    const std::size_t line_start = text.rfind('\n', nul);
+    const std::size_t column = nul - (line_start == std::string::npos ? 0 : line_start + 1);
+    throw InputError(fmt::format("{}:{}:{}: the file holds a NUL byte (a scene file is text: YAML or JSON)", source_name,
+                                 std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(nul), '\n') + 1, column + 1));
+  }
   YAML::Node root;
   try {
     check_yaml_node_count(text, source_name, kMaxYamlNodes);

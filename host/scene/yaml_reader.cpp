@@ -106,10 +106,7 @@ std::string YamlReader::where(const YAML::Node& node) const {
 }
 
 void YamlReader::fail(const YAML::Node& at, const std::string& message) const {
-  // Every error is one line, also when it quotes a multi-line value ("a\nb", a block scalar).
-  std::string line = message;
-  for (std::size_t at_newline; (at_newline = line.find('\n')) != std::string::npos;) line.replace(at_newline, 1, "\\n");
-  throw InputError(fmt::format("{}: {}", where(at), line));
+  throw InputError(fmt::format("{}: {}", where(at), message));
 }
 
 void YamlReader::expect_map(const YAML::Node& node, const std::string& what,
