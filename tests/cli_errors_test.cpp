@@ -139,6 +139,14 @@ const std::vector<BadInputCase>& bad_input_cases() {
       {"newline_in_file_name", "", {"render", "DIR/no\nne.yaml", "-o", "DIR/out.png"}, {"DIR/no\\nne.yaml: cannot read"}},
       {"newline_in_size", kValidScene, {"render", "DIR/scene.yaml", "--size", "64\nx36", "-o", "DIR/out.png"},
        {"--size 64\\nx36: expected WIDTHxHEIGHT"}},
+      {"unknown_command", "", {"rendr", "DIR/scene.yaml"}, {"clmarch: unknown command 'rendr' (expected render, check"}},
+      {"description_not_text", "description: [a, b]\nsdf: {sphere: {}}\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
+       {"DIR/scene.yaml:1:14: description must be text (got a list)"}},
+      // A 100 KB expression is not echoed whole: its start and the parser's reason stay.
+      {"huge_expression", "sdf: {sphere: {radius: \"" + std::string(100000, '(') + "\"}}\n",
+       {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
+       {"DIR/scene.yaml:1:24: sdf.sphere.radius must be a number or an expression of the time t (got '(((",
+        "characters ...]", "Expression too long."}},
       // An empty value is a mistake, not the option left out (it rendered with the defaults).
       {"empty_size", kValidScene, {"render", "DIR/scene.yaml", "--size", "", "-o", "DIR/out.png"}, {"--size: the value is empty"}},
       {"empty_output", kValidScene, {"render", "DIR/scene.yaml", "-o", ""}, {"--output: the value is empty"}},

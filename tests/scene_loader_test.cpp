@@ -96,7 +96,7 @@ TEST(SceneLoader, IntegersAreDecimal) {
 TEST(SceneLoader, RejectsBadScenes) {
   EXPECT_NE(error_of("").find("the scene is empty"), std::string::npos);
   EXPECT_NE(error_of("[1, 2]").find("the scene must be a map"), std::string::npos);
-  EXPECT_NE(error_of("description: [1]\nsdf: {sphere: {}}\n").find("description must be a name"), std::string::npos);
+  EXPECT_NE(error_of("description: [1]\nsdf: {sphere: {}}\n").find("description must be text"), std::string::npos);
   EXPECT_NE(error_of("sdf: {sphere: {}, box: {}}\n").find("one key naming the node kind"), std::string::npos);
   EXPECT_NE(error_of("sdf: {subtraction: [{sphere: {}}]}\n").find("at least 2 child nodes"), std::string::npos);
   EXPECT_NE(error_of("sdf: {capsule: {a: [0, 0, 0], b: [0, 0, 0]}}\n").find("must differ"), std::string::npos);

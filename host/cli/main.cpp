@@ -67,6 +67,17 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
+    // CLI11 takes a misspelt command for a stray argument and asks for a subcommand.
+    for (int i = 1; i < argc; ++i) {
+      const std::string word = argv[i];
+      if (word.starts_with("-")) continue;
+      const auto commands = app.get_subcommands([&](const CLI::App* command) { return command->get_name() == word; });
+      if (commands.empty()) {
+        std::cerr << "clmarch: unknown command '" << one_line(word) << "' (expected render, check, bench or devices; see clmarch --help)\n";
+        return kExitBadInput;
+      }
+      break;
+    }
     std::cerr << "clmarch: " << one_line(e.what()) << " (see clmarch --help)\n";
     return kExitBadInput;
   }

@@ -106,7 +106,15 @@ std::string YamlReader::where(const YAML::Node& node) const {
 }
 
 void YamlReader::fail(const YAML::Node& at, const std::string& message) const {
-  throw InputError(fmt::format("{}: {}", where(at), message));
+  // A message quoting a huge value (a 100 KB expression) keeps its start, which says what is wrong,
+  // and its end, which says why.
+  constexpr std::size_t kHead = 400, kTail = 200;
+  std::string shown = message;
+  if (shown.size() > kHead + kTail + 100) {
+    shown = fmt::format("{} [... {} characters ...] {}", message.substr(0, kHead), message.size() - kHead - kTail,
+                        message.substr(message.size() - kTail));
+  }
+  throw InputError(fmt::format("{}: {}", where(at), shown));
 }
 
 void YamlReader::expect_map(const YAML::Node& node, const std::string& what,
@@ -177,7 +185,7 @@ int YamlReader::integer(const YAML::Node& node, const std::string& what, Range r
 }
 
 std::string YamlReader::text(const YAML::Node& node, const std::string& what) const {
-  if (!node.IsScalar()) fail(node, fmt::format("{} must be a name (got {})", what, describe_yaml(node)));
+  if (!node.IsScalar()) fail(node, fmt::format("{} must be text (got {})", what, describe_yaml(node)));
   return node.Scalar();
 }
 
