@@ -95,6 +95,10 @@ TEST(SweepCommand, BadInputIsOneLineAndExitCode2) {
     EXPECT_EQ(r.exit_code, kExitBadInput) << extra[1] << ": " << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   }
+  // A swept value the loader refuses is named as the sweep's, not as a --set the user never gave.
+  const testing::CommandResult negative =
+      run_clmarch({"bench", torus, "--size", "16x9", "--sweep", "render.epsilon=1e-3,-1", "--csv", csv});
+  EXPECT_EQ(negative.err.find("--sweep render.epsilon=-1: "), 0u) << negative.err;
   EXPECT_TRUE(dir.files().empty());
 }
 

@@ -62,7 +62,12 @@ int run_bench_sweep(const BenchCommandOptions& options) {
     const auto with_sets = [&](const std::vector<std::string>& sets) {
       SceneOptions scene_options = options.scene;
       scene_options.sets.insert(scene_options.sets.end(), sets.begin(), sets.end());
-      return load_scene_with_options(scene_options);
+      // The loader applies swept values as --set; the message says which sweep value it was.
+      try {
+        return load_scene_with_options(scene_options);
+      } catch (const InputError& e) {
+        throw InputError(fmt::format("--sweep {}: {}", combination_label(combination), e.what()));
+      }
     };
     SweepCase c{combination, with_sets(scene_sets(combination)), with_sets(picture_sets(combination)),
                 with_kernel_settings(base_options, combination), false};
