@@ -88,7 +88,7 @@ TEST(SweepCommand, BadInputIsOneLineAndExitCode2) {
         {"--sweep", "render.epsilon=1e-3", "--csv", "/no/such/folder/s.csv"},
         {"--sweep", "precision=double", "--sweep", "native_math=on", "--csv", csv},
         {"--sweep", "precision=double", "--sweep", "lanes=1,16", "--csv", csv},
-        {"--sweep", "render.width=16,32", "--csv", csv}}) {
+        {"--sweep", "render.width=16,32", "--csv", csv}, {"--sweep", "lanes=1,1", "--csv", csv}}) {
     std::vector<std::string> args = {"bench", torus, "--size", "16x9"};
     args.insert(args.end(), extra.begin(), extra.end());
     const testing::CommandResult r = run_clmarch(args);
@@ -192,6 +192,14 @@ TEST(SweepCommand, TinySweepWritesOrderedErrors) {
   EXPECT_EQ(with_set[6].at("combination"), "");
   EXPECT_EQ(with_set[6].at("defaults"), "0");
   EXPECT_EQ(with_set[7].at("defaults"), "1");
+
+  // An empty file takes the rows and their header, as a missing one does.
+  std::ofstream(dir / "empty.csv").flush();
+  const testing::CommandResult empty = run_clmarch({"bench", torus, "--size", "16x9", "--repeat", "1", "-q", "--sweep", "lanes=16",
+                                                    "--append", "--csv", (dir / "empty.csv").string()});
+  ASSERT_EQ(empty.exit_code, kExitOk) << empty.err;
+  EXPECT_EQ(read_csv(dir / "empty.csv", &header).size(), 1u);
+  EXPECT_EQ(header, expected_header);
 
   std::ofstream(dir / "other.csv") << "a,b\n1,2\n";
   const testing::CommandResult mismatch = run_clmarch({"bench", torus, "--size", "16x9", "--sweep", "lanes=1", "--append",

@@ -73,14 +73,14 @@ std::string sweep_csv(const std::string& scene, const SweepResult& result, bool 
 
 namespace {
 
-/// The file's text, "" when it does not exist; InputError when its header is not the sweep's.
+/// The file's text, "" when it does not exist or is empty; InputError when its header is not the sweep's.
 std::string existing_rows(const std::string& path) {
   if (!std::filesystem::exists(path)) return {};
   std::ifstream in(path, std::ios::binary);
   std::stringstream text;
   text << in.rdbuf();
   const std::string existing = text.str();
-  if (existing.compare(0, header_line().size(), header_line()) != 0) {
+  if (!existing.empty() && existing.compare(0, header_line().size(), header_line()) != 0) {
     throw InputError(fmt::format("--csv {}: cannot append, its header is not the sweep's (columns: docs/cli.md)", path));
   }
   return existing;

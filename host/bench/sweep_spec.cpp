@@ -70,8 +70,12 @@ SweepAxis parse_sweep_axis(const std::string& text) {
                                  axis.key));
   }
   axis.values = split_values(text.substr(equals + 1));
-  for (const std::string& value : axis.values) {
+  for (std::size_t i = 0; i < axis.values.size(); ++i) {
+    const std::string& value = axis.values[i];
     if (value.empty()) throw InputError(fmt::format("--sweep {}: empty value ({})", text, kSyntax));
+    if (std::find(axis.values.begin(), axis.values.begin() + static_cast<std::ptrdiff_t>(i), value) != axis.values.begin() + static_cast<std::ptrdiff_t>(i)) {
+      throw InputError(fmt::format("--sweep {}: the value '{}' is given twice", text, value));
+    }
     if (is_kernel_key(axis.key)) check_kernel_value(axis.key, value);
   }
   return axis;

@@ -46,8 +46,12 @@ void check_host_memory(const Scene& scene, const std::string& size_option) {
 
 std::pair<int, int> parse_size(const std::string& text) {
   static const std::regex pattern(R"(^(\d{1,6})x(\d{1,6})$)");
+  static const std::regex long_digits(R"(^\d+x\d+$)");
   std::smatch match;
   if (!std::regex_match(text, match, pattern)) {
+    if (std::regex_match(text, long_digits)) {
+      throw InputError(fmt::format("--size {}: width and height must be in [1, 65536]", text));
+    }
     throw InputError(fmt::format("--size {}: expected WIDTHxHEIGHT, e.g. 640x360", text));
   }
   const int width = std::stoi(match[1].str());

@@ -555,7 +555,10 @@ void apply_override(YAML::Node& root, const SceneOverride& override_) {
   const std::string option = quoted_option(override_);
   YAML::Node value;
   try {
-    value = PositionlessCopy(option)(YAML::Load(override_.value));
+    // One document, as in a scene file: a second one ('---') would be dropped unseen.
+    const std::vector<YAML::Node> documents = YAML::LoadAll(override_.value);
+    if (documents.size() > 1) throw InputError(fmt::format("{}: the value holds {} YAML documents, expected one", option, documents.size()));
+    value = PositionlessCopy(option)(documents.empty() ? YAML::Node() : documents.front());
   } catch (const YAML::Exception& e) {
     throw InputError(fmt::format("{}: the value is not valid YAML: {}", option, e.msg));
   }
