@@ -5,6 +5,7 @@
 #include "codegen/cl_literals.hpp"
 #include "common/errors.hpp"
 #include "scene/scene_bounds.hpp"
+#include "scene/tiling_model.hpp"
 
 #include <fmt/format.h>
 
@@ -285,7 +286,7 @@ class SdfEmitter {
     const auto axis = [&](const char* c, int i) {
       if (!(period[i] > 0.0)) return fmt::format("{}.{}", p, c);
       // Repetition forgets whole periods, so only the offset's remainder matters (floor-based).
-      const double remainder = offset[i] - period[i] * std::floor(offset[i] / period[i]);
+      const double remainder = floor_mod(offset[i], period[i]);
       child_offset[i] = 0.0;
       const std::string x = remainder == 0.0 ? fmt::format("{}.{}", p, c) : fmt::format("{}.{} + {}", p, c, lit_.f(remainder));
       return fmt::format("op_repeat_axis({}, {})", x, lit_.f(period[i]));

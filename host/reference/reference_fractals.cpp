@@ -1,6 +1,8 @@
 // Reference fractal primitives in double (formulas: docs/scene-format.md, "Fractals and terrain").
 #include "reference/reference_fractals.hpp"
 
+#include "scene/tiling_model.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -13,9 +15,6 @@ constexpr double kTinyRadius = 1e-30;
 // Distances above this are capped before they meet the enclosing ball: the escape-time estimate
 // grows like r log r / 2 far from the set and would overshoot there.
 constexpr double kEstimateCap = 1.0;
-
-// GLSL's floor-based mod (std::fmod truncates towards zero).
-double floor_mod(double x, double period) { return x - period * std::floor(x / period); }
 
 }  // namespace
 

@@ -72,7 +72,7 @@ MarchEnd march_cells(const Scene& scene, const glm::dvec3& origin, const glm::dv
                      double t_end, const MarchLimits& limits) {
   const glm::dvec3 cell = scene.tiling->cell;
   MarchEnd end;
-  glm::dvec3 entry = wrap_to_cell(origin + t_start * direction, cell);
+  glm::dvec3 entry = floor_mod(origin + t_start * direction, cell);
   double t_entry = t_start, s = 0.0;
   double previous = 1e20;
   // Over-relaxation as in march_plain, in the cell's coordinate s: a relaxed step ends at the wall
@@ -129,11 +129,9 @@ MarchLimits camera_march_limits(const Scene& scene) {
   return limits;
 }
 
-glm::dvec3 wrap_to_cell(const glm::dvec3& p, const glm::dvec3& cell) { return p - cell * glm::floor(p / cell); }
-
 Field scene_field(const Scene& scene) {
   if (scene.tiling && scene.tiling->method == TilingMethod::Mod) {
-    return [&scene](const glm::dvec3& p) { return reference_distance(scene.sdf, wrap_to_cell(p, scene.tiling->cell)); };
+    return [&scene](const glm::dvec3& p) { return reference_distance(scene.sdf, floor_mod(p, scene.tiling->cell)); };
   }
   return [&scene](const glm::dvec3& p) { return reference_distance(scene.sdf, p); };
 }
@@ -144,7 +142,7 @@ MarchEnd reference_march(const Scene& scene, const glm::dvec3& origin, const glm
     return march_cells(scene, origin, direction, t_start, t_end, limits);
   }
   MarchEnd end = march_plain(scene_field(scene), origin, direction, t_start, t_end, limits);
-  if (scene.tiling) end.local = wrap_to_cell(end.local, scene.tiling->cell);
+  if (scene.tiling) end.local = floor_mod(end.local, scene.tiling->cell);
   return end;
 }
 

@@ -18,9 +18,6 @@ using Field = std::function<double(const glm::dvec3&)>;
 /// The field of the scene: the tree, wrapped into the cell first under the mod tiling.
 Field scene_field(const Scene& scene);
 
-/// p wrapped into the tiling cell, floor-based like GLSL mod.
-glm::dvec3 wrap_to_cell(const glm::dvec3& p, const glm::dvec3& cell);
-
 struct MarchLimits {
   int max_steps = 255;
   double epsilon = 1e-4;
