@@ -27,6 +27,10 @@ typedef cl_float4 float4;
 #define CLMARCH_CHANNEL_WALL_STEPS 8
 #define CLMARCH_CHANNEL_COUNT 9
 
+/* Columns of the tile a packet of `lanes` pixels covers (its rows: lanes / columns): 1x1, 2x2,
+ * 4x2, 4x4. The host plans its dispatch of tiles by it (host/render/march_dispatch.hpp). */
+#define CLMARCH_PACKET_WIDTH(lanes) ((lanes) == 1 ? 1 : (lanes) == 4 ? 2 : 4)
+
 /* Pixels per side of a block of the coarse cone pass (kernels/coarse.cl), and the blocks that
  * cover n pixels (the last one cut by the image's edge). */
 #define CLMARCH_COARSE_BLOCK 8

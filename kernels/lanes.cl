@@ -69,7 +69,6 @@ typedef mask1 vint;
 #define MASK(c) (-(vint)(c))
 #define LANE_ANY(m) ((m) != 0)
 #define LANE_IOTA 0
-#define PACKET_WIDTH 1
 #define LANE_X 0
 #define LANE_Y 0
 #define TO_VFLOAT(x) convert_real(x)
@@ -82,7 +81,6 @@ typedef mask4 vint;
 #define MASK(c) (c)
 #define LANE_ANY(m) any(m)
 #define LANE_IOTA ((vint)(0, 1, 2, 3))
-#define PACKET_WIDTH 2
 #define LANE_X ((vint)(0, 1, 0, 1))
 #define LANE_Y ((vint)(0, 0, 1, 1))
 #define TO_VFLOAT(x) convert_real4(x)
@@ -97,7 +95,6 @@ typedef mask8 vint;
 #define MASK(c) (c)
 #define LANE_ANY(m) any(m)
 #define LANE_IOTA ((vint)(0, 1, 2, 3, 4, 5, 6, 7))
-#define PACKET_WIDTH 4
 #define LANE_X ((vint)(0, 1, 2, 3, 0, 1, 2, 3))
 #define LANE_Y ((vint)(0, 0, 0, 0, 1, 1, 1, 1))
 #define TO_VFLOAT(x) convert_real8(x)
@@ -112,7 +109,6 @@ typedef mask16 vint;
 #define MASK(c) (c)
 #define LANE_ANY(m) any16(m)
 #define LANE_IOTA ((vint)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15))
-#define PACKET_WIDTH 4
 #define LANE_X ((vint)(0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3))
 #define LANE_Y ((vint)(0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3))
 #define TO_VFLOAT(x) convert_real16(x)
@@ -124,6 +120,7 @@ typedef mask16 vint;
 #else
 #error "LANES must be 1, 4, 8 or 16"
 #endif
+#define PACKET_WIDTH CLMARCH_PACKET_WIDTH(LANES)
 #define PACKET_HEIGHT (LANES / PACKET_WIDTH)
 
 /* Stores lane vector v into the private array a of LANES elements of its own type. */

@@ -86,7 +86,7 @@ PreparedProgram prepare_program(const Scene& scene, const OpenClOptions& options
           march ? march_outputs(scene, purpose).planes() : std::vector<int>{}, source, kernel_options};
 }
 
-int packet_width(int lanes) { return lanes == 1 ? 1 : lanes == 4 ? 2 : 4; }
+int packet_width(int lanes) { return CLMARCH_PACKET_WIDTH(lanes); }
 
 Dispatch plan_tile_dispatch(const PreparedProgram& program, int width, int height, std::size_t max_pixels) {
   const std::size_t tile_width = packet_width(program.lanes);
