@@ -59,13 +59,16 @@ void write_interleaved(const std::filesystem::path& path, const FrameBuffers& bu
     if (srgb) spec.attribute("oiio:ColorSpace", "sRGB");
     // The file is encoded in memory and written by write_bytes, which sees every write's error;
     // OpenImageIO's own file output ignores a failed flush at close (a full disk, a size limit).
-    // The few formats that cannot encode to memory are read back instead.
-    // Reserved at the raw size, which compressed files stay within, so that the buffer does not
-    // double as it grows (host/render/host_memory.hpp counts it once).
+    // The few formats that cannot encode to memory are read back instead. The buffer is reserved
+    // at the raw size, which compressed files stay within, so that it does not double as it grows
+    // (host/render/host_memory.hpp counts it once).
     std::vector<unsigned char> encoded;
-    encoded.reserve(interleaved.size() * (format == OIIO::TypeDesc::FLOAT ? sizeof(float) : 1) + 65536);
     OIIO::Filesystem::IOVecOutput memory(encoded);
-    const bool in_memory = out->supports("ioproxy") && out->set_ioproxy(&memory);
+    const bool in_memory = out->supports("ioproxy");
+    if (in_memory) {
+      encoded.reserve(interleaved.size() * (format == OIIO::TypeDesc::FLOAT ? sizeof(float) : 1) + 65536);
+      if (!out->set_ioproxy(&memory)) throw OutputError(fmt::format("{}: cannot write: {}", path.string(), joined_lines(out->geterror())));
+    }
     const bool ok = out->open(temp.string(), spec) && out->write_image(OIIO::TypeDesc::FLOAT, interleaved.data()) &&
                     out->close();
     if (!ok) throw OutputError(fmt::format("{}: cannot write: {}", path.string(), joined_lines(out->geterror())));
