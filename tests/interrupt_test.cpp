@@ -1,4 +1,5 @@
-// Ctrl-C and SIGTERM through the real executable: the render stops at its next chunk or row,
+// Ctrl-C and SIGTERM through the real executable: the render stops at once while it waits on the
+// OpenCL device (a build, a chunk) or on a FIFO, and otherwise at its next chunk or reference row;
 // nothing is written (no image, no temporary file), one line says so, and the exit code is
 // 128 + signal. These tests run serially (tests/CMakeLists.txt): they time how fast a render stops.
 #include "cli/interrupts.hpp"
@@ -7,10 +8,15 @@
 #include "common/pending_file.hpp"
 #include "support/child_process.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <csignal>
 #include <fstream>
+#include <thread>
+
+#include <sys/stat.h>
+#include <unistd.h>
 
 namespace clmarch {
 namespace {
@@ -56,6 +62,83 @@ Interrupted interrupt(const std::vector<std::string>& args, const std::string& r
   }
   result.exit_code = *code;
   return result;
+}
+
+/// A union of 400 spheres with a radius no earlier run used, so that PoCL's cache cannot serve its
+/// build: on 2 cores the build takes 2-5 s, and the first dispatch as long again (PoCL compiles the
+/// kernel for its work-group size then).
+std::string slow_to_build_scene() {
+  const auto now = std::chrono::system_clock::now().time_since_epoch().count();
+  const double radius = 0.25 + static_cast<double>((now / 1000 + getpid()) % 100000) * 1e-6;
+  std::string yaml = "camera: {position: [200, 0, 300], look_at: [200, 0, -5]}\nsdf:\n  union:\n";
+  for (int i = 0; i < 400; ++i) yaml += fmt::format("    - {{sphere: {{center: [{}, 0, -5], radius: {}}}}}\n", i, radius);
+  return yaml;
+}
+
+std::vector<std::string> slow_render_args(const TempDir& dir) {
+  std::ofstream(dir / "scene.yaml") << slow_to_build_scene();
+  return {"--verbose", "render", (dir / "scene.yaml").string(), "--size", "64x36", "-o", (dir / "out.png").string()};
+}
+
+TEST(Interrupt, FirstSignalDuringTheProgramBuildExitsAtOnce) {
+  TempDir dir;
+  const Interrupted r = interrupt(slow_render_args(dir), "build options", SIGINT);
+  EXPECT_EQ(r.exit_code, kExitInterrupted) << r.err;
+  EXPECT_TRUE(r.err.ends_with("\nclmarch: interrupted\n")) << r.err;
+  EXPECT_EQ(r.err.find("clmarch: build "), std::string::npos) << "the build ran to its end\n" << r.err;
+  EXPECT_LT(r.seconds_to_stop, 1.0) << "a build of this scene takes seconds";
+  EXPECT_EQ(dir.files(), std::vector<std::string>{"scene.yaml"});
+}
+
+TEST(Interrupt, FirstSignalWhileTheFirstDispatchCompilesExitsAtOnce) {
+  TempDir dir;
+  const Interrupted r = interrupt(slow_render_args(dir), "clmarch: build ", SIGTERM);
+  EXPECT_EQ(r.exit_code, 143) << r.err;
+  EXPECT_TRUE(r.err.ends_with("\nclmarch: interrupted\n")) << r.err;
+  EXPECT_LT(r.seconds_to_stop, 1.0) << "PoCL's compile at the first dispatch of this scene takes seconds";
+  EXPECT_EQ(dir.files(), std::vector<std::string>{"scene.yaml"});
+}
+
+/// Whether signal is in the mask field of /proc/PID/status ("SigBlk": blocked by the main thread,
+/// "SigCgt": caught by a handler), a hexadecimal mask of bit signal - 1.
+bool in_signal_mask(pid_t pid, const std::string& field, int signal) {
+  std::ifstream status(fmt::format("/proc/{}/status", pid));
+  for (std::string line; std::getline(status, line);) {
+    if (line.starts_with(field + ":")) return (std::stoull(line.substr(field.size() + 1), nullptr, 16) >> (signal - 1)) & 1U;
+  }
+  return false;
+}
+
+TEST(Interrupt, FirstSignalWhileOpeningAFifoNobodyWritesExitsAtOnce) {
+  TempDir dir;
+  ASSERT_EQ(mkfifo((dir / "scene.yaml").c_str(), 0600), 0);
+  ClmarchProcess process({"render", (dir / "scene.yaml").string(), "-o", (dir / "out.png").string()});
+  // The process prints nothing before it blocks in open(): wait for its handler, then a little.
+  for (int i = 0; i < 2000 && !in_signal_mask(process.pid(), "SigCgt", SIGINT); ++i) std::this_thread::sleep_for(5ms);
+  std::this_thread::sleep_for(200ms);
+  process.send_signal(SIGINT);
+  const std::optional<int> code = process.wait(10s);
+  ASSERT_TRUE(code) << "still waiting for a writer 10 s after the signal";
+  EXPECT_EQ(*code, kExitInterrupted) << process.err();
+  EXPECT_EQ(process.err(), "clmarch: interrupted\n");
+  EXPECT_EQ(dir.files(), std::vector<std::string>{"scene.yaml"});
+}
+
+TEST(Interrupt, AnInheritedIgnoredSigintStaysIgnoredThroughTheBuild) {
+  TempDir dir;
+  // As `clmarch ... &` in a script. PoCL's compiler puts its own SIGINT handler in place of the
+  // ignored disposition (to remove its temporary files, failing the build); blocked, it never runs.
+  ClmarchProcess process(slow_render_args(dir), {}, /*sigint_ignored=*/true);
+  ASSERT_TRUE(process.wait_for_stderr("build options", 120s)) << process.err();
+  EXPECT_TRUE(in_signal_mask(process.pid(), "SigBlk", SIGINT));
+  for (int i = 0; i < 5; ++i) {
+    process.send_signal(SIGINT);
+    std::this_thread::sleep_for(100ms);
+  }
+  const std::optional<int> code = process.wait(300s);
+  ASSERT_TRUE(code) << process.err();
+  EXPECT_EQ(*code, kExitOk) << process.err();
+  EXPECT_NE(process.err().find("clmarch: wrote"), std::string::npos) << process.err();
 }
 
 TEST(Interrupt, OpenClRenderStopsAtTheNextChunkAndWritesNothing) {

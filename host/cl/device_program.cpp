@@ -4,6 +4,7 @@
 
 #include "cl/build_cache.hpp"
 #include "cl/cl_errors.hpp"
+#include "common/cancellation.hpp"
 #include "common/log.hpp"
 
 #include <fmt/format.h>
@@ -26,7 +27,10 @@ DeviceProgram build_device_program(const DeviceEntry& device, const std::string&
     std::optional<BuildCacheProbe> probe;
     if (probe_cache) probe.emplace(device);
     const auto start = std::chrono::steady_clock::now();
-    out.program.build(std::vector<cl::Device>{device.device}, options.c_str());
+    {
+      const BlockingCall uninterruptible_build;
+      out.program.build(std::vector<cl::Device>{device.device}, options.c_str());
+    }
     out.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     out.build_log = out.program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device.device);
     // A successful build may still carry the compiler's warnings; shown verbatim, as on failure.

@@ -1,5 +1,5 @@
-// The signal handlers. They only touch lock-free atomics and call unlink() and _exit(), all
-// async-signal-safe; they may run on any thread (PoCL's and TBB's workers included).
+// The signal handlers. They only touch lock-free atomics and call write(), unlink() and _exit(),
+// all async-signal-safe; they may run on any thread (PoCL's and TBB's workers included).
 #include "cli/interrupts.hpp"
 
 #include "common/cancellation.hpp"
@@ -8,6 +8,7 @@
 #include <atomic>
 #include <csignal>
 
+#include <pthread.h>
 #include <unistd.h>
 
 namespace clmarch {
@@ -19,9 +20,12 @@ extern "C" void on_interrupt(int signal) {
   int none = 0;
   if (g_first_signal.compare_exchange_strong(none, signal)) {
     cancellation_requested().store(true);
-    return;
+    if (blocking_calls_in_progress().load() == 0) return;
+    // Inside a call with no cancellation point (BlockingCall): stopping now loses nothing.
+    constexpr char kMessage[] = "clmarch: interrupted\n";
+    [[maybe_unused]] const ssize_t written = write(STDERR_FILENO, kMessage, sizeof kMessage - 1);
   }
-  // Second signal: the user does not want to wait for the current chunk or row to finish.
+  // A second signal: the user does not want to wait for the current chunk or row to finish.
   remove_pending_file_in_signal_handler();
   _exit(128 + g_first_signal.load());
 }
@@ -34,14 +38,23 @@ void install_interrupt_handlers() {
   sigemptyset(&action.sa_mask);
   // Restart interrupted system calls: PoCL, TBB and OpenImageIO do not expect EINTR.
   action.sa_flags = SA_RESTART;
+  sigset_t ignored;
+  sigemptyset(&ignored);
   for (int signal : {SIGINT, SIGTERM}) {
     struct sigaction previous = {};
     sigaction(signal, nullptr, &previous);
     // A signal the parent ignores stays ignored (`cmd &` in a script, whose shell ignores SIGINT
     // for background jobs): Ctrl-C in that terminal is meant for the foreground job, not for us.
-    if (previous.sa_handler == SIG_IGN) continue;
+    if (previous.sa_handler == SIG_IGN) {
+      sigaddset(&ignored, signal);
+      continue;
+    }
     sigaction(signal, &action, nullptr);
   }
+  // Blocked as well: PoCL's compiler (LLVM) puts its own handler over an ignored signal to remove
+  // its temporary files, which fails the build in progress. A blocked signal reaches no handler;
+  // the threads the drivers start later inherit the mask.
+  pthread_sigmask(SIG_BLOCK, &ignored, nullptr);
   std::signal(SIGXFSZ, SIG_IGN);
 }
 

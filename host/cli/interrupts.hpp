@@ -1,11 +1,14 @@
 // Ctrl-C and SIGTERM: the first one asks the work to stop at its next cancellation point (the CLI
-// then exits 128 + signal, writing nothing); a second one exits at once.
+// then exits 128 + signal, writing nothing), or exits at once inside a BlockingCall; a second one
+// exits at once.
 #pragma once
 
 namespace clmarch {
 
-/// Installs the SIGINT and SIGTERM handlers (except for a signal the parent process ignores). The
-/// first signal sets cancellation_requested(); a second removes the temporary output file being
+/// Installs the SIGINT and SIGTERM handlers (a signal the parent process ignores stays ignored,
+/// and is blocked so that no library's handler sees it either). The
+/// first signal sets cancellation_requested() (and inside a BlockingCall prints
+/// "clmarch: interrupted" and _exits 128 + signal); a second removes the temporary output file being
 /// written, if any, and _exits 128 + the first signal. Also ignores SIGXFSZ, so that a write past
 /// the file size limit fails with EFBIG and is reported (exit code 4, no file) instead of killing
 /// the process with its temporary file left behind.

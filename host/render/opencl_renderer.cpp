@@ -3,6 +3,7 @@
 #include "render/opencl_renderer.hpp"
 
 #include "cl/cl_errors.hpp"
+#include "common/cancellation.hpp"
 #include "common/progress.hpp"
 #include "render/march_dispatch.hpp"
 
@@ -106,7 +107,12 @@ RenderResult OpenClRenderer::render() {
         dp.queue.enqueueReadBuffer(s.out, CL_FALSE, c * s.dispatch.plane_stride * sizeof(float), count * sizeof(float),
                                    result.buffers.planes[c].data() + first);
       }
-      dp.queue.finish();
+      {
+        // The first chunk's wait holds PoCL's compile of the kernel for the work-group size, as
+        // long as the build itself for a large scene.
+        const BlockingCall uninterruptible_wait;
+        dp.queue.finish();
+      }
       kernel_ms += event_milliseconds(done);
       progress.advance();
     });

@@ -1,6 +1,7 @@
 // Scene files: schema, defaults and ranges (documented key by key in docs/scene-format.md).
 #include "scene/scene_loader.hpp"
 
+#include "common/cancellation.hpp"
 #include "common/errors.hpp"
 #include "scene/yaml_reader.hpp"
 
@@ -658,9 +659,11 @@ Scene load_scene_text(const std::string& text, const std::string& source_name, c
   return scene;
 }
 
-Scene load_scene_file(const std::string& path, const std::vector<SceneOverride>& overrides, double time) {
-  std::error_code error;
-  if (std::filesystem::is_directory(path, error)) throw InputError(fmt::format("{}: is a folder, not a scene file", path));
+namespace {
+
+std::string read_scene_file(const std::string& path) {
+  // Opening a FIFO blocks until its writer comes, and reading it until the writer closes.
+  const BlockingCall uninterruptible_read;
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(fmt::format("{}: cannot read the scene file: {}", path, std::strerror(errno)));
   // Read in pieces and stop one past the limit, so that a huge file (or an endless one such as
@@ -675,7 +678,15 @@ Scene load_scene_file(const std::string& path, const std::vector<SceneOverride>&
     }
   }
   if (in.bad()) throw InputError(fmt::format("{}: cannot read the scene file: {}", path, std::strerror(errno)));
-  return load_scene_text(text, path, overrides, time);
+  return text;
+}
+
+}  // namespace
+
+Scene load_scene_file(const std::string& path, const std::vector<SceneOverride>& overrides, double time) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) throw InputError(fmt::format("{}: is a folder, not a scene file", path));
+  return load_scene_text(read_scene_file(path), path, overrides, time);
 }
 
 }  // namespace clmarch

@@ -19,7 +19,7 @@ extern char** environ;
 namespace clmarch::testing {
 namespace {
 
-/// argv for the executable: CLMARCH_BINARY then args.
+/// argv for posix_spawn: the program, its arguments, a null pointer.
 std::vector<char*> make_argv(std::vector<std::string>& storage) {
   std::vector<char*> argv;
   for (std::string& s : storage) argv.push_back(s.data());
@@ -41,8 +41,10 @@ std::vector<std::string> merged_environment(const std::vector<std::string>& extr
 }
 
 pid_t spawn(const std::vector<std::string>& args, const std::vector<std::string>& environment,
-            posix_spawn_file_actions_t* actions) {
+            posix_spawn_file_actions_t* actions, bool sigint_ignored = false) {
   std::vector<std::string> argv_storage = {CLMARCH_BINARY};
+  // The shell ignores SIGINT, then becomes clmarch (same process), which inherits the disposition.
+  if (sigint_ignored) argv_storage = {"/bin/sh", "-c", "trap '' INT; exec \"$0\" \"$@\"", CLMARCH_BINARY};
   argv_storage.insert(argv_storage.end(), args.begin(), args.end());
   std::vector<std::string> env_storage = merged_environment(environment);
   std::vector<char*> argv = make_argv(argv_storage);
@@ -58,7 +60,7 @@ pid_t spawn(const std::vector<std::string>& args, const std::vector<std::string>
   posix_spawnattr_setsigdefault(&attributes, &defaults);
   posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGDEF);
   pid_t pid = -1;
-  const int error = posix_spawn(&pid, CLMARCH_BINARY, actions, &attributes, argv.data(), envp.data());
+  const int error = posix_spawn(&pid, argv_storage.front().c_str(), actions, &attributes, argv.data(), envp.data());
   posix_spawnattr_destroy(&attributes);
   if (error != 0) throw std::runtime_error(std::string("posix_spawn: ") + std::strerror(error));
   return pid;
@@ -68,7 +70,8 @@ int exit_code_of(int status) { return WIFEXITED(status) ? WEXITSTATUS(status) : 
 
 }  // namespace
 
-ClmarchProcess::ClmarchProcess(const std::vector<std::string>& args, const std::vector<std::string>& environment) {
+ClmarchProcess::ClmarchProcess(const std::vector<std::string>& args, const std::vector<std::string>& environment,
+                               bool sigint_ignored) {
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
@@ -76,7 +79,7 @@ ClmarchProcess::ClmarchProcess(const std::vector<std::string>& args, const std::
   const std::string err = (capture_ / "err").string();
   posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  pid_ = spawn(args, environment, &actions);
+  pid_ = spawn(args, environment, &actions, sigint_ignored);
   posix_spawn_file_actions_destroy(&actions);
   running_ = true;
 }

@@ -16,8 +16,11 @@ namespace clmarch::testing {
 /// clmarch started with args; stdout and stderr go to files, stdin is /dev/null.
 class ClmarchProcess {
  public:
-  /// environment holds extra NAME=VALUE settings.
-  explicit ClmarchProcess(const std::vector<std::string>& args, const std::vector<std::string>& environment = {});
+  /// environment holds extra NAME=VALUE settings; sigint_ignored starts clmarch with SIGINT
+  /// ignored, as a script's shell starts its background jobs.
+  explicit ClmarchProcess(const std::vector<std::string>& args, const std::vector<std::string>& environment = {},
+                          bool sigint_ignored = false);
+  pid_t pid() const { return pid_; }
   /// Kills the process if it still runs.
   ~ClmarchProcess();
   ClmarchProcess(const ClmarchProcess&) = delete;
