@@ -173,5 +173,30 @@ TEST(FrameSequence, AFrameThatFailsToLoadStopsTheSequenceBeforeAnyIsWritten) {
   }
 }
 
+// A frame's numbered file is checked with the options, not when its turn comes: an existing folder
+// of a frame's name, a name that numbering makes too long, two options numbered onto one file.
+TEST(FrameSequence, AFrameFileThatCannotBeWrittenStopsTheSequenceBeforeAnyIsWritten) {
+  TempDir dir;
+  std::filesystem::create_directory(dir / "shot_0003.png");
+  const std::string scene = testing::source_path("scenes/torus.yaml").string();
+  const std::string long_name = std::string(251, 'x') + ".png";
+  struct Case {
+    std::vector<std::string> args;
+    std::string message;
+  };
+  for (const Case& c :
+       {Case{{"-o", (dir / "shot_####.png").string()}, "/shot_0003.png: is a folder, expected a file name"},
+        Case{{"-o", (dir / long_name).string()}, "the file name has 260 characters, more than the 255 a folder takes"},
+        Case{{"-o", (dir / "a_####.exr").string(), "--buffers", (dir / "a.exr").string()},
+             "--output and --buffers are the same file"}}) {
+    std::vector<std::string> args = {"render", scene, "--size", "16x9", "--frames", "0:5"};
+    args.insert(args.end(), c.args.begin(), c.args.end());
+    const auto result = run_clmarch(args);
+    EXPECT_EQ(result.exit_code, kExitBadInput) << c.message << "\n" << result.err;
+    EXPECT_NE(result.err.find(c.message), std::string::npos) << result.err;
+    EXPECT_EQ(dir.files(), std::vector<std::string>{"shot_0003.png"}) << c.message;
+  }
+}
+
 }  // namespace
 }  // namespace clmarch

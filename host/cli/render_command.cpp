@@ -83,6 +83,26 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& options) {
 
 namespace {
 
+/// Refuses two of the output files (empty: not written) being one file: one would overwrite the other.
+void check_distinct_outputs(const std::string& output, const std::string& buffers, const std::string& dump_kernel) {
+  const std::pair<std::string, const char*> outputs[] = {
+      {output, "--output"}, {buffers, "--buffers"}, {dump_kernel, "--dump-kernel"}};
+  for (std::size_t a = 0; a < std::size(outputs); ++a) {
+    for (std::size_t b = a + 1; b < std::size(outputs); ++b) {
+      if (outputs[a].first.empty() || outputs[b].first.empty()) continue;
+      std::error_code error;
+      const auto resolved = [&](const std::string& path) {
+        return std::filesystem::weakly_canonical(std::filesystem::absolute(path, error), error);
+      };
+      const bool same = resolved(outputs[a].first) == resolved(outputs[b].first);
+      if (same) {
+        throw InputError(fmt::format("{} and {} are the same file {}: one would overwrite the other", outputs[a].second,
+                                     outputs[b].second, outputs[b].first));
+      }
+    }
+  }
+}
+
 /// Refuses option combinations that cannot apply, before anything is loaded or written.
 void check_render_options(const RenderCommandOptions& options, const std::string& output) {
   check_image_path(output, "--output");
@@ -102,22 +122,7 @@ void check_render_options(const RenderCommandOptions& options, const std::string
     check_output_folder(options.buffers, "--buffers");
   }
   if (!options.dump_kernel.empty()) check_output_folder(options.dump_kernel, "--dump-kernel");
-  const std::pair<std::string, const char*> outputs[] = {
-      {output, "--output"}, {options.buffers, "--buffers"}, {options.dump_kernel, "--dump-kernel"}};
-  for (std::size_t a = 0; a < std::size(outputs); ++a) {
-    for (std::size_t b = a + 1; b < std::size(outputs); ++b) {
-      if (outputs[a].first.empty() || outputs[b].first.empty()) continue;
-      std::error_code error;
-      const auto resolved = [&](const std::string& path) {
-        return std::filesystem::weakly_canonical(std::filesystem::absolute(path, error), error);
-      };
-      const bool same = resolved(outputs[a].first) == resolved(outputs[b].first);
-      if (same) {
-        throw InputError(fmt::format("{} and {} are the same file {}: one would overwrite the other", outputs[a].second,
-                                     outputs[b].second, outputs[b].first));
-      }
-    }
-  }
+  check_distinct_outputs(output, options.buffers, options.dump_kernel);
   if (!options.frames.empty() && options.scene.time) {
     throw InputError("--time and --frames both set the time: --frames renders frame n at t = n / fps");
   }
@@ -226,6 +231,24 @@ void render_image(const RenderCommandOptions& options, const Scene& scene, const
   }
 }
 
+/// The numbered files of one frame of a sequence, checked as names (their folders were checked
+/// with the options).
+FrameFiles frame_files(const RenderCommandOptions& options, const std::string& output, int frame,
+                       const FrameRange& range) {
+  FrameFiles files{frame_path(output, frame, range), "", ""};
+  check_output_name(files.output, "--output");
+  if (!options.buffers.empty()) {
+    files.buffers = frame_path(options.buffers, frame, range);
+    check_output_name(files.buffers, "--buffers");
+  }
+  if (!options.dump_kernel.empty()) {
+    files.dump_kernel = frame_path(options.dump_kernel, frame, range);
+    check_output_name(files.dump_kernel, "--dump-kernel");
+  }
+  check_distinct_outputs(files.output, files.buffers, files.dump_kernel);
+  return files;
+}
+
 /// Frames compared before a sequence renders, to find the literals that vary (a load costs little
 /// next to a program build).
 constexpr int kSampledFrames = 64;
@@ -240,8 +263,10 @@ void render_sequence(const RenderCommandOptions& options, const std::string& out
   // time fails with nothing written (a load costs little next to a render). Knowing up front
   // which literals vary, the frames of one shape build one program between them (OpenCL).
   const std::vector<int> sampled = sample_frames(range, kSampledFrames);
+  // So are the frames' files: a numbered name can be an existing folder, or longer than a folder takes.
   for (int frame = range.first; frame <= range.last; ++frame) {
     throw_if_cancelled();
+    frame_files(options, output, frame, range);
     const Scene scene = load_scene_with_options(options.scene, range.time_of(frame));
     if (options.backend == "opencl" && std::binary_search(sampled.begin(), sampled.end(), frame)) {
       sequence.varying.add(scene);
@@ -250,9 +275,7 @@ void render_sequence(const RenderCommandOptions& options, const std::string& out
   for (int frame = range.first; frame <= range.last; ++frame) {
     const Scene scene = load_scene_with_options(options.scene, range.time_of(frame));
     if (!progress) progress.emplace("frames", range.count(), static_cast<double>(scene.render.width) * scene.render.height);
-    FrameFiles files{frame_path(output, frame, range), "", ""};
-    if (!options.buffers.empty()) files.buffers = frame_path(options.buffers, frame, range);
-    if (!options.dump_kernel.empty()) files.dump_kernel = frame_path(options.dump_kernel, frame, range);
+    const FrameFiles files = frame_files(options, output, frame, range);
     log_verbose(fmt::format("frame {} at t = {} s", frame, scene.time));
     render_image(options, scene, files, frame, &sequence);
     progress->advance();

@@ -74,6 +74,17 @@ void write_file_atomically(const std::filesystem::path& path, const std::string&
   write_atomically(path, [&](const std::filesystem::path& temp) { write_bytes(temp, text.data(), text.size(), path); });
 }
 
+void check_output_name(const std::filesystem::path& path, const std::string& option) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) {
+    throw InputError(fmt::format("{} {}: is a folder, expected a file name", option, path.string()));
+  }
+  if (path.filename().native().size() > kMaxFileNameLength) {
+    throw InputError(fmt::format("{} {}: the file name has {} characters, more than the {} a folder takes", option,
+                                 path.string(), path.filename().native().size(), kMaxFileNameLength));
+  }
+}
+
 void check_output_folder(const std::filesystem::path& path, const std::string& option) {
   std::filesystem::path folder = path.parent_path();
   if (folder.empty()) folder = ".";
@@ -84,13 +95,7 @@ void check_output_folder(const std::filesystem::path& path, const std::string& o
   if (access(folder.c_str(), W_OK) != 0) {
     throw InputError(fmt::format("{} {}: folder {} is not writable", option, path.string(), folder.string()));
   }
-  if (std::filesystem::is_directory(path, error)) {
-    throw InputError(fmt::format("{} {}: is a folder, expected a file name", option, path.string()));
-  }
-  if (path.filename().native().size() > kMaxFileNameLength) {
-    throw InputError(fmt::format("{} {}: the file name has {} characters, more than the {} a folder takes", option,
-                                 path.string(), path.filename().native().size(), kMaxFileNameLength));
-  }
+  check_output_name(path, option);
   // access() says yes to root everywhere, and to anyone on /proc or a read-only mount: creating
   // a file is the only test that a render's result will find a place.
   const std::filesystem::path probe = folder / fmt::format(".clmarch-probe-{}", getpid());

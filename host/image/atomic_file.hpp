@@ -29,4 +29,9 @@ void write_file_atomically(const std::filesystem::path& path, const std::string&
 /// path costs nothing.
 void check_output_folder(const std::filesystem::path& path, const std::string& option);
 
+/// Fails with InputError (naming option) if path is a folder or its file name is longer than a
+/// folder takes; part of check_output_folder, and alone for the numbered files of a sequence,
+/// whose folder is the same for every frame.
+void check_output_name(const std::filesystem::path& path, const std::string& option);
+
 }  // namespace clmarch
