@@ -126,7 +126,16 @@ const std::vector<BadInputCase>& bad_input_cases() {
        {"--size big: expected WIDTHxHEIGHT"}},
       {"size_too_many_pixels", kValidScene, {"render", "DIR/scene.yaml", "--size", "65536x65536", "-o", "DIR/out.png"},
        {"--size 65536x65536: too many pixels (got 4294967296, expected at most 2147483647)"}},
-      {"time_not_finite", kValidScene, {"render", "DIR/scene.yaml", "--time", "nan", "-o", "DIR/out.png"}, {"--time nan"}},
+      {"time_not_finite", kValidScene, {"render", "DIR/scene.yaml", "--time", "nan", "-o", "DIR/out.png"},
+       {"--time: must be a finite number of seconds (got 'nan')"}},
+      {"time_past_double", kValidScene, {"render", "DIR/scene.yaml", "--time", "1e400", "-o", "DIR/out.png"},
+       {"--time: must be a finite number of seconds (got '1e400')"}},
+      {"time_not_a_number", kValidScene, {"render", "DIR/scene.yaml", "--time", "0x10", "-o", "DIR/out.png"},
+       {"--time: must be a finite number of seconds (got '0x10')"}},
+      {"fps_past_double", kValidScene, {"render", "DIR/scene.yaml", "--frames", "0:1", "--fps", "1e400", "-o", "DIR/out.png"},
+       {"--fps: must be frames per second in (0, 1000] (got '1e400')"}},
+      {"fps_over_limit", kValidScene, {"render", "DIR/scene.yaml", "--frames", "0:1", "--fps", "1001", "-o", "DIR/out.png"},
+       {"--fps: must be frames per second in (0, 1000] (got '1001')"}},
       {"output_is_a_folder", kValidScene, {"render", "DIR/scene.yaml", "-o", "DIR"}, {"--output DIR: is a folder"}},
       {"output_without_extension", kValidScene, {"render", "DIR/scene.yaml", "-o", "DIR/out"}, {"--output DIR/out", "extension"}},
       {"buffers_folder_missing", kValidScene, {"render", "DIR/scene.yaml", "--buffers", "DIR/no/b.exr", "-o", "DIR/out.png"},
@@ -211,6 +220,15 @@ TEST(Cli, RenderWritesImageBuffersAndStats) {
   EXPECT_EQ(dir.files(), (std::vector<std::string>{"b.exr", "k.cl", "out.png", "scene.yaml"}));
   for (const char* key : {"\"device\"", "\"build_ms\"", "\"kernel_ms\"", "\"steps\"", "\"rays_per_s\""}) {
     EXPECT_NE(result.out.find(key), std::string::npos) << key << " missing from --stats: " << result.out;
+  }
+}
+
+TEST(Cli, TimeTakesASignedDecimalNumber) {
+  TempDir dir;
+  std::ofstream(dir / "scene.yaml") << "sdf: {sphere: {radius: \"1 + 0.1 * t\"}}\nrender: {width: 16, height: 8}\n";
+  for (const char* time : {"+1.5", "-1.5", "2e-1", "3"}) {
+    const auto result = run_clmarch({"render", (dir / "scene.yaml").string(), "--time", time, "-o", (dir / "out.png").string()});
+    EXPECT_EQ(result.exit_code, 0) << time << ": " << result.err;
   }
 }
 

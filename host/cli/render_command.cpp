@@ -74,7 +74,7 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& options) {
                      "files: a run of # in -o/--buffers/--dump-kernel is the frame number (-o shot_####.png), else _NNNN goes "
                      "before the extension (e.g. --frames 0:47 --fps 24)");
   render->add_option("--fps", options.fps, "Frames per second of --frames (default 24; e.g. --fps 30)")
-      ->check(CLI::PositiveNumber)
+      ->check(finite_number([](double fps) { return fps > 0.0 && fps <= 1000.0; }, "frames per second in (0, 1000]"))
       ->needs(frames);
   render->add_flag("--stats", options.stats,
                    "Print one JSON line of figures on stdout: device, lanes, build_ms, kernel_ms, steps, rays_per_s");

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include <charconv>
 #include <cmath>
 #include <regex>
 
@@ -31,7 +32,21 @@ void add_scene_options(CLI::App& command, SceneOptions& options) {
           },
           "1|4|8|16", "LANES"));
   command.add_option("--time", options.time, "Time t in seconds for expressions in the scene, e.g. center: [cos(t), sin(t), 0]")
-      ->check(CLI::Number);
+      ->check(finite_number([](double) { return true; }, "a finite number of seconds"));
+}
+
+CLI::Validator finite_number(const std::function<bool(double)>& accept, const std::string& expected) {
+  return CLI::Validator(
+      [accept, expected](std::string& text) {
+        double value = 0.0;
+        // from_chars takes no '+' sign; a shell user may write one.
+        const char* begin = text.data();
+        if (text.size() > 1 && text[0] == '+' && text[1] != '-') ++begin;
+        const auto [end, error] = std::from_chars(begin, text.data() + text.size(), value);
+        const bool ok = error == std::errc() && end == text.data() + text.size() && std::isfinite(value) && accept(value);
+        return ok ? std::string() : "must be " + expected + " (got '" + text + "')";
+      },
+      "", "NUMBER");
 }
 
 void check_host_memory(const Scene& scene, const std::string& size_option) {
@@ -71,9 +86,6 @@ Scene load_scene_with_options(const SceneOptions& options, std::optional<double>
   for (const std::string& set : options.sets) overrides.push_back(parse_override(set));
   std::optional<std::pair<int, int>> size;
   if (!options.size.empty()) size = parse_size(options.size);
-  if (options.time && !std::isfinite(*options.time)) {
-    throw InputError(fmt::format("--time {}: the time must be a finite number of seconds (got {})", *options.time, *options.time));
-  }
   Scene scene = load_scene_file(options.scene_path, overrides, time ? *time : options.time.value_or(0.0));
   if (size) {
     scene.render.width = size->first;

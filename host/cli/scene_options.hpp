@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,6 +23,10 @@ struct SceneOptions {
   /// The time t of expressions in the scene, in seconds (--time); absent: 0.
   std::optional<double> time;
 };
+
+/// Checks an option's text is a finite decimal number that accept takes, else says
+/// "must be EXPECTED (got 'TEXT')" with the text as given (1e400 is not echoed as inf).
+CLI::Validator finite_number(const std::function<bool(double)>& accept, const std::string& expected);
 
 /// Registers the shared options on a subcommand.
 void add_scene_options(CLI::App& command, SceneOptions& options);
