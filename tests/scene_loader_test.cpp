@@ -93,6 +93,20 @@ TEST(SceneLoader, IntegersAreDecimal) {
             "s.yaml:2:21: render.max_steps must be in [1, 1000000] (got 99999999999999999999)");
 }
 
+// yaml-cpp marks an empty value where the next token starts (`camera:` then `sdf:`: line 2, under
+// sdf); the message names the key's place. A value from --set keeps saying so.
+TEST(SceneLoader, AnEmptyValueIsPlacedAtItsKey) {
+  EXPECT_EQ(error_of("camera:\nsdf: {sphere: {}}\n"), "s.yaml:1:1: camera must be a map (got nothing)");
+  EXPECT_EQ(error_of("sdf: {sphere: {}}\nrender:\n  width: 8\n  epsilon: # later\n\n  height: 4\n"),
+            "s.yaml:4:3: render.epsilon must be a number (got nothing)");
+  EXPECT_EQ(error_of("sdf: {sphere: {radius: }}\n"), "s.yaml:1:16: sdf.sphere.radius must be a number (got nothing)");
+  EXPECT_EQ(error_of("camera: {fov: 60}\nsdf: {sphere: {}}\n", {{"camera", "null"}}),
+            "s.yaml (--set): camera must be a map (got nothing)");
+  // Aliases can make the tree a graph with a cycle; the search for the key goes around it.
+  EXPECT_EQ(error_of("render: {width: }\nsdf: {sphere: {}}\nlights: &a [{point: {position: [0, 1, 0]}}, *a]\n"),
+            "s.yaml:1:10: render.width must be an integer in decimal digits (got nothing)");
+}
+
 TEST(SceneLoader, RejectsBadScenes) {
   EXPECT_NE(error_of("").find("the scene is empty"), std::string::npos);
   EXPECT_NE(error_of("[1, 2]").find("the scene must be a map"), std::string::npos);

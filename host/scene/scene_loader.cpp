@@ -33,6 +33,7 @@ class SceneReader {
   Scene read(const YAML::Node& root, const std::string& source_name) {
     Scene scene;
     scene.source_name = source_name;
+    yaml_.set_document(root);
     yaml_.expect_map(root, "the scene", {"description", "camera", "render", "sdf", "lights", "shading", "tiling"});
     if (const YAML::Node description = root["description"]) yaml_.text(description, "description");
     if (const YAML::Node camera = root["camera"]) scene.camera = read_camera(camera);

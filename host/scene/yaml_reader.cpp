@@ -11,6 +11,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <deque>
 #include <set>
 #include <sstream>
 
@@ -99,8 +100,32 @@ void check_yaml_node_count(const std::string& text, const std::string& source_na
   }
 }
 
+YAML::Mark YamlReader::mark_of(const YAML::Node& node) const {
+  // yaml-cpp marks an empty value (`camera:` at the end of its line) where the next token starts,
+  // often on the next line and under another key: the key the value belongs to is the place.
+  // A value from --set has no mark at all, and keeps it.
+  if (!node.IsNull() || node.Mark().is_null() || !document_) return node.Mark();
+  // Aliases can make the tree a graph with cycles: breadth first, so that a cycle does not hide the
+  // rest of the document, and no further than any document's size.
+  constexpr std::size_t kMostVisited = 1'000'000;
+  std::deque<YAML::Node> pending = {*document_};
+  for (std::size_t visited = 0; !pending.empty() && visited < kMostVisited; ++visited) {
+    const YAML::Node at = pending.front();
+    pending.pop_front();
+    if (at.IsMap()) {
+      for (const auto& entry : at) {
+        if (entry.second.is(node)) return entry.first.Mark();
+        pending.push_back(entry.second);
+      }
+    } else if (at.IsSequence()) {
+      for (const YAML::Node& item : at) pending.push_back(item);
+    }
+  }
+  return node.Mark();
+}
+
 std::string YamlReader::where(const YAML::Node& node) const {
-  const YAML::Mark mark = node.Mark();
+  const YAML::Mark mark = mark_of(node);
   if (mark.is_null()) return source_ + " (--set)";
   return fmt::format("{}:{}:{}", source_, mark.line + 1, mark.column + 1);
 }

@@ -39,6 +39,8 @@ class YamlReader {
   /// time is the value of t in expressions (animation).
   YamlReader(std::string source_name, double time) : source_(std::move(source_name)), time_(time) {}
 
+  /// The document the nodes come from; lets where() place an empty value at its key.
+  void set_document(const YAML::Node& root) { document_ = root; }
   /// "file:line:col" of a node, or "file (--set)" for values that came from an override.
   std::string where(const YAML::Node& node) const;
   [[noreturn]] void fail(const YAML::Node& at, const std::string& message) const;
@@ -70,8 +72,10 @@ class YamlReader {
 
  private:
   int choice_of(const YAML::Node& node, const std::string& what, const char* const* names, std::size_t count) const;
+  YAML::Mark mark_of(const YAML::Node& node) const;
   std::string source_;
   double time_;
+  std::optional<YAML::Node> document_;
 };
 
 /// How a YAML value looks in a message: its text for scalars, else "a list" or "a map".
