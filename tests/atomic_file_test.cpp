@@ -1,4 +1,5 @@
-// write_atomically: the target appears whole or not at all, whatever stops the write.
+// write_atomically and StagedFiles: the targets appear whole or not at all, whatever stops the
+// writes, and files staged together replace their targets only when all of them were written.
 #include "common/cancellation.hpp"
 #include "common/errors.hpp"
 #include "image/atomic_file.hpp"
@@ -93,6 +94,50 @@ TEST(AtomicFile, OutputFolderMustTakeNewFiles) {
     EXPECT_EQ(std::string(e.what()).find("--output /proc/out.png: "), 0u) << e.what();
     EXPECT_NE(std::string(e.what()).find("/proc"), std::string::npos) << e.what();
   }
+}
+
+TEST(StagedFiles, NoTargetChangesUntilEveryFileIsWritten) {
+  TempDir dir;
+  std::ofstream(dir / "a.txt") << "old a";
+  std::ofstream(dir / "b.txt") << "old b";
+  {
+    StagedFiles files;
+    files.stage(dir / "a.txt", [](const std::filesystem::path& temp) { std::ofstream(temp) << "new a"; });
+    EXPECT_THROW(files.stage(dir / "b.txt",
+                             [](const std::filesystem::path& temp) {
+                               std::ofstream(temp) << "half of b";
+                               throw OutputError("disk full");
+                             }),
+                 OutputError);
+    EXPECT_EQ(read(dir / "a.txt"), "old a") << "a is written but not in place";
+  }
+  EXPECT_EQ(dir.files(), (std::vector<std::string>{"a.txt", "b.txt"})) << "no temporary file stays";
+  EXPECT_EQ(read(dir / "a.txt"), "old a");
+  EXPECT_EQ(read(dir / "b.txt"), "old b");
+
+  StagedFiles files;
+  files.stage(dir / "a.txt", [](const std::filesystem::path& temp) { std::ofstream(temp) << "new a"; });
+  files.stage(dir / "b.txt", [](const std::filesystem::path& temp) { std::ofstream(temp) << "new b"; });
+  EXPECT_EQ(dir.files().size(), 4u) << "two targets, two temporaries";
+  files.commit();
+  EXPECT_EQ(dir.files(), (std::vector<std::string>{"a.txt", "b.txt"}));
+  EXPECT_EQ(read(dir / "a.txt"), "new a");
+  EXPECT_EQ(read(dir / "b.txt"), "new b");
+}
+
+TEST(StagedFiles, CtrlCBeforeTheCommitRenamesNothing) {
+  TempDir dir;
+  std::ofstream(dir / "a.txt") << "old a";
+  const CancellationReset reset;
+  {
+    StagedFiles files;
+    files.stage(dir / "a.txt", [](const std::filesystem::path& temp) { std::ofstream(temp) << "new a"; });
+    files.stage(dir / "b.txt", [](const std::filesystem::path& temp) { std::ofstream(temp) << "new b"; });
+    cancellation_requested().store(true);
+    EXPECT_THROW(files.commit(), Cancelled);
+  }
+  EXPECT_EQ(dir.files(), std::vector<std::string>{"a.txt"});
+  EXPECT_EQ(read(dir / "a.txt"), "old a");
 }
 
 }  // namespace

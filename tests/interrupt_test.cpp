@@ -177,14 +177,18 @@ TEST(Interrupt, ReferenceRenderStopsWithinARow) {
   EXPECT_EQ(dir.files(), std::vector<std::string>{"scene.yaml"});
 }
 
-TEST(Interrupt, SecondSignalExitsAtOnceAndRemovesTheFileBeingWritten) {
+TEST(Interrupt, SecondSignalExitsAtOnceAndRemovesTheFilesBeingWritten) {
   TempDir dir;
-  const std::filesystem::path temp = dir / ".out.clmarch-1.png";
-  std::ofstream(temp) << "half an image";
+  // An image and its buffers are both written before either is renamed into place.
+  const std::filesystem::path image = dir / ".out.clmarch-1.png";
+  const std::filesystem::path buffers = dir / ".out.clmarch-1.exr";
+  std::ofstream(image) << "an image";
+  std::ofstream(buffers) << "half the buffers";
   EXPECT_EXIT(
       {
         install_interrupt_handlers();
-        const PendingFile pending(temp);
+        const PendingFile pending_image(image);
+        const PendingFile pending_buffers(buffers);
         std::raise(SIGINT);
         // The first signal only asks to stop.
         if (!cancellation_requested().load()) std::_Exit(1);
@@ -192,7 +196,7 @@ TEST(Interrupt, SecondSignalExitsAtOnceAndRemovesTheFileBeingWritten) {
         std::_Exit(2);
       },
       ::testing::ExitedWithCode(130), "");
-  EXPECT_FALSE(std::filesystem::exists(temp));
+  EXPECT_EQ(dir.files(), std::vector<std::string>{});
 }
 
 }  // namespace

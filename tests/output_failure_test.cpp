@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <fstream>
 
 namespace clmarch {
 namespace {
@@ -50,6 +51,21 @@ TEST(OutputFailure, LimitInTheLastBufferFailsTooWithOrWithoutTheSignalIgnored) {
     EXPECT_EQ(result.err, (dir / "out.png").string() + ": cannot write: File too large\n") << shell_prefix;
     EXPECT_EQ(dir.files(), std::vector<std::string>{}) << shell_prefix << "no partial file, no temporary file";
   }
+}
+
+// The 128x72 PNG (about 2 KB) fits in a limit of 40 blocks, the float EXR of all buffers (300 KB
+// before compression) does not: both files are written before either replaces its target, so the
+// old image stays too.
+TEST(OutputFailure, BuffersThatFailLeaveTheOldImageAsItWas) {
+  TempDir dir;
+  std::ofstream(dir / "out.png") << "the previous image";
+  const auto result = run_clmarch_in_shell("ulimit -f 40; ", {"render", source_path("scenes/torus.yaml").string(), "--backend",
+                                                              "reference", "--size", "128x72", "-o", (dir / "out.png").string(),
+                                                              "--buffers", (dir / "out.exr").string()});
+  EXPECT_EQ(result.exit_code, kExitOutputFailed) << result.err;
+  EXPECT_EQ(result.err, (dir / "out.exr").string() + ": cannot write: File too large\n");
+  EXPECT_EQ(dir.files(), std::vector<std::string>{"out.png"}) << "no buffers, no temporary files";
+  EXPECT_EQ(testing::read_text(dir / "out.png"), "the previous image");
 }
 
 }  // namespace

@@ -63,9 +63,11 @@ int run_check_command(const CheckCommandOptions& options) {
   }
   if (!report.passed() && !options.out_dir.empty()) {
     const std::filesystem::path dir(options.out_dir);
-    write_color_image(dir / "opencl.png", opencl.buffers);
-    write_color_image(dir / "reference.png", reference);
-    write_buffers_exr(dir / "difference.exr", difference_image(opencl.buffers, reference));
+    StagedFiles written;
+    write_color_image(written, dir / "opencl.png", opencl.buffers);
+    write_color_image(written, dir / "reference.png", reference);
+    write_buffers_exr(written, dir / "difference.exr", difference_image(opencl.buffers, reference));
+    written.commit();
     log_info(fmt::format("wrote opencl.png, reference.png and difference.exr in {}", options.out_dir));
   }
   return report.passed() ? kExitOk : kExitCheckFailed;

@@ -26,7 +26,7 @@ extern "C" void on_interrupt(int signal) {
     [[maybe_unused]] const ssize_t written = write(STDERR_FILENO, kMessage, sizeof kMessage - 1);
   }
   // A second signal: the user does not want to wait for the current chunk or row to finish.
-  remove_pending_file_in_signal_handler();
+  remove_pending_files_in_signal_handler();
   _exit(128 + g_first_signal.load());
 }
 

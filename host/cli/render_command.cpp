@@ -212,8 +212,11 @@ void render_image(const RenderCommandOptions& options, const Scene& scene, const
   throw_if_cancelled();
   apply_view(result.buffers, scene.shading.view, scene.render);
 
-  write_color_image(files.output, result.buffers);
-  if (!files.buffers.empty()) write_buffers_exr(files.buffers, result.buffers);
+  // Both files are written before either replaces its target: a failure leaves both as they were.
+  StagedFiles written;
+  write_color_image(written, files.output, result.buffers);
+  if (!files.buffers.empty()) write_buffers_exr(written, files.buffers, result.buffers);
+  written.commit();
   log_info(fmt::format("wrote {}{}", files.output, files.buffers.empty() ? "" : " and " + files.buffers));
 
   if (options.stats) {

@@ -1,13 +1,16 @@
-// The temporary file an atomic write is filling, known to the signal handler so that a second
-// Ctrl-C, which exits at once, still removes it.
+// The temporary files of atomic writes, known to the signal handler so that a Ctrl-C that exits
+// at once still removes them.
 #pragma once
 
 #include <filesystem>
 
 namespace clmarch {
 
-/// Registers path as the file being written for its lifetime; one at a time (writes are sequential).
-/// Paths longer than PATH_MAX are not registered.
+/// Registers path as a temporary file for its lifetime. Up to kMaxPendingFiles at once (the files
+/// of one render, written before any is renamed into place); paths longer than PATH_MAX, or past
+/// that many, are not registered.
+inline constexpr int kMaxPendingFiles = 4;
+
 class PendingFile {
  public:
   explicit PendingFile(const std::filesystem::path& path);
@@ -16,10 +19,10 @@ class PendingFile {
   PendingFile& operator=(const PendingFile&) = delete;
 
  private:
-  bool registered_ = false;
+  int slot_ = -1;
 };
 
-/// Unlinks the registered file, if any. Async-signal-safe: only for the signal handler.
-void remove_pending_file_in_signal_handler();
+/// Unlinks the registered files, if any. Async-signal-safe: only for the signal handler.
+void remove_pending_files_in_signal_handler();
 
 }  // namespace clmarch

@@ -24,8 +24,28 @@ constexpr std::size_t kMaxFileNameLength = 255;
 
 }  // namespace
 
-void write_atomically(const std::filesystem::path& target,
-                      const std::function<void(const std::filesystem::path& temp)>& write) {
+struct StagedFiles::Staged {
+  Staged(std::filesystem::path target, std::filesystem::path temp)
+      : target(std::move(target)), temp(std::move(temp)), pending(this->temp) {}
+  std::filesystem::path target;
+  std::filesystem::path temp;
+  PendingFile pending;
+};
+
+StagedFiles::StagedFiles() = default;
+
+StagedFiles::~StagedFiles() {
+  for (const auto& staged : staged_) {
+    std::error_code ignored;
+    std::filesystem::remove(staged->temp, ignored);
+  }
+}
+
+void StagedFiles::stage(const std::filesystem::path& target,
+                        const std::function<void(const std::filesystem::path& temp)>& write) {
+  if (staged_.size() >= static_cast<std::size_t>(kMaxPendingFiles)) {
+    throw std::logic_error("StagedFiles: more files than the signal handler can remove");
+  }
   // The temporary name adds a dot and ".clmarch-PID" to the target's; the stem is cut so that it
   // stays within the folder's name limit when the target's own name is near it.
   const std::string tag = fmt::format(".clmarch-{}{}", getpid(), target.extension().string());
@@ -33,19 +53,37 @@ void write_atomically(const std::filesystem::path& target,
   stem.resize(std::min(stem.size(), kMaxFileNameLength - std::min(kMaxFileNameLength, tag.size() + 1)));
   std::filesystem::path temp = target;
   temp.replace_filename("." + stem + tag);
-  const PendingFile pending(temp);
+  // Registered before the file exists, so that no signal finds it unknown.
+  staged_.push_back(std::make_unique<Staged>(target, temp));
   try {
     write(temp);
-    // A Ctrl-C during the write leaves no new file: the temporary one goes, the target stays as it was.
-    throw_if_cancelled();
-    std::error_code error;
-    std::filesystem::rename(temp, target, error);
-    if (error) throw OutputError(fmt::format("{}: cannot write: {}", target.string(), error.message()));
   } catch (...) {
     std::error_code ignored;
     std::filesystem::remove(temp, ignored);
+    staged_.pop_back();
     throw;
   }
+}
+
+void StagedFiles::commit() {
+  // A Ctrl-C during the writes leaves no new file: the temporary ones go, the targets stay as they were.
+  throw_if_cancelled();
+  // A rename fails only if the folder changed since the checks (a target replaced by a folder):
+  // the files renamed before it stay.
+  while (!staged_.empty()) {
+    const Staged& next = *staged_.front();
+    std::error_code error;
+    std::filesystem::rename(next.temp, next.target, error);
+    if (error) throw OutputError(fmt::format("{}: cannot write: {}", next.target.string(), error.message()));
+    staged_.erase(staged_.begin());
+  }
+}
+
+void write_atomically(const std::filesystem::path& target,
+                      const std::function<void(const std::filesystem::path& temp)>& write) {
+  StagedFiles files;
+  files.stage(target, write);
+  files.commit();
 }
 
 void write_bytes(const std::filesystem::path& file, const void* data, std::size_t size,

@@ -4,14 +4,37 @@
 
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <string>
+#include <vector>
 
 namespace clmarch {
 
-/// Calls write(temp_path) with a temporary path in the target's folder that keeps the target's
-/// extension, then renames it to target. On any exception the temporary file is removed and the
-/// exception propagates. When cancellation was requested during the write, it throws Cancelled
-/// instead of renaming; a second signal, which exits at once, removes the temporary file too.
+/// Files written together (an image and its buffers): each is written to a temporary file beside
+/// its target when staged, and commit() renames them all into place, so that a failure or a
+/// Ctrl-C while writing any of them leaves every target as it was. Temporary files that were not
+/// committed are removed (also by a signal that exits at once: common/pending_file.hpp).
+class StagedFiles {
+ public:
+  StagedFiles();
+  ~StagedFiles();
+  StagedFiles(const StagedFiles&) = delete;
+  StagedFiles& operator=(const StagedFiles&) = delete;
+
+  /// Calls write(temp_path) with a temporary path in target's folder that keeps target's
+  /// extension. On an exception the temporary file is removed and the exception propagates.
+  /// At most kMaxPendingFiles files.
+  void stage(const std::filesystem::path& target, const std::function<void(const std::filesystem::path& temp)>& write);
+  /// Renames the staged files to their targets; throws Cancelled instead if cancellation was
+  /// requested (nothing renamed), OutputError if a rename fails (the files renamed before it stay).
+  void commit();
+
+ private:
+  struct Staged;
+  std::vector<std::unique_ptr<Staged>> staged_;
+};
+
+/// One file through StagedFiles: written to a temporary file, then renamed over target.
 void write_atomically(const std::filesystem::path& target,
                       const std::function<void(const std::filesystem::path& temp)>& write);
 

@@ -1,4 +1,4 @@
-// OpenImageIO output; every file goes through write_atomically.
+// OpenImageIO output; every file is staged through StagedFiles (temporary, then renamed).
 #include "image/image_writer.hpp"
 
 #include "common/errors.hpp"
@@ -41,8 +41,8 @@ void expect_reads_back(const std::filesystem::path& file, const OIIO::ImageSpec&
 }
 
 /// Interleaves the given planes and writes them with OpenImageIO as format.
-void write_interleaved(const std::filesystem::path& path, const FrameBuffers& buffers, const std::vector<Channel>& channels,
-                       OIIO::TypeDesc format, bool srgb) {
+void write_interleaved(StagedFiles& files, const std::filesystem::path& path, const FrameBuffers& buffers,
+                       const std::vector<Channel>& channels, OIIO::TypeDesc format, bool srgb) {
   const std::size_t pixels = static_cast<std::size_t>(buffers.width) * buffers.height;
   const std::size_t nc = channels.size();
   std::vector<float> interleaved(pixels * nc);
@@ -50,7 +50,7 @@ void write_interleaved(const std::filesystem::path& path, const FrameBuffers& bu
     const std::vector<float>& plane = buffers.plane(channels[c]);
     for (std::size_t i = 0; i < pixels; ++i) interleaved[i * nc + c] = srgb ? linear_to_srgb(plane[i]) : plane[i];
   }
-  write_atomically(path, [&](const std::filesystem::path& temp) {
+  files.stage(path, [&](const std::filesystem::path& temp) {
     auto out = OIIO::ImageOutput::create(temp.string());
     if (!out) throw OutputError(fmt::format("{}: cannot write: {}", path.string(), joined_lines(OIIO::geterror())));
     OIIO::ImageSpec spec(buffers.width, buffers.height, static_cast<int>(nc), format);
@@ -96,19 +96,19 @@ void check_image_path(const std::filesystem::path& path, const std::string& opti
   }
 }
 
-void write_color_image(const std::filesystem::path& path, const FrameBuffers& buffers) {
+void write_color_image(StagedFiles& files, const std::filesystem::path& path, const FrameBuffers& buffers) {
   const std::vector<Channel> rgb = {Channel::R, Channel::G, Channel::B};
   if (is_float_format(path)) {
-    write_interleaved(path, buffers, rgb, OIIO::TypeDesc::FLOAT, false);
+    write_interleaved(files, path, buffers, rgb, OIIO::TypeDesc::FLOAT, false);
   } else {
-    write_interleaved(path, buffers, rgb, OIIO::TypeDesc::UINT8, true);
+    write_interleaved(files, path, buffers, rgb, OIIO::TypeDesc::UINT8, true);
   }
 }
 
-void write_buffers_exr(const std::filesystem::path& path, const FrameBuffers& buffers) {
+void write_buffers_exr(StagedFiles& files, const std::filesystem::path& path, const FrameBuffers& buffers) {
   const std::vector<Channel> all = {Channel::R,     Channel::G,  Channel::B,  Channel::Depth,
                                     Channel::Steps, Channel::NX, Channel::NY, Channel::NZ};
-  write_interleaved(path, buffers, all, OIIO::TypeDesc::FLOAT, false);
+  write_interleaved(files, path, buffers, all, OIIO::TypeDesc::FLOAT, false);
 }
 
 }  // namespace clmarch

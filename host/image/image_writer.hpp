@@ -2,6 +2,7 @@
 // float EXR of all buffers.
 #pragma once
 
+#include "image/atomic_file.hpp"
 #include "render/frame_buffers.hpp"
 
 #include <filesystem>
@@ -14,10 +15,11 @@ namespace clmarch {
 void check_image_path(const std::filesystem::path& path, const std::string& option);
 
 /// Writes R, G, B: float and linear for float formats (exr, hdr), 8-bit sRGB-encoded otherwise.
-void write_color_image(const std::filesystem::path& path, const FrameBuffers& buffers);
+/// Staged into files: in place when they are committed.
+void write_color_image(StagedFiles& files, const std::filesystem::path& path, const FrameBuffers& buffers);
 
-/// Writes every channel (R, G, B, depth, steps, N.x, N.y, N.z) as one float EXR.
-void write_buffers_exr(const std::filesystem::path& path, const FrameBuffers& buffers);
+/// Writes every channel (R, G, B, depth, steps, N.x, N.y, N.z) as one float EXR, staged into files.
+void write_buffers_exr(StagedFiles& files, const std::filesystem::path& path, const FrameBuffers& buffers);
 
 /// The sRGB transfer function of a linear value, clamped to [0, 1].
 float linear_to_srgb(float linear);
