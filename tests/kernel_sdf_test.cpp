@@ -57,15 +57,21 @@ const std::vector<SdfCase>& sdf_cases() {
        {{{0.75, 0, 0}, -0.25}, {{0, 0, 0}, 0.5}}},
       {"subtraction", "subtraction: [{sphere: {radius: 1}}, {sphere: {center: [1.5, 0, 0], radius: 1}}]",
        {{{0, 0, 0}, -0.5}, {{1, 0, 0}, 0.5}}},
-      // At a == b the polynomial smooth minimum is a - k/4; beyond |a - b| >= k it is the hard min.
+      // The polynomial smooth minimum is min(a, b) - k h^2 / 4 with h = max(k - |a - b|, 0) / k: at
+      // a == b that is a - k/4; at |a - b| = k/2 (x = 0.875: a = -0.125, b = -0.375) it takes k/16;
+      // beyond |a - b| >= k it is the hard min. The smooth maximum adds what the minimum takes.
       {"smooth_union", "smooth_union: {k: 0.5, children: [{sphere: {radius: 1}}, {sphere: {center: [1.5, 0, 0], radius: 1}}]}",
-       {{{0.75, 0, 0}, -0.375}, {{-3, 0, 0}, 2.0}}},
+       {{{0.75, 0, 0}, -0.375}, {{0.875, 0, 0}, -0.375 - 0.5 / 16}, {{-3, 0, 0}, 2.0}}},
       {"smooth_intersection",
        "smooth_intersection: {k: 0.5, children: [{sphere: {radius: 1}}, {sphere: {center: [1.5, 0, 0], radius: 1}}]}",
-       {{{0.75, 0, 0}, -0.125}, {{-0.5, 0, 0}, 1.0}}},
-      // Subtracting a sphere from itself: at the surface a = -b = 0 and the blend adds k/4.
+       {{{0.75, 0, 0}, -0.125}, {{0.875, 0, 0}, -0.125 + 0.5 / 16}, {{-0.5, 0, 0}, 1.0}}},
+      // Subtracting a sphere from itself: at the surface a = -b = 0 and the blend adds k/4. Two
+      // spheres, at x = 1.875: a = 0.875, -b = 0.625, |a + b| = k/2.
       {"smooth_subtraction", "smooth_subtraction: {k: 0.5, children: [{sphere: {radius: 1}}, {sphere: {radius: 1}}]}",
        {{{1, 0, 0}, 0.125}, {{0, 3, 0}, 2.0}}},
+      {"smooth_subtraction_blend",
+       "smooth_subtraction: {k: 0.5, children: [{sphere: {radius: 1}}, {sphere: {center: [1.5, 0, 0], radius: 1}}]}",
+       {{{1.875, 0, 0}, 0.875 + 0.5 / 16}, {{-0.5, 0, 0}, -0.5}}},
       {"three_way_union", "union: [{sphere: {radius: 1}}, {sphere: {center: [4, 0, 0], radius: 1}}, {sphere: {center: [8, 0, 0], radius: 1}}]",
        {{{8, 0, 0}, -1.0}, {{6, 0, 0}, 1.0}}},
       // Box half [1, 2, 3] turned about z by 90 degrees becomes half (2, 1, 3) in the world.
