@@ -172,8 +172,15 @@ TEST(KernelColor, BlendsLikeTheReference) {
   const Scene smooth = scene_from_yaml(
       "sdf:\n  smooth_union: {k: 1, children: [{sphere: {radius: 1, color: [1, 0, 0]}}, "
       "{sphere: {center: [3, 0, 0], radius: 1, color: [0, 0, 1]}}]}\n");
-  const std::vector<glm::dvec3> points = {{-1, 0, 0}, {1.5, 0, 0}, {1.4, 0.3, 0}, {4, 0, 0}};
-  for (const Scene* scene : {&hard, &smooth}) {
+  // Red minus or intersected with blue, nearer: inside the blend band (docs/scene-format.md's color
+  // rules), at x = 0.875 the intersection's weight of red is h = 3/4, at x = 1.875 the
+  // subtraction's weight of blue is h = 1/4.
+  const std::string red_and_blue = "{k: 0.5, children: [{sphere: {radius: 1, color: [1, 0, 0]}}, "
+                                   "{sphere: {center: [1.5, 0, 0], radius: 1, color: [0, 0, 1]}}]}";
+  const Scene smooth_intersection = scene_from_yaml("sdf:\n  smooth_intersection: " + red_and_blue + "\n");
+  const Scene smooth_subtraction = scene_from_yaml("sdf:\n  smooth_subtraction: " + red_and_blue + "\n");
+  const std::vector<glm::dvec3> points = {{-1, 0, 0}, {1.5, 0, 0}, {1.4, 0.3, 0}, {4, 0, 0}, {0.875, 0, 0}, {1.875, 0, 0}};
+  for (const Scene* scene : {&hard, &smooth, &smooth_intersection, &smooth_subtraction}) {
     for (int lanes : {1, 16}) {
       OpenClOptions options;
       options.lanes = lanes;
@@ -188,6 +195,12 @@ TEST(KernelColor, BlendsLikeTheReference) {
   }
   EXPECT_NEAR(reference_sample(smooth.sdf, {1.5, 0, 0}).color.x, 0.5, 1e-12);
   EXPECT_NEAR(reference_sample(smooth.sdf, {1.5, 0, 0}).color.z, 0.5, 1e-12);
+  for (const auto& [scene, point] : {std::pair{&smooth_intersection, glm::dvec3(0.875, 0, 0)},
+                                     std::pair{&smooth_subtraction, glm::dvec3(1.875, 0, 0)}}) {
+    const glm::dvec3 color = reference_sample(scene->sdf, point).color;
+    EXPECT_NEAR(color.x, 0.75, 1e-12);
+    EXPECT_NEAR(color.z, 0.25, 1e-12);
+  }
 }
 
 }  // namespace
