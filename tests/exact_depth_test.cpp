@@ -5,6 +5,7 @@
 #include "scene/camera_model.hpp"
 #include "support/test_support.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -132,6 +133,44 @@ TEST_P(ExactDepth, HoldsWithATighterEpsilon) {
 
 INSTANTIATE_TEST_SUITE_P(Primitives, ExactDepth, ::testing::ValuesIn(depth_cases()),
                          [](const auto& info) { return info.param.name; });
+
+// The kernel's normals against the sphere's closed form, normalize(p) at the point p where the
+// march stopped (the gradient of the exact field there), for each finite-difference method: the
+// central stencil errs by ~(h kappa)^2, the one-sided ones (tetrahedral, forward) by ~h kappa with
+// kappa = 1 here; twice that, plus the float rounding of the taps' difference over h.
+TEST(KernelNormals, MatchTheSphereClosedFormForEachMethod) {
+  for (const char* method : {"central", "tetrahedral", "forward"}) {
+    Scene scene = scene_from_yaml(fmt::format(
+        "camera: {{position: [0.3, 0.5, 4], look_at: [0, 0, 0]}}\n"
+        "render: {{width: 64, height: 48, normal_method: {}, normal_epsilon: 1.0e-3}}\n"
+        "sdf: {{sphere: {{radius: 1}}}}\n",
+        method));
+    for (int lanes : {1, 16}) {
+      OpenClOptions options;
+      options.lanes = lanes;
+      options.purpose = KernelPurpose::Normals;
+      const FrameBuffers buffers = render_opencl(scene, options).buffers;
+      const CameraBasis basis = camera_basis(scene.camera, scene.render.width, scene.render.height);
+      const double h = scene.render.normal_epsilon;
+      const double stencil = std::string(method) == "central" ? 2.0 * h * h : 2.0 * h;
+      int compared = 0;
+      for (int j = 0; j < scene.render.height; ++j) {
+        for (int i = 0; i < scene.render.width; ++i) {
+          const double depth = buffers.at(Channel::Depth, i, j);
+          if (!std::isfinite(depth)) continue;
+          const glm::dvec3 p = basis.origin + depth * pixel_ray_direction(basis, i, j);
+          const double rounding = 2.0 * std::sqrt(3.0) * kFloatRelative * (glm::length(basis.origin) + depth) / h;
+          const glm::dvec3 normal(buffers.at(Channel::NX, i, j), buffers.at(Channel::NY, i, j),
+                                  buffers.at(Channel::NZ, i, j));
+          EXPECT_LE(glm::length(normal - glm::normalize(p)), stencil + rounding)
+              << method << " lanes " << lanes << " pixel " << i << "," << j;
+          ++compared;
+        }
+      }
+      EXPECT_GT(compared, 300) << method << ": the sphere covers part of the image";
+    }
+  }
+}
 
 }  // namespace
 }  // namespace clmarch
