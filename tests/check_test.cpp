@@ -1,12 +1,18 @@
 // The cross-check: every shipped scene passes it on the OpenCL device, and it has teeth: a
-// perturbed OpenCL render fails it while the unperturbed one passes.
+// perturbed OpenCL render fails it while the unperturbed one passes, and each criterion fails just
+// past its per-pixel tolerance and passes within it.
 #include "check/cross_check.hpp"
 #include "reference/reference_renderer.hpp"
 #include "render/opencl_renderer.hpp"
+#include "scene/camera_model.hpp"
 #include "scene/scene_loader.hpp"
 #include "support/test_support.hpp"
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include <nlohmann/json.hpp>
 
@@ -106,6 +112,159 @@ TEST(CheckCli, ReportsAndExitsZeroWhenWithinTolerance) {
   for (const char* key : {"mask_mismatch", "depth_abs", "depth_rel", "depth_in_epsilons", "steps_diff", "normal_angle_deg_p99", "color"}) {
     EXPECT_TRUE(report.contains(key)) << key;
   }
+}
+
+// Each criterion's threshold, pinned: the reference render against a copy of itself perturbed to
+// a multiple of the criterion's documented per-pixel tolerance (docs/accuracy.md) fails just past
+// 1 and passes within it. Without this, a threshold loosened threefold went unnoticed (mutation
+// testing): the teeth tests above perturb far past every threshold.
+class CheckThresholds : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    scene_ = small_scene("torus.yaml");
+    ASSERT_EQ(scene_.render.hit_threshold, HitThreshold::Fixed) << "the tolerances below assume a fixed epsilon";
+    reference_ = render_reference(scene_);
+    basis_ = camera_basis(scene_.camera, reference_.width, reference_.height);
+  }
+  bool hit(int i, int j) const { return std::isfinite(reference_.at(Channel::Depth, i, j)); }
+  /// Hit or miss like all 8 neighbours: the pixels every criterion but the silhouette's compares.
+  bool interior(int i, int j) const {
+    for (int dj = -1; dj <= 1; ++dj) {
+      for (int di = -1; di <= 1; ++di) {
+        const int ni = i + di, nj = j + dj;
+        if (ni < 0 || nj < 0 || ni >= reference_.width || nj >= reference_.height || hit(ni, nj) != hit(i, j)) return false;
+      }
+    }
+    return true;
+  }
+  /// Float rounding of a ray's depth t: 16 unit roundoffs of the coordinates' size.
+  double rounding(double t) const { return 16.0 * 0x1p-24 * (glm::length(basis_.origin) + t); }
+  template <typename Change>
+  CheckReport perturbed(Change change) const {
+    FrameBuffers copy = reference_;
+    for (int j = 0; j < copy.height; ++j) {
+      for (int i = 0; i < copy.width; ++i) {
+        if (interior(i, j)) change(copy, i, j);
+      }
+    }
+    return cross_check(scene_, copy, reference_);
+  }
+  static bool failed_on(const CheckReport& report, const std::string& criterion) {
+    return std::any_of(report.failures.begin(), report.failures.end(),
+                       [&](const std::string& f) { return f.find(criterion) != std::string::npos; });
+  }
+  Scene scene_;
+  FrameBuffers reference_;
+  CameraBasis basis_;
+};
+
+TEST_F(CheckThresholds, DepthAtItsTolerancePerPixel) {
+  // epsilon / max(|cos|, 0.1) + rounding, the march stopping short of the surface.
+  const auto shift_by = [&](double multiple) {
+    return perturbed([&](FrameBuffers& b, int i, int j) {
+      if (!hit(i, j)) return;
+      const double t = reference_.at(Channel::Depth, i, j);
+      const glm::dvec3 n(reference_.at(Channel::NX, i, j), reference_.at(Channel::NY, i, j), reference_.at(Channel::NZ, i, j));
+      const double cosine = std::max(std::abs(glm::dot(pixel_ray_direction(basis_, i, j), n)), 0.1);
+      b.at(Channel::Depth, i, j) = static_cast<float>(t - multiple * (scene_.render.epsilon / cosine + rounding(t)));
+    });
+  };
+  EXPECT_FALSE(failed_on(shift_by(0.7), "depth error")) << shift_by(0.7).to_text();
+  EXPECT_TRUE(failed_on(shift_by(1.5), "depth error")) << shift_by(1.5).to_text();
+}
+
+TEST_F(CheckThresholds, NormalsAtTheirToleranceForEqualDepths) {
+  // sqrt(3) (dt + rounding) / h, here with dt = 0: the normals turned about an axis across them.
+  const auto turn_by = [&](double multiple) {
+    return perturbed([&](FrameBuffers& b, int i, int j) {
+      if (!hit(i, j)) return;
+      const double t = reference_.at(Channel::Depth, i, j);
+      const double angle = multiple * std::sqrt(3.0) * rounding(t) / scene_.render.normal_epsilon;
+      const glm::dvec3 n(reference_.at(Channel::NX, i, j), reference_.at(Channel::NY, i, j), reference_.at(Channel::NZ, i, j));
+      const glm::dvec3 across = glm::normalize(glm::cross(n, std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
+      const glm::dvec3 turned = std::cos(angle) * n + std::sin(angle) * across;
+      b.at(Channel::NX, i, j) = static_cast<float>(turned.x);
+      b.at(Channel::NY, i, j) = static_cast<float>(turned.y);
+      b.at(Channel::NZ, i, j) = static_cast<float>(turned.z);
+    });
+  };
+  EXPECT_FALSE(failed_on(turn_by(0.5), "normal angle")) << turn_by(0.5).to_text();
+  EXPECT_TRUE(failed_on(turn_by(1.5), "normal angle")) << turn_by(1.5).to_text();
+}
+
+TEST_F(CheckThresholds, ColorOfMissesAtHalfAnEightBitStep) {
+  // The torus has no glow: a miss's color is the sky's, to half a step of 8 bits.
+  const auto brighten_by = [&](double multiple) {
+    return perturbed([&](FrameBuffers& b, int i, int j) {
+      if (!hit(i, j)) b.at(Channel::R, i, j) += static_cast<float>(multiple * 0.5 / 255.0);
+    });
+  };
+  EXPECT_FALSE(failed_on(brighten_by(0.5), "color error of misses")) << brighten_by(0.5).to_text();
+  EXPECT_TRUE(failed_on(brighten_by(1.5), "color error of misses")) << brighten_by(1.5).to_text();
+}
+
+TEST_F(CheckThresholds, ColorOfHitsAtTheShadingSlopeTimesTheNormalTolerance) {
+  // Half a step of 8 bits plus the color's largest change per radian of normal (the lights'
+  // radiance times the diffuse and specular slopes) times the normal tolerance, here dt = 0.
+  double radiance = 0.0;
+  for (const Light& light : scene_.lights) radiance += light.intensity * std::max({light.color.r, light.color.g, light.color.b});
+  const Shading& shading = scene_.shading;
+  ASSERT_GT(radiance, 0.0);
+  const double specular = shading.model == ShadingModel::Lambert ? 0.0 : shading.specular * shading.shininess;
+  const double per_radian = radiance * (shading.diffuse + specular);
+  const auto brighten_by = [&](double multiple) {
+    return perturbed([&](FrameBuffers& b, int i, int j) {
+      if (!hit(i, j)) return;
+      const double normal_tolerance = std::sqrt(3.0) * rounding(reference_.at(Channel::Depth, i, j)) / scene_.render.normal_epsilon;
+      b.at(Channel::G, i, j) += static_cast<float>(multiple * (per_radian * normal_tolerance + 0.5 / 255.0));
+    });
+  };
+  EXPECT_FALSE(failed_on(brighten_by(0.7), "color error p99")) << brighten_by(0.7).to_text();
+  EXPECT_TRUE(failed_on(brighten_by(1.5), "color error p99")) << brighten_by(1.5).to_text();
+}
+
+TEST_F(CheckThresholds, StepsAtOneOnAverage) {
+  const auto add_steps = [&](int every, float steps) {
+    int n = 0;
+    return perturbed([&](FrameBuffers& b, int i, int j) {
+      if (n++ % every == 0) b.at(Channel::Steps, i, j) += steps;
+    });
+  };
+  EXPECT_FALSE(failed_on(add_steps(2, 1.0f), "steps differ")) << add_steps(2, 1.0f).to_text();
+  EXPECT_TRUE(failed_on(add_steps(1, 2.0f), "steps differ")) << add_steps(1, 2.0f).to_text();
+}
+
+TEST_F(CheckThresholds, InteriorHitMaskFlipsAtOneInAThousand) {
+  // A pixel flips as an interior one only with its 8 neighbours flipped too: blocks of 3 x 3 hits
+  // made misses, one interior flip each (and 8 at its silhouette).
+  const int allowed = static_cast<int>(std::ceil(0.001 * reference_.width * reference_.height));
+  const auto flip_blocks = [&](int blocks) {
+    FrameBuffers copy = reference_;
+    int made = 0;
+    for (int j = 2; j + 2 < copy.height && made < blocks; ++j) {
+      for (int i = 2; i + 2 < copy.width && made < blocks; ++i) {
+        // A ring of hits, in both renders, around each block keeps its flips its own.
+        bool all_hits = true;
+        for (int dj = -2; dj <= 2; ++dj) {
+          for (int di = -2; di <= 2; ++di) {
+            all_hits = all_hits && hit(i + di, j + dj) && std::isfinite(copy.at(Channel::Depth, i + di, j + dj));
+          }
+        }
+        if (!all_hits) continue;
+        for (int dj = -1; dj <= 1; ++dj) {
+          for (int di = -1; di <= 1; ++di) copy.at(Channel::Depth, i + di, j + dj) = std::numeric_limits<float>::infinity();
+        }
+        ++made;
+      }
+    }
+    EXPECT_EQ(made, blocks) << "the torus has room for the blocks";
+    return cross_check(scene_, copy, reference_);
+  };
+  const CheckReport within = flip_blocks(allowed);
+  EXPECT_EQ(within.mask_mismatch_interior, allowed);
+  EXPECT_FALSE(failed_on(within, "interior pixels")) << within.to_text();
+  const CheckReport past = flip_blocks(allowed + 1);
+  EXPECT_TRUE(failed_on(past, "interior pixels")) << past.to_text();
 }
 
 }  // namespace
