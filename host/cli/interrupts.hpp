@@ -6,12 +6,12 @@
 namespace clmarch {
 
 /// Installs the SIGINT and SIGTERM handlers (a signal the parent process ignores stays ignored,
-/// and is blocked so that no library's handler sees it either). The
-/// first signal sets cancellation_requested() (and inside a BlockingCall prints
-/// "clmarch: interrupted" and _exits 128 + signal); a second removes the temporary output file being
-/// written, if any, and _exits 128 + the first signal. Also ignores SIGXFSZ, so that a write past
-/// the file size limit fails with EFBIG and is reported (exit code 4, no file) instead of killing
-/// the process with its temporary file left behind.
+/// and is blocked so that no library's handler sees it either). The first signal sets
+/// cancellation_requested(), and inside a BlockingCall prints "clmarch: interrupted" and _exits
+/// 128 + signal; a second removes the temporary output files being written, if any, and _exits
+/// 128 + the first signal. Also ignores SIGXFSZ, so that a write past the file size limit fails
+/// with EFBIG and is reported (exit code 4, no file) instead of killing the process with its
+/// temporary file left behind.
 void install_interrupt_handlers();
 
 /// 128 + the number of the first signal received: 130 for SIGINT, 143 for SIGTERM; 130 when none
