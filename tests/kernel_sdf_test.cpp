@@ -33,24 +33,26 @@ struct SdfCase {
 const double kSqrt2 = std::sqrt(2.0);
 const double kSqrt3 = std::sqrt(3.0);
 
+// Symmetric shapes are probed on both sides of each symmetry plane: a dropped fabs() shows only there.
 const std::vector<SdfCase>& sdf_cases() {
   static const std::vector<SdfCase> cases = {
       {"sphere", "sphere: {center: [1, 2, 3], radius: 0.5}",
        {{{1, 2, 5}, 1.5}, {{1, 2, 3}, -0.5}, {{4, 6, 3}, 4.5}}},
       {"box", "box: {center: [0, 0, 0], half_size: [1, 2, 3]}",
-       {{{3, 0, 0}, 2.0}, {{2, 3, 4}, kSqrt3}, {{0.5, 0, 0}, -0.5}, {{0, 0, 0}, -1.0}}},
+       {{{3, 0, 0}, 2.0}, {{2, 3, 4}, kSqrt3}, {{-2, -3, -4}, kSqrt3}, {{0.5, 0, 0}, -0.5}, {{0, 0, 0}, -1.0}}},
       {"round_box", "round_box: {half_size: [1, 1, 1], radius: 0.25}",
-       {{{2, 0, 0}, 1.0}, {{2, 2, 2}, kSqrt3 * 1.25 - 0.25}, {{0, 0, 0}, -1.0}}},
+       {{{2, 0, 0}, 1.0}, {{2, 2, 2}, kSqrt3 * 1.25 - 0.25}, {{-2, -2, -2}, kSqrt3 * 1.25 - 0.25}, {{0, 0, 0}, -1.0}}},
       // Bars are 2 * thickness wide, flush with the faces: x, y in [0.8, 1] for the bar along z.
       {"box_frame", "box_frame: {half_size: [1, 1, 1], thickness: 0.1}",
-       {{{0.9, 0.9, 0}, -0.1}, {{0, 0, 0}, 0.8 * kSqrt2}, {{2, 1, 0}, 1.0}}},
+       {{{0.9, 0.9, 0}, -0.1}, {{-0.9, -0.9, 0}, -0.1}, {{0, 0, 0}, 0.8 * kSqrt2}, {{2, 1, 0}, 1.0}, {{-2, -1, 0}, 1.0}}},
       {"torus", "torus: {major_radius: 1, minor_radius: 0.25}",
-       {{{0, 0, 0}, 0.75}, {{1, 0, 0}, -0.25}, {{0, 2, 0}, std::sqrt(5.0) - 0.25}, {{0, 0, 3}, 1.75}}},
+       {{{0, 0, 0}, 0.75}, {{1, 0, 0}, -0.25}, {{-1, 0, 0}, -0.25}, {{0, 2, 0}, std::sqrt(5.0) - 0.25},
+        {{0, -2, 0}, std::sqrt(5.0) - 0.25}, {{0, 0, 3}, 1.75}, {{0, 0, -3}, 1.75}}},
       {"plane", "plane: {normal: [0, 2, 0], offset: 1}", {{{5, 3, -2}, 4.0}, {{0, -3, 0}, -2.0}}},
       {"capsule", "capsule: {a: [0, 0, 0], b: [0, 2, 0], radius: 0.5}",
        {{{1, 1, 0}, 0.5}, {{0, -1, 0}, 0.5}, {{0, 4, 0}, 1.5}, {{0, 1, 0}, -0.5}}},
       {"cylinder", "cylinder: {radius: 1, half_height: 2}",
-       {{{3, 0, 0}, 2.0}, {{0, 5, 0}, 3.0}, {{2, 3, 0}, kSqrt2}, {{0, 0, 0}, -1.0}}},
+       {{{3, 0, 0}, 2.0}, {{0, 5, 0}, 3.0}, {{0, -5, 0}, 3.0}, {{2, 3, 0}, kSqrt2}, {{-2, -3, 0}, kSqrt2}, {{0, 0, 0}, -1.0}}},
       {"union", "union: [{sphere: {radius: 1}}, {sphere: {center: [1.5, 0, 0], radius: 1}}]",
        {{{0, 0, 0}, -1.0}, {{3, 0, 0}, 0.5}}},
       {"intersection", "intersection: [{sphere: {radius: 1}}, {sphere: {center: [1.5, 0, 0], radius: 1}}]",
