@@ -44,6 +44,9 @@ const BoundCase kBoundedCases[] = {
     {"smooth_union",
      "  smooth_union:\n    k: 0.8\n    children:\n      - sphere: {center: [-0.6, 0, 0], radius: 0.5}\n"
      "      - sphere: {center: [0.6, 0, 0], radius: 0.5}"},
+    // The blend's bulge reaches the bound: two coincident spheres blend into one of radius 1 + k/4.
+    {"smooth_union_coincident",
+     "  smooth_union:\n    k: 0.8\n    children:\n      - sphere: {radius: 1}\n      - sphere: {radius: 1}"},
     {"intersection", "  intersection:\n    - plane: {normal: [0, 1, 0], offset: 0}\n    - sphere: {radius: 1}"},
     {"smooth_subtraction",
      "  smooth_subtraction:\n    k: 0.3\n    children:\n      - box: {half_size: [1, 1, 1]}\n      - sphere: {radius: 1.2}"},
