@@ -91,6 +91,15 @@ TEST_P(NodeBounds, AreTightEnoughToHelp) {
 INSTANTIATE_TEST_SUITE_P(Kinds, NodeBounds, ::testing::ValuesIn(kBoundedCases),
                          [](const auto& info) { return std::string(info.param.name); });
 
+TEST(NodeBounds, TwoSpheresHaveTheirSmallestEnclosingSphere) {
+  // Spheres of radius 0.5 at x = -1 and 1 at x = 2: the enclosing sphere spans x in [-1.5, 3].
+  const BoundingSphere bound = *node_bounds(
+      tree("  union:\n    - sphere: {center: [-1, 0, 0], radius: 0.5}\n    - sphere: {center: [2, 0, 0], radius: 1}"));
+  EXPECT_NEAR(bound.center.x, 0.75, 1e-12);
+  EXPECT_NEAR(glm::length(glm::dvec3(0, bound.center.y, bound.center.z)), 0.0, 1e-12);
+  EXPECT_NEAR(bound.radius, 2.25, 1e-12);
+}
+
 TEST(NodeBounds, UnboundedFieldsHaveNone) {
   EXPECT_FALSE(node_bounds(tree("  plane: {normal: [0, 1, 0], offset: 0}")));
   EXPECT_FALSE(node_bounds(tree("  terrain: {amplitude: 1}")));

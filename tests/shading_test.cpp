@@ -1,6 +1,6 @@
 // Shading against closed forms, on both backends: Lambert on a plane, Fresnel at normal incidence,
-// Beer-Lambert fog at a known depth, shadows that must leave an unoccluded point fully lit and an
-// occluded one dark, tone mapping, the sky gradient.
+// Beer-Lambert fog at a known depth, height fog of a level ray, shadows that must leave an
+// unoccluded point fully lit and an occluded one dark, tone mapping, the sky gradient.
 #include "reference/reference_renderer.hpp"
 #include "render/opencl_renderer.hpp"
 #include "scene/camera_model.hpp"
@@ -76,6 +76,20 @@ TEST(Shading, BeerLambertFogAtAKnownDepth) {
   const CentreColor c = centre_color(kPlaneBelow + "shading: {ambient: 1, fog: {color: [0.2, 0.3, 0.9], density: 0.3}}\n");
   const glm::dvec3 fog(0.2, 0.3, 0.9), albedo(0.8, 0.6, 0.4);
   expect_color(c, fog + (albedo - fog) * std::exp(-density * 2.0), 1e-4);
+}
+
+TEST(Shading, HeightFogOfALevelRay) {
+  // A level ray (dir.y = 0) takes the limit of the height fog's integral, a exp(-y0 b) t: camera at
+  // height 1, a wall at depth 5, the sun's colour equal to the fog's so that its term drops out.
+  const double density = 0.04, falloff = 0.12, depth = 5.0;
+  const CentreColor c = centre_color(
+      "camera: {position: [0, 1, 0], look_at: [0, 1, -5]}\n"
+      "sdf: {plane: {normal: [0, 0, 1], offset: 5, color: [0.8, 0.6, 0.4]}}\n"
+      "shading: {ambient: 1, height_fog: {density: 0.04, falloff: 0.12, color: [0.2, 0.3, 0.9], "
+      "sun_color: [0.2, 0.3, 0.9]}}\n");
+  const glm::dvec3 fog(0.2, 0.3, 0.9), albedo(0.8, 0.6, 0.4);
+  const double amount = density * std::exp(-1.0 * falloff) * depth;
+  expect_color(c, albedo + (fog - albedo) * amount, 1e-4);
 }
 
 TEST(Shading, ShadowsLeaveAnUnoccludedPointFullyLit) {
