@@ -6,6 +6,7 @@
 #include "scene/yaml_reader.hpp"
 
 #include <fmt/format.h>
+#include <yaml-cpp/depthguard.h>
 
 #include <algorithm>
 #include <array>
@@ -647,6 +648,10 @@ Scene load_scene_text(const std::string& text, const std::string& source_name, c
   try {
     check_yaml_node_count(text, source_name, kMaxYamlNodes);
     root = YAML::Load(text);
+  } catch (const YAML::DeepRecursion& e) {
+    // yaml-cpp's own message for its recursion limit is "bad file".
+    throw InputError(fmt::format("{}:{}:{}: the YAML is nested more than {} levels deep (an sdf tree may have {})", source_name,
+                                 e.mark.line + 1, e.mark.column + 1, e.depth(), kMaxTreeDepth));
   } catch (const YAML::ParserException& e) {
     throw InputError(fmt::format("{}:{}:{}: malformed YAML: {}", source_name, e.mark.line + 1, e.mark.column + 1, e.msg));
   }
