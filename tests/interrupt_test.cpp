@@ -13,6 +13,7 @@
 
 #include <csignal>
 #include <fstream>
+#include <random>
 #include <thread>
 
 #include <sys/stat.h>
@@ -68,9 +69,15 @@ Interrupted interrupt(const std::vector<std::string>& args, const std::string& r
 /// build: on 2 cores the build takes 2-5 s, and the first dispatch as long again (PoCL compiles the
 /// kernel for its work-group size then).
 std::string slow_to_build_scene() {
-  const auto now = std::chrono::system_clock::now().time_since_epoch().count();
-  const double radius = 0.25 + static_cast<double>((now / 1000 + getpid()) % 100000) * 1e-6;
-  std::string yaml = "camera: {position: [200, 0, 300], look_at: [200, 0, -5]}\nsdf:\n  union:\n";
+  // One of 10^5 radii, and a sphere out of view at one of 10^6 depths: 10^11 programs, each built
+  // once at most.
+  std::random_device random;
+  const double radius = 0.25 + static_cast<double>(random() % 100000) * 1e-6;
+  const int depth = 10 + static_cast<int>(random() % 1000000);
+  std::string yaml = fmt::format(
+      "camera: {{position: [200, 0, 300], look_at: [200, 0, -5]}}\nsdf:\n  union:\n"
+      "    - {{sphere: {{center: [0, -{}, 0], radius: 1}}}}\n",
+      depth);
   for (int i = 0; i < 400; ++i) yaml += fmt::format("    - {{sphere: {{center: [{}, 0, -5], radius: {}}}}}\n", i, radius);
   return yaml;
 }
