@@ -125,6 +125,25 @@ TEST(StagedFiles, NoTargetChangesUntilEveryFileIsWritten) {
   EXPECT_EQ(read(dir / "b.txt"), "new b");
 }
 
+TEST(StagedFiles, ATargetThatBecameAFolderRenamesNothing) {
+  TempDir dir;
+  std::ofstream(dir / "a.txt") << "old a";
+  {
+    StagedFiles files;
+    files.stage(dir / "a.txt", [](const std::filesystem::path& temp) { std::ofstream(temp) << "new a"; });
+    files.stage(dir / "b.txt", [](const std::filesystem::path& temp) { std::ofstream(temp) << "new b"; });
+    std::filesystem::create_directory(dir / "b.txt");  // after the checks before the render
+    try {
+      files.commit();
+      FAIL() << "a folder in b's place must fail the commit";
+    } catch (const OutputError& e) {
+      EXPECT_EQ(std::string(e.what()), (dir / "b.txt").string() + ": cannot write: is a folder");
+    }
+  }
+  EXPECT_EQ(read(dir / "a.txt"), "old a") << "a is not replaced when b cannot be";
+  EXPECT_EQ(dir.files(), (std::vector<std::string>{"a.txt", "b.txt"})) << "no temporary file stays";
+}
+
 TEST(StagedFiles, CtrlCBeforeTheCommitRenamesNothing) {
   TempDir dir;
   std::ofstream(dir / "a.txt") << "old a";

@@ -68,8 +68,16 @@ void StagedFiles::stage(const std::filesystem::path& target,
 void StagedFiles::commit() {
   // A Ctrl-C during the writes leaves no new file: the temporary ones go, the targets stay as they were.
   throw_if_cancelled();
-  // A rename fails only if the folder changed since the checks (a target replaced by a folder):
-  // the files renamed before it stay.
+  // A rename in the target's own folder fails only if the folder changed since the checks before
+  // the render. The likely change, a target that became a folder, is caught before anything is
+  // renamed; anything rarer (the folder made read-only, a bind mount on a target) fails that
+  // rename alone and leaves the files renamed before it.
+  for (const auto& staged : staged_) {
+    std::error_code error;
+    if (std::filesystem::is_directory(staged->target, error)) {
+      throw OutputError(fmt::format("{}: cannot write: is a folder", staged->target.string()));
+    }
+  }
   while (!staged_.empty()) {
     const Staged& next = *staged_.front();
     std::error_code error;

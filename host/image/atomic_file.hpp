@@ -26,7 +26,8 @@ class StagedFiles {
   /// At most kMaxPendingFiles files.
   void stage(const std::filesystem::path& target, const std::function<void(const std::filesystem::path& temp)>& write);
   /// Renames the staged files to their targets; throws Cancelled instead if cancellation was
-  /// requested (nothing renamed), OutputError if a rename fails (the files renamed before it stay).
+  /// requested (nothing renamed), OutputError if a target is a folder (nothing renamed) or a
+  /// rename fails (the files renamed before it stay).
   void commit();
 
  private:
