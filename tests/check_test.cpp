@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <limits>
 
 #include <nlohmann/json.hpp>
@@ -20,6 +21,7 @@ namespace clmarch {
 namespace {
 
 using testing::source_path;
+using testing::TempDir;
 
 std::vector<std::string> shipped_scenes() {
   std::vector<std::string> names;
@@ -112,6 +114,45 @@ TEST(CheckCli, ReportsAndExitsZeroWhenWithinTolerance) {
   for (const char* key : {"mask_mismatch", "depth_abs", "depth_rel", "depth_in_epsilons", "steps_diff", "normal_angle_deg_p99", "color"}) {
     EXPECT_TRUE(report.contains(key)) << key;
   }
+}
+
+// A check that fails, end to end: exit code 1, the report says why, and --out-dir receives both
+// renders and their difference. The scene fails for a documented reason (docs/scene-format.md,
+// mandelbulb): at power 2 with 64 iterations the float orbit near the set drifts from the double
+// one, so the kernel's normals are several times the tolerance away from the reference's.
+TEST(CheckCli, AFailingCheckExitsOneAndWritesBothRendersAndTheirDifference) {
+  TempDir dir;
+  const std::filesystem::path scene = dir / "chaotic_bulb.yaml";
+  std::ofstream(scene) << "camera: {position: [0, 0, 3], look_at: [0, 0, 0]}\n"
+                          "render: {width: 48, height: 32}\n"
+                          "sdf: {mandelbulb: {power: 2, iterations: 64, bailout: 2}}\n";
+  const auto result = testing::run_clmarch({"check", scene.string(), "--out-dir", dir.path().string()});
+  ASSERT_EQ(result.exit_code, 1) << result.err << result.out;
+  EXPECT_NE(result.out.find("check FAILED:\n  normal angle error p99 is"), std::string::npos) << result.out;
+  EXPECT_EQ(dir.files(), (std::vector<std::string>{"chaotic_bulb.yaml", "difference.exr", "opencl.png", "reference.png"}));
+  const testing::Image opencl = testing::read_image(dir / "opencl.png");
+  const testing::Image reference = testing::read_image(dir / "reference.png");
+  const testing::Image difference = testing::read_image(dir / "difference.exr");
+  for (const testing::Image* image : {&opencl, &reference, &difference}) {
+    EXPECT_EQ(image->width, 48);
+    EXPECT_EQ(image->height, 32);
+  }
+  ASSERT_EQ(difference.channels, 8) << "the --buffers channels: R, G, B, depth, steps, N.x, N.y, N.z";
+  // The difference holds |opencl - reference| per channel: here the normals (N.x, N.y, N.z).
+  float largest_normal_difference = 0.0f;
+  for (int j = 0; j < 32; ++j) {
+    for (int i = 0; i < 48; ++i) {
+      for (int c = 5; c < 8; ++c) largest_normal_difference = std::max(largest_normal_difference, difference.at(i, j, c));
+    }
+  }
+  EXPECT_GT(largest_normal_difference, 0.1f) << "the failure the report names must show in the difference";
+
+  // Passing, nothing is written.
+  TempDir quiet;
+  const auto pass = testing::run_clmarch({"check", source_path("scenes/torus.yaml").string(), "--size", "48x32",
+                                          "--out-dir", quiet.path().string()});
+  ASSERT_EQ(pass.exit_code, 0) << pass.err << pass.out;
+  EXPECT_TRUE(quiet.files().empty());
 }
 
 // Each criterion's threshold, pinned: the reference render against a copy of itself perturbed to
