@@ -82,6 +82,28 @@ TEST(SceneLoader, OverrideErrorsNameTheOption) {
             "union, sphere)");
 }
 
+TEST(SceneLoader, OverridesReplaceListItemsAndFillAnEmptyFile) {
+  const Scene item = load_scene_text("sdf: {union: [{sphere: {}}]}\n", "s.yaml", {{"sdf.union.0", "{box: {half_size: [1, 2, 3]}}"}});
+  ASSERT_EQ(item.sdf.children.size(), 1u);
+  EXPECT_EQ(std::get<Box>(item.sdf.children[0].primitive).half_size, glm::dvec3(1, 2, 3));
+  const Scene empty = load_scene_text("", "s.yaml", {{"sdf", "{torus: {major_radius: 2}}"}});
+  EXPECT_EQ(std::get<Torus>(empty.sdf.primitive).major_radius, 2.0);
+  EXPECT_EQ(error_of("sdf: {sphere: {}}\nrender: {width: 32}\n", {{"render.width.x", "1"}}),
+            "--set render.width.x=1: 'width' is a value, not a map or list");
+}
+
+TEST(SceneLoader, RejectsBadOperatorShapesAndVectors) {
+  EXPECT_EQ(error_of("sdf: {repeat: {period: [0, 0, 0], children: [{sphere: {}}]}}\n"),
+            "s.yaml:1:24: sdf.repeat.period must repeat along at least one axis (a component > 0)");
+  EXPECT_EQ(error_of("sdf: {union: 5}\n"), "s.yaml:1:14: sdf.union must be a list of nodes or a map with children (got '5')");
+  EXPECT_EQ(error_of("sdf: {repeat: {period: [1, 1, 1], children: [{sphere: {}}, {box: {}}]}}\n"),
+            "s.yaml:1:45: sdf.repeat takes exactly 1 child node (got 2); wrap several in a union");
+  EXPECT_EQ(error_of("sdf: {displace: {amplitude: 0.1, children: []}}\n"),
+            "s.yaml:1:44: sdf.displace needs at least 1 child node (got 0)");
+  EXPECT_EQ(error_of("sdf: {sphere: {center: [1, 2]}}\n"),
+            "s.yaml:1:24: sdf.sphere.center must be a list of 3 numbers [x, y, z] (got 2 items)");
+}
+
 // Integers are decimal, as YAML 1.2 reads them: yaml-cpp alone took 0640 for octal 416 and 0x40
 // for 64, silently.
 TEST(SceneLoader, IntegersAreDecimal) {

@@ -62,9 +62,29 @@ TEST(SweepSpec, ProductAndOneAtATime) {
   EXPECT_EQ(combination_label(each[3]), "lanes=1");
 
   EXPECT_THROW(expand_sweep({axes[0], axes[0]}), InputError);
-  SweepAxis many{"render.max_steps", {}};
-  for (int i = 1; i <= 40; ++i) many.values.push_back(std::to_string(i));
-  EXPECT_THROW(expand_sweep({many, many, SweepAxis{"render.epsilon", many.values}}), InputError);
+}
+
+TEST(SweepSpec, AtMostAThousandCombinations) {
+  const auto axis = [](const std::string& key, int values) {
+    SweepAxis a{key, {}};
+    for (int i = 1; i <= values; ++i) a.values.push_back(std::to_string(i));
+    return a;
+  };
+  const std::string too_many = "--sweep: more than 1000 combinations; sweep fewer values";
+  EXPECT_EQ(expand_sweep({axis("render.max_steps", 10), axis("render.width", 10), axis("render.height", 10)}).size(), 1000u);
+  try {
+    expand_sweep({axis("render.max_steps", 10), axis("render.width", 10), axis("render.height", 11)});
+    ADD_FAILURE() << "1100 combinations";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), too_many);
+  }
+  EXPECT_EQ(expand_one_at_a_time({axis("render.max_steps", 999)}).size(), 1000u) << "the base and 999 settings";
+  try {
+    expand_one_at_a_time({axis("render.max_steps", 500), axis("render.width", 500)});
+    ADD_FAILURE() << "1001 combinations";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), too_many);
+  }
 }
 
 TEST(SweepSpec, KernelKeysSetTheOptions) {
