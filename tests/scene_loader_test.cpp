@@ -124,6 +124,11 @@ TEST(SceneLoader, AnEmptyValueIsPlacedAtItsKey) {
   EXPECT_EQ(error_of("sdf: {sphere: {radius: }}\n"), "s.yaml:1:16: sdf.sphere.radius must be a number (got nothing)");
   EXPECT_EQ(error_of("camera: {fov: 60}\nsdf: {sphere: {}}\n", {{"camera", "null"}}),
             "s.yaml (--set): camera must be a map (got nothing)");
+  // An empty item of a block list is placed at the list's start (the next token is under another
+  // key); in a flow list, at the comma after it.
+  EXPECT_EQ(error_of("sdf:\n  union:\n    - sphere: {}\n    -\n\nrender: {width: 8}\n"),
+            "s.yaml:3:5: sdf.union[1] must be a map with one key naming the node kind, e.g. sphere: {radius: 1} (got nothing)");
+  EXPECT_EQ(error_of("sdf: {sphere: {center: [1, , 2]}}\n"), "s.yaml:1:28: sdf.sphere.center[1] must be a number (got nothing)");
   // Aliases can make the tree a graph with a cycle; the search for the key goes around it.
   EXPECT_EQ(error_of("render: {width: }\nsdf: {sphere: {}}\nlights: &a [{point: {position: [0, 1, 0]}}, *a]\n"),
             "s.yaml:1:10: render.width must be an integer in decimal digits (got nothing)");

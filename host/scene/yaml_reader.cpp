@@ -118,7 +118,13 @@ YAML::Mark YamlReader::mark_of(const YAML::Node& node) const {
         pending.push_back(entry.second);
       }
     } else if (at.IsSequence()) {
-      for (const YAML::Node& item : at) pending.push_back(item);
+      for (const YAML::Node& item : at) {
+        // An empty item of a block list (a lone `-`) has no key: the list's start is the place, and
+        // the message names the item's index. In a flow list (`[1, , 2]`) the next token is the
+        // comma right after the empty item, which is as good.
+        if (item.is(node) && at.Style() == YAML::EmitterStyle::Block) return at.Mark();
+        pending.push_back(item);
+      }
     }
   }
   return node.Mark();
