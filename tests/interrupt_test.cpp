@@ -44,8 +44,9 @@ struct Interrupted {
 };
 
 /// Starts clmarch with args, waits for ready_line on stderr, sends signal, waits for the exit.
-Interrupted interrupt(const std::vector<std::string>& args, const std::string& ready_line, int signal) {
-  ClmarchProcess process(args);
+Interrupted interrupt(const std::vector<std::string>& args, const std::string& ready_line, int signal,
+                      const std::vector<std::string>& environment = {}) {
+  ClmarchProcess process(args, environment);
   Interrupted result;
   if (!process.wait_for_stderr(ready_line, 120s)) {
     ADD_FAILURE() << "never printed '" << ready_line << "':\n" << process.err();
@@ -162,6 +163,24 @@ TEST(Interrupt, OpenClRenderStopsAtTheNextChunkAndWritesNothing) {
   EXPECT_EQ(r.err.find("wrote"), std::string::npos) << r.err;
   EXPECT_LT(r.seconds_to_stop, 2.0) << "the signal came before the first chunk; one chunk takes ~0.7 s";
   EXPECT_EQ(dir.files(), std::vector<std::string>{"scene.yaml"}) << "no image, no buffers, no temporary file";
+}
+
+// The signal lands while the host allocates the image's planes (0.7 s for 4096x6144), before the
+// first chunk's wait; the coarse cone pass is enqueued by then, and with an empty PoCL cache PoCL
+// compiles it for its work-group size on its own threads. The process must leave with its exit
+// code, not crash in PoCL's compiler as exit()'s destructors tear LLVM down (it did: a segfault or
+// "LLVM ERROR" after "clmarch: interrupted", six times in six).
+TEST(Interrupt, ASignalWhileTheDriverStillCompilesLeavesWithItsExitCode) {
+  TempDir dir;
+  TempDir empty_cache;
+  std::ofstream(dir / "scene.yaml") << kGrazingScene;
+  const Interrupted r = interrupt({"--verbose", "render", (dir / "scene.yaml").string(), "--size", "4096x6144", "--set",
+                                   "render.max_steps=300", "-o", (dir / "out.png").string()},
+                                  "clmarch: build ", SIGINT, {"POCL_CACHE_DIR=" + empty_cache.path().string()});
+  EXPECT_NE(r.err.find("coarse pass cone"), std::string::npos) << "the cone pass is what is compiling\n" << r.err;
+  EXPECT_EQ(r.exit_code, kExitInterrupted) << r.err;
+  EXPECT_TRUE(r.err.ends_with("\nclmarch: interrupted\n")) << r.err;
+  EXPECT_EQ(dir.files(), std::vector<std::string>{"scene.yaml"});
 }
 
 TEST(Interrupt, ReferenceRenderStopsWithinARow) {

@@ -6,12 +6,16 @@
 #include "cli/error_report.hpp"
 #include "cli/interrupts.hpp"
 #include "cli/render_command.hpp"
+#include "common/cancellation.hpp"
 #include "common/errors.hpp"
 #include "common/log.hpp"
 
 #include <CLI/CLI.hpp>
 
+#include <cstdio>
 #include <iostream>
+
+#include <unistd.h>
 
 namespace {
 
@@ -82,11 +86,22 @@ int main(int argc, char** argv) {
     return kExitBadInput;
   }
   set_verbosity(quiet ? Verbosity::Quiet : verbose ? Verbosity::Verbose : Verbosity::Normal);
-  return run_reporting_errors([&] {
+  const int code = run_reporting_errors([&] {
     if (render->parsed()) return run_render_command(render_options);
     if (check->parsed()) return run_check_command(check_options);
     if (devices->parsed()) return run_devices_command();
     if (bench->parsed()) return run_bench_command(bench_options);
     return static_cast<int>(kExitOk);
   });
+  if (cancellation_requested().load() && code == interrupted_exit_code()) {
+    // Commands enqueued before the interrupt may still be running, or compiling: PoCL compiles a
+    // kernel for its work-group size at its first enqueue, on its own threads. exit()'s static
+    // destructors (LLVM's, inside PoCL) would pull the compiler from under them: a segfault or
+    // "LLVM ERROR" after "clmarch: interrupted" instead of the exit code. Nothing is left to write
+    // (the unwinding removed every temporary file), so leave without them.
+    std::cout.flush();
+    std::fflush(nullptr);
+    _exit(code);
+  }
+  return code;
 }
