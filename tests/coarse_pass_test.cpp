@@ -119,6 +119,24 @@ TEST(ConePass, KernelStartsMatchTheReference) {
   }
 }
 
+// The cone's margin and slope: with Crum's glow (the margin, COARSE_MARGIN = its radius) and the
+// pixel-cone hit threshold (slope > 0) the kernel's starts still match the reference's, which
+// both terms move by far more than the comparison's tolerance.
+TEST(ConePass, KernelStartsMatchTheReferenceWithGlowAndPixelCone) {
+  Scene scene = with_cones(load_scene("torus.yaml", 160, 90));
+  scene.shading.glow = Glow{glm::dvec3(1.0), 0.2};
+  scene.render.hit_threshold = HitThreshold::PixelCone;
+  scene.render.cone_factor = 2.0;
+  const ConeStarts reference = reference_cone_starts(scene);
+  const std::vector<float> kernel = kernel_cone_starts(scene);
+  ASSERT_EQ(kernel.size(), reference.start.size());
+  std::size_t close = 0;
+  for (std::size_t b = 0; b < kernel.size(); ++b) {
+    if (std::abs(kernel[b] - reference.start[b]) <= 1e-3 * (1.0 + reference.start[b])) ++close;
+  }
+  EXPECT_GE(close, kernel.size() * 99 / 100) << close << " of " << kernel.size();
+}
+
 // The image keeps its hits and depths while the camera rays take fewer steps: on exact fields (the
 // torus, boxes under the mod tiling) every depth stays within the check's per-pixel tolerance
 // (both marches stop within epsilon / cos before the same surface); on a bound (the terrain,
