@@ -14,35 +14,23 @@
 namespace clmarch {
 namespace {
 
-TEST(OpenClRenderer, ChunkedDispatchEqualsOneDispatch) {
-  Scene scene = testing::scene_from_yaml("sdf: {torus: {}}\nrender: {width: 67, height: 31}\n");
-  for (int lanes : {1, 16}) {
-    OpenClOptions whole, chunked;
-    whole.lanes = chunked.lanes = lanes;
-    chunked.max_chunk_pixels = 300;
-    const RenderResult a = render_opencl(scene, whole);
-    const RenderResult b = render_opencl(scene, chunked);
-    EXPECT_EQ(a.stats.chunks, 1);
-    EXPECT_GT(b.stats.chunks, 5);
-    for (int c = 0; c < kChannelCount; ++c) {
-      EXPECT_EQ(a.buffers.planes[c], b.buffers.planes[c]) << kChannelNames[c] << " lanes " << lanes;
-    }
-  }
-}
-
-// With the coarse cone pass each chunk's packets read their block's start by the image row, not
+// Also with the coarse cone pass, whose starts each chunk's packets read by the image row, not
 // the row within the chunk: the chunked image is the one dispatch's, bit for bit.
-TEST(OpenClRenderer, ChunkedDispatchWithTheConePassEqualsOneDispatch) {
-  Scene scene = testing::scene_from_yaml("sdf: {torus: {}}\nrender: {width: 67, height: 41, coarse_pass: cone}\n");
-  for (int lanes : {1, 16}) {
-    OpenClOptions whole, chunked;
-    whole.lanes = chunked.lanes = lanes;
-    chunked.max_chunk_pixels = 300;
-    const RenderResult a = render_opencl(scene, whole);
-    const RenderResult b = render_opencl(scene, chunked);
-    EXPECT_GT(b.stats.chunks, 5);
-    for (int c = 0; c < kChannelCount; ++c) {
-      EXPECT_EQ(a.buffers.planes[c], b.buffers.planes[c]) << kChannelNames[c] << " lanes " << lanes;
+TEST(OpenClRenderer, ChunkedDispatchEqualsOneDispatch) {
+  for (const char* yaml : {"sdf: {torus: {}}\nrender: {width: 67, height: 31}\n",
+                           "sdf: {torus: {}}\nrender: {width: 67, height: 41, coarse_pass: cone}\n"}) {
+    const Scene scene = testing::scene_from_yaml(yaml);
+    for (int lanes : {1, 16}) {
+      OpenClOptions whole, chunked;
+      whole.lanes = chunked.lanes = lanes;
+      chunked.max_chunk_pixels = 300;
+      const RenderResult a = render_opencl(scene, whole);
+      const RenderResult b = render_opencl(scene, chunked);
+      EXPECT_EQ(a.stats.chunks, 1);
+      EXPECT_GT(b.stats.chunks, 5);
+      for (int c = 0; c < kChannelCount; ++c) {
+        EXPECT_EQ(a.buffers.planes[c], b.buffers.planes[c]) << kChannelNames[c] << " lanes " << lanes << "\n" << yaml;
+      }
     }
   }
 }
