@@ -1,6 +1,7 @@
 // Shading against closed forms, on both backends: Lambert on a plane, Fresnel at normal incidence,
-// Beer-Lambert fog at a known depth, height fog of a level ray, shadows that must leave an
-// unoccluded point fully lit and an occluded one dark, tone mapping, the sky gradient.
+// Beer-Lambert fog at a known depth, height fog of a level ray, normal occlusion between two
+// planes, shadows that must leave an unoccluded point fully lit and an occluded one dark, tone
+// mapping, the sky gradient.
 #include "reference/reference_renderer.hpp"
 #include "render/opencl_renderer.hpp"
 #include "scene/camera_model.hpp"
@@ -113,6 +114,23 @@ TEST(Shading, ShadowsDarkenAnOccludedPoint) {
     const CentreColor c = centre_color(scene + "shading: {ambient: 0.1, shadows: {mode: " + mode + "}}\n");
     expect_color(c, glm::dvec3(0.8, 0.6, 0.4) * 0.1);
   }
+}
+
+TEST(Shading, NormalOcclusionBetweenAFloorAndACeiling) {
+  // The floor y = 0 under a ceiling at y = 0.15, no lights, ambient 1: the color is albedo times the
+  // occlusion. Along the normal the field at height h is min(h, 0.15 - h), so the samples at
+  // h = 0.05 i, i = 1..5, lack 0, 0.05, 0.15, 0.25 and 0.35 of h, and
+  // ao = 1 - (0.05^2 / 2 + 0.15^2 / 3 + 0.25^2 / 4 + 0.35^2 / 5) = 0.951125.
+  const std::string between =
+      "camera: {position: [0, 0.1, 0], look_at: [0, 0, 0], up: [0, 0, -1]}\n"
+      "sdf: {union: [{plane: {normal: [0, 1, 0], offset: 0, color: [0.8, 0.6, 0.4]}},"
+      " {plane: {normal: [0, -1, 0], offset: 0.15}}]}\n"
+      "lights: []\n";
+  const double ao = 1.0 - (0.05 * 0.05 / 2 + 0.15 * 0.15 / 3 + 0.25 * 0.25 / 4 + 0.35 * 0.35 / 5);
+  expect_color(centre_color(between + "shading: {ambient: 1, ambient_occlusion: {samples: 5, step: 0.05}}\n"),
+               glm::dvec3(0.8, 0.6, 0.4) * ao);
+  expect_color(centre_color(between + "shading: {ambient: 0.5, ambient_occlusion: {samples: 5, step: 0.05, power: 3}}\n"),
+               glm::dvec3(0.8, 0.6, 0.4) * 0.5 * std::pow(ao, 3.0));
 }
 
 TEST(Shading, ReinhardAndGamma) {
