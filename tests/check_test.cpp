@@ -64,6 +64,17 @@ INSTANTIATE_TEST_SUITE_P(Scenes, CheckScene, ::testing::ValuesIn(shipped_scenes(
   return name;
 });
 
+// Shadow rays under the cells tiling start at min_t past the surface: the only rays of that march
+// with a start other than 0 (the cone pass is off with cells). No shipped tiled scene has shadows.
+TEST(CheckFeatures, ShadowsUnderTheCellsTiling) {
+  const Scene scene = small_scene("tiled_spheres.yaml", {{"shading.shadows", "{mode: soft, min_t: 0.3}"}});
+  ASSERT_EQ(scene.tiling->method, TilingMethod::Cells);
+  for (int lanes : {1, 16}) {
+    const CheckReport report = check_against(scene, scene, lanes);
+    EXPECT_TRUE(report.passed()) << "lanes " << lanes << "\n" << report.to_text();
+  }
+}
+
 TEST(CheckTeeth, FailsWhenEpsilonIsTenTimesLarger) {
   const Scene scene = small_scene("torus.yaml");
   const Scene perturbed = small_scene("torus.yaml", {{"render.epsilon", "1e-3"}});
