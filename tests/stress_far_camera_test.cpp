@@ -220,6 +220,23 @@ TEST(FarCamera, EveryNodeKindRendersInTheMapFrame) {
   }
 }
 
+// The displacement texture is a function of the absolute point, which the kernel gets back from its
+// map frame: a displaced sphere that fills the image, 10^3 + 500 away, passes the cross-check (in
+// the scene above the displaced sphere is too small for a texture taken in the frame to show).
+TEST(FarCamera, DisplacementTakesTheAbsolutePoint) {
+  const std::string yaml =
+      "camera: {position: [1500, -1200, 902.2], look_at: [1500, -1200, 900], fov: 50}\n"
+      "render: {width: 64, height: 36, epsilon: 1.0e-4, max_steps: 400, max_distance: 40}\n"
+      "sdf: {displace: {amplitude: 0.2, frequency: 3, children: [{sphere: {center: [1500, -1200, 900], radius: 1}}]}}\n"
+      "lights: [{directional: {direction: [1, 2, 1.5]}}]\n";
+  const Scene scene = testing::scene_from_yaml(yaml);
+  ASSERT_NE(map_frame_origin(scene), glm::dvec3(0.0));
+  const FrameBuffers opencl = render_checked(scene, KernelPurpose::Shaded);
+  const CheckReport report = cross_check(scene, opencl, render_reference(scene));
+  EXPECT_TRUE(report.passed()) << report.to_text();
+  EXPECT_GT(report.both_hit, 64 * 36 / 2);
+}
+
 // Under the cells tiling the kernel only ever sees the camera's offset in its cell (computed in
 // double), so 1e7 away on each axis, off any cell boundary, renders the image of the camera at
 // that offset near the origin: bit for bit on PoCL; asserted within float rounding of the depth,
