@@ -90,6 +90,12 @@ TEST(Bench, CeilingReplaysExactlyTheMarchsPoints) {
     EXPECT_EQ(capped.samples(), kept);
     capped.run_ms();
     EXPECT_EQ(capped.counted_evaluations(), capped.points());
+    // k is the smallest stride whose share of the steps fits: 2.5 rounds up to 3, not down to 2.
+    const std::uint64_t most = render.stats.steps * 2 / 5;
+    const CeilingKernel shared(scene, options, 1, most);
+    const double share = static_cast<double>(render.stats.steps) / static_cast<double>(shared.pixel_stride());
+    EXPECT_LE(share, static_cast<double>(most)) << "stride " << shared.pixel_stride();
+    EXPECT_GT(static_cast<double>(render.stats.steps) / static_cast<double>(shared.pixel_stride() - 1), static_cast<double>(most));
   }
 }
 
