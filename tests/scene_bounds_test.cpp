@@ -218,32 +218,37 @@ TEST(CameraRayBounds, TilesSkippedWholeByDepthProgramsAreMissesOfTheShadedOnes) 
     Scene scene = scene_from_yaml(std::string("camera: {position: ") + view.position + ", look_at: " + view.look_at +
                                   ", fov: " + view.fov + "}\n"
                                   "render: {width: 61, height: 45, max_distance: 1000}\nsdf: {torus: {}}\n");
-    OpenClOptions shaded, depth, normals;
-    shaded.purpose = KernelPurpose::Shaded;
-    depth.purpose = KernelPurpose::DepthSteps;
-    depth.max_chunk_pixels = 61 * 8;
-    normals.purpose = KernelPurpose::Normals;
-    normals.max_chunk_pixels = 61 * 8;
-    const FrameBuffers a = render_opencl(scene, shaded).buffers;
-    const FrameBuffers b = render_opencl(scene, depth).buffers;
-    const FrameBuffers n = render_opencl(scene, normals).buffers;
-    EXPECT_EQ(a.plane(Channel::Steps), b.plane(Channel::Steps)) << position;
-    EXPECT_EQ(a.plane(Channel::Depth), b.plane(Channel::Depth)) << position;
-    EXPECT_EQ(a.plane(Channel::Steps), n.plane(Channel::Steps)) << position;
-    EXPECT_EQ(a.plane(Channel::Depth), n.plane(Channel::Depth)) << position;
-    for (Channel c : {Channel::NX, Channel::NY, Channel::NZ}) {
-      EXPECT_EQ(a.plane(c), n.plane(c)) << position;
-      EXPECT_TRUE(all_zero(b.plane(c))) << position;
+    // Tiles of 4x4 (16 lanes) and of 4x2 (8 lanes): the tile test finds its row by the tile height.
+    for (int lanes : {8, 16}) {
+      OpenClOptions shaded, depth, normals;
+      shaded.purpose = KernelPurpose::Shaded;
+      shaded.lanes = depth.lanes = normals.lanes = lanes;
+      depth.purpose = KernelPurpose::DepthSteps;
+      depth.max_chunk_pixels = 61 * 8;
+      normals.purpose = KernelPurpose::Normals;
+      normals.max_chunk_pixels = 61 * 8;
+      const std::string where = position + ", lanes " + std::to_string(lanes);
+      const FrameBuffers a = render_opencl(scene, shaded).buffers;
+      const FrameBuffers b = render_opencl(scene, depth).buffers;
+      const FrameBuffers n = render_opencl(scene, normals).buffers;
+      EXPECT_EQ(a.plane(Channel::Steps), b.plane(Channel::Steps)) << where;
+      EXPECT_EQ(a.plane(Channel::Depth), b.plane(Channel::Depth)) << where;
+      EXPECT_EQ(a.plane(Channel::Steps), n.plane(Channel::Steps)) << where;
+      EXPECT_EQ(a.plane(Channel::Depth), n.plane(Channel::Depth)) << where;
+      for (Channel c : {Channel::NX, Channel::NY, Channel::NZ}) {
+        EXPECT_EQ(a.plane(c), n.plane(c)) << where;
+        EXPECT_TRUE(all_zero(b.plane(c))) << where;
+      }
+      for (Channel c : {Channel::R, Channel::G, Channel::B, Channel::WallSteps}) {
+        EXPECT_TRUE(all_zero(b.plane(c))) << where;
+        EXPECT_TRUE(all_zero(n.plane(c))) << where;
+      }
+      const std::vector<float>& depths = a.plane(Channel::Depth);
+      if (std::any_of(depths.begin(), depths.end(), [](float d) { return std::isfinite(d); })) ++views_with_hits;
     }
-    for (Channel c : {Channel::R, Channel::G, Channel::B, Channel::WallSteps}) {
-      EXPECT_TRUE(all_zero(b.plane(c))) << position;
-      EXPECT_TRUE(all_zero(n.plane(c))) << position;
-    }
-    const std::vector<float>& depths = a.plane(Channel::Depth);
-    if (std::any_of(depths.begin(), depths.end(), [](float d) { return std::isfinite(d); })) ++views_with_hits;
   }
-  // All but the view away from the torus see it.
-  EXPECT_EQ(views_with_hits, 9);
+  // All but the view away from the torus see it, at both widths.
+  EXPECT_EQ(views_with_hits, 18);
 }
 
 // The kernel's scalar tile test as the device computes it, in float from the frame's parameters
