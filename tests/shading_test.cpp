@@ -1,6 +1,7 @@
 // Shading against closed forms, on both backends: Lambert on a plane, Fresnel at normal incidence,
 // Beer-Lambert fog at a known depth, height fog of a level ray, normal occlusion between two
-// planes, shadows that must leave an unoccluded point fully lit and an occluded one dark, tone
+// planes, shadows that must leave an unoccluded point fully lit (also with an occluder beyond a
+// point light) and an occluded one dark, tone
 // mapping, the sky gradient.
 #include "reference/reference_renderer.hpp"
 #include "render/opencl_renderer.hpp"
@@ -100,6 +101,19 @@ TEST(Shading, ShadowsLeaveAnUnoccludedPointFullyLit) {
     const CentreColor shadowed = centre_color(lit + ", shadows: {mode: " + mode + "}}\n");
     expect_color(shadowed, plain.reference);
     EXPECT_GT(plain.reference.x, 0.3) << "the light must reach the point";
+  }
+}
+
+TEST(Shading, ShadowsOfAPointLightEndAtTheLight) {
+  // A sphere beyond the light, on the line from the point through the light: it casts no shadow.
+  const std::string lit = "camera: {position: [0, 2, 0], look_at: [0, 0, 0], up: [0, 0, -1]}\n"
+                          "lights: [{point: {position: [1, 3, 0.5]}}]\nshading: {ambient: 0.1";
+  const std::string plane = "plane: {normal: [0, 1, 0], offset: 0, color: [0.8, 0.6, 0.4]}";
+  const CentreColor plain = centre_color("sdf: {" + plane + "}\n" + lit + "}\n");
+  for (const char* mode : {"hard", "soft", "soft_improved"}) {
+    const CentreColor shadowed = centre_color("sdf: {union: [{" + plane + "}, {sphere: {center: [2, 6, 1], radius: 0.5}}]}\n" +
+                                              lit + ", shadows: {mode: " + mode + "}}\n");
+    expect_color(shadowed, plain.reference);
   }
 }
 
