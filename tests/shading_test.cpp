@@ -1,8 +1,7 @@
 // Shading against closed forms, on both backends: Lambert on a plane, Fresnel at normal incidence,
 // Beer-Lambert fog at a known depth, height fog of a level ray, normal occlusion between two
 // planes, shadows that must leave an unoccluded point fully lit (also with an occluder beyond a
-// point light) and an occluded one dark, tone
-// mapping, the sky gradient.
+// point light) and an occluded one dark, tone mapping, the sky gradient.
 #include "reference/reference_renderer.hpp"
 #include "render/opencl_renderer.hpp"
 #include "scene/camera_model.hpp"
