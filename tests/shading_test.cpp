@@ -1,7 +1,7 @@
 // Shading against closed forms, on both backends: Lambert on a plane, Fresnel at normal incidence,
 // Beer-Lambert fog at a known depth, height fog of a level ray, normal occlusion between two
 // planes, shadows that must leave an unoccluded point fully lit (also with an occluder beyond a
-// point light) and an occluded one dark, tone mapping, the sky gradient.
+// point light) and an occluded one dark, a mirror's reflection, tone mapping, the sky gradient.
 #include "reference/reference_renderer.hpp"
 #include "render/opencl_renderer.hpp"
 #include "scene/camera_model.hpp"
@@ -144,6 +144,16 @@ TEST(Shading, NormalOcclusionBetweenAFloorAndACeiling) {
                glm::dvec3(0.8, 0.6, 0.4) * ao);
   expect_color(centre_color(between + "shading: {ambient: 0.5, ambient_occlusion: {samples: 5, step: 0.05, power: 3}}\n"),
                glm::dvec3(0.8, 0.6, 0.4) * 0.5 * std::pow(ao, 3.0));
+}
+
+TEST(Shading, AMirrorAddsItsReflectivityTimesWhatItReflects) {
+  // Looking straight down at a floor of reflectivity 0.5, no lights: its mirror ray goes straight up
+  // and misses, so the color is the ambient term plus half the background.
+  const CentreColor c = centre_color(
+      "camera: {position: [0, 2, 0], look_at: [0, 0, 0], up: [0, 0, -1]}\n"
+      "sdf: {plane: {normal: [0, 1, 0], offset: 0, color: [0.8, 0.6, 0.4], reflectivity: 0.5}}\n"
+      "lights: []\nshading: {ambient: 0.1, reflections: 1, background: [0.2, 0.4, 0.6]}\n");
+  expect_color(c, glm::dvec3(0.8, 0.6, 0.4) * 0.1 + glm::dvec3(0.2, 0.4, 0.6) * 0.5);
 }
 
 TEST(Shading, ReinhardAndGamma) {
