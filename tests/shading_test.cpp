@@ -1,7 +1,8 @@
 // Shading against closed forms, on both backends: Lambert on a plane, Fresnel at normal incidence,
-// Beer-Lambert fog at a known depth, height fog of a level ray, normal occlusion between two
-// planes, shadows that must leave an unoccluded point fully lit (also with an occluder beyond a
-// point light) and an occluded one dark, a mirror's reflection, tone mapping, the sky gradient.
+// Phong, Blinn-Phong and PBR at 60 degrees, Beer-Lambert fog at a known depth, height fog of a
+// level ray, normal occlusion between two planes, shadows that must leave an unoccluded point
+// fully lit (also with an occluder beyond a point light) and an occluded one dark, a mirror's
+// reflection, tone mapping, the sky gradient.
 #include "reference/reference_renderer.hpp"
 #include "render/opencl_renderer.hpp"
 #include "scene/camera_model.hpp"
@@ -69,6 +70,41 @@ TEST(Shading, FresnelAtNormalIncidenceIsF0) {
   const double specular = distribution / (4.0 + 1e-4);
   const glm::dvec3 expected = (1.0 - f0) * (1.0 - metallic) * albedo / M_PI + f0 * specular;
   expect_color(c, expected, 1e-4);
+}
+
+// Light 60 degrees from the normal, seen along the normal (v = n): n.l = 1/2, the mirror direction
+// of l makes 60 degrees with v (Phong: r.v = 1/2) and the half vector 30 degrees with n (Blinn-Phong
+// and GGX: n.h = h.v = cos 30).
+const std::string kLitAtSixtyDegrees = "lights: [{directional: {direction: [0.8660254037844386, 0.5, 0], intensity: 2}}]\n";
+
+TEST(Shading, PhongAndBlinnPhongSpecularAtSixtyDegrees) {
+  const glm::dvec3 albedo(0.8, 0.6, 0.4);
+  const double cos30 = std::sqrt(3.0) / 2.0;
+  for (const auto& [model, cosine] : {std::pair<std::string, double>{"phong", 0.5}, {"blinn_phong", cos30}}) {
+    const CentreColor c = centre_color(kPlaneBelow + kLitAtSixtyDegrees + "shading: {model: " + model +
+                                       ", ambient: 0.1, diffuse: 0.9, specular: 0.5, shininess: 8}\n");
+    expect_color(c, albedo * (0.1 + 0.9 * 0.5 * 2.0) + glm::dvec3(0.5 * std::pow(cosine, 8.0) * 2.0), 1e-4);
+  }
+}
+
+TEST(Shading, PbrAtSixtyDegrees) {
+  // Cook-Torrance with every term away from its normal-incidence value (docs/scene-format.md).
+  const double roughness = 0.5, metallic = 0.25, n_dot_l = 0.5, n_dot_v = 1.0, cos30 = std::sqrt(3.0) / 2.0;
+  const glm::dvec3 albedo(0.8, 0.6, 0.4);
+  const CentreColor c = centre_color(
+      "camera: {position: [0, 2, 0], look_at: [0, 0, 0], up: [0, 0, -1]}\n"
+      "sdf: {plane: {normal: [0, 1, 0], offset: 0, color: [0.8, 0.6, 0.4], roughness: 0.5, metallic: 0.25}}\n" +
+      kLitAtSixtyDegrees + "shading: {model: pbr, ambient: 0.1}\n");
+  const double a2 = std::pow(roughness, 4.0);
+  const double denominator = cos30 * cos30 * (a2 - 1.0) + 1.0;
+  const double distribution = a2 / (M_PI * denominator * denominator);
+  const double k = (roughness + 1.0) * (roughness + 1.0) / 8.0;
+  const double geometry = n_dot_v / (n_dot_v * (1.0 - k) + k) * n_dot_l / (n_dot_l * (1.0 - k) + k);
+  const glm::dvec3 f0 = glm::dvec3(0.04) + (albedo - glm::dvec3(0.04)) * metallic;
+  const glm::dvec3 fresnel = f0 + (1.0 - f0) * std::pow(1.0 - cos30, 5.0);
+  const double specular = distribution * geometry / (4.0 * n_dot_v * n_dot_l + 1e-4);
+  const glm::dvec3 lit = ((1.0 - fresnel) * (1.0 - metallic) * albedo / M_PI + fresnel * specular) * n_dot_l * 2.0;
+  expect_color(c, albedo * 0.1 + lit, 1e-4);
 }
 
 TEST(Shading, BeerLambertFogAtAKnownDepth) {
