@@ -1,4 +1,5 @@
-// The cross-check: every shipped scene passes it on the OpenCL device, and it has teeth: a
+// The cross-check: every shipped scene passes it on the OpenCL device, and so do features no
+// shipped scene uses (shadows under the cells tiling, two reflection bounces); it has teeth: a
 // perturbed OpenCL render fails it while the unperturbed one passes, and each criterion fails just
 // past its per-pixel tolerance and passes within it.
 #include "check/cross_check.hpp"
@@ -73,6 +74,20 @@ TEST(CheckFeatures, ShadowsUnderTheCellsTiling) {
     const CheckReport report = check_against(scene, scene, lanes);
     EXPECT_TRUE(report.passed()) << "lanes " << lanes << "\n" << report.to_text();
   }
+}
+
+// Two mirror bounces: a bounce that misses shows the sky once and ends that pixel's bounces (the
+// mirror floor's rays that leave past the torus must not bounce again off the same floor). No
+// shipped scene has more than one bounce.
+TEST(CheckFeatures, SecondBounceFollowsOnlyTheRaysWhoseFirstBounceHit) {
+  const Scene scene = testing::scene_from_yaml(
+      "camera: {position: [0, 2.5, 4], look_at: [0, 0, 0], fov: 60}\n"
+      "sdf:\n  union:\n    - torus: {color: [0.9, 0.3, 0.2], reflectivity: 0.6}\n"
+      "    - plane: {normal: [0, 1, 0], offset: 0.6, color: [0.2, 0.2, 0.25], reflectivity: 0.8}\n"
+      "render: {width: 64, height: 48}\nlights:\n  - directional: {direction: [1, 2, 1]}\n"
+      "shading: {model: blinn_phong, reflections: 2}\n");
+  const CheckReport report = check_against(scene, scene);
+  EXPECT_TRUE(report.passed()) << report.to_text();
 }
 
 TEST(CheckTeeth, FailsWhenEpsilonIsTenTimesLarger) {

@@ -1,9 +1,7 @@
 // The OpenCL renderer's dispatch: images split into chunks give the same buffers as one dispatch.
 #include "render/opencl_renderer.hpp"
 
-#include "check/cross_check.hpp"
 #include "codegen/kernel_source.hpp"
-#include "reference/reference_renderer.hpp"
 #include "support/test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -33,22 +31,6 @@ TEST(OpenClRenderer, ChunkedDispatchEqualsOneDispatch) {
       }
     }
   }
-}
-
-// Two mirror bounces: a bounce that misses shows the sky once and ends that pixel's bounces (the
-// mirror floor's rays that leave past the torus must not bounce again off the same floor).
-TEST(OpenClRenderer, SecondBounceFollowsOnlyTheRaysWhoseFirstBounceHit) {
-  const Scene scene = testing::scene_from_yaml(
-      "camera: {position: [0, 2.5, 4], look_at: [0, 0, 0], fov: 60}\n"
-      "sdf:\n  union:\n    - torus: {color: [0.9, 0.3, 0.2], reflectivity: 0.6}\n"
-      "    - plane: {normal: [0, 1, 0], offset: 0.6, color: [0.2, 0.2, 0.25], reflectivity: 0.8}\n"
-      "render: {width: 64, height: 48}\nlights:\n  - directional: {direction: [1, 2, 1]}\n"
-      "shading: {model: blinn_phong, reflections: 2}\n");
-  OpenClOptions shaded;
-  shaded.purpose = KernelPurpose::Shaded;
-  const FrameBuffers opencl = render_opencl(scene, shaded).buffers;
-  const CheckReport report = cross_check(scene, opencl, render_reference(scene));
-  EXPECT_TRUE(report.passed()) << report.to_text();
 }
 
 // A color image alone (Color) writes what the full shaded program writes but the normal planes,
