@@ -40,12 +40,13 @@ Scene small_scene(const std::string& name, const std::vector<SceneOverride>& ove
   return scene;
 }
 
-/// Renders opencl_scene on the device and scene on the reference, and compares them.
+/// Renders opencl_scene on the device and scene on the reference, and compares them as `clmarch
+/// check` does, the shading of the device's own hits included.
 CheckReport check_against(const Scene& scene, const Scene& opencl_scene, int lanes = 16) {
   OpenClOptions options;
   options.lanes = lanes;
   const FrameBuffers opencl = render_opencl(opencl_scene, options).buffers;
-  return cross_check(scene, opencl, render_reference(scene));
+  return cross_check(scene, opencl, render_reference(scene), reshade_hits(scene, opencl));
 }
 
 class CheckScene : public ::testing::TestWithParam<std::string> {};
@@ -132,14 +133,33 @@ TEST(CheckTeeth, FailsWhenTheColorOfMissesDiffers) {
   EXPECT_GT(glow.color_compared, glow.both_hit) << "misses must be among the pixels compared";
 }
 
+// A material slightly off changes only the shading: the geometry is the same, and the end-to-end
+// color criterion, whose tolerance must cover the normals' differences, lets it through; the
+// reference's color of the device's own hits does not. Smith's k doubled on pbr_sphere and a node's
+// reflectivity ignored on lava_lamp (kernel mutants) were caught only this way.
+TEST(CheckTeeth, FailsWhenOnlyTheShadingDiffers) {
+  const Scene lamp = small_scene("lava_lamp.yaml");
+  const CheckReport lamp_report =
+      check_against(lamp, small_scene("lava_lamp.yaml", {{"sdf.union.1.plane.reflectivity", "0.36"}}));
+  ASSERT_EQ(lamp_report.failures.size(), 1u) << lamp_report.to_text();
+  EXPECT_NE(lamp_report.failures[0].find("shading error"), std::string::npos) << lamp_report.to_text();
+
+  const Scene sphere = small_scene("pbr_sphere.yaml");
+  const CheckReport sphere_report = check_against(sphere, small_scene("pbr_sphere.yaml", {{"sdf.sphere.roughness", "0.33"}}));
+  ASSERT_EQ(sphere_report.failures.size(), 1u) << sphere_report.to_text();
+  EXPECT_NE(sphere_report.failures[0].find("shading error"), std::string::npos) << sphere_report.to_text();
+}
+
 TEST(CheckCli, ReportsAndExitsZeroWhenWithinTolerance) {
   const auto result = testing::run_clmarch({"check", source_path("scenes/torus.yaml").string(), "--size", "64x36", "--json"});
   ASSERT_EQ(result.exit_code, 0) << result.err << result.out;
   const nlohmann::json report = nlohmann::json::parse(result.out);
   EXPECT_TRUE(report["passed"].get<bool>());
-  for (const char* key : {"mask_mismatch", "depth_abs", "depth_rel", "depth_in_epsilons", "steps_diff", "normal_angle_deg_p99", "color"}) {
+  for (const char* key : {"mask_mismatch", "depth_abs", "depth_rel", "depth_in_epsilons", "steps_diff", "normal_angle_deg_p99", "color", "shading"}) {
     EXPECT_TRUE(report.contains(key)) << key;
   }
+  EXPECT_GT(report["shading"]["compared"].get<int>(), 0) << "the device's hits are shaded by the reference too";
+  EXPECT_DOUBLE_EQ(report["tolerances"]["shading_p99_abs"].get<double>(), 0.5 / 255.0);
 }
 
 // A check that fails, end to end: exit code 1, the report says why, and --out-dir receives both
@@ -206,15 +226,26 @@ class CheckThresholds : public ::testing::Test {
   }
   /// Float rounding of a ray's depth t: 16 unit roundoffs of the coordinates' size.
   double rounding(double t) const { return 16.0 * 0x1p-24 * (glm::length(basis_.origin) + t); }
+  /// The reference with change applied to its interior pixels.
   template <typename Change>
-  CheckReport perturbed(Change change) const {
+  FrameBuffers changed_copy(Change change) const {
     FrameBuffers copy = reference_;
     for (int j = 0; j < copy.height; ++j) {
       for (int i = 0; i < copy.width; ++i) {
         if (interior(i, j)) change(copy, i, j);
       }
     }
-    return cross_check(scene_, copy, reference_);
+    return copy;
+  }
+  template <typename Change>
+  CheckReport perturbed(Change change) const {
+    return cross_check(scene_, changed_copy(change), reference_);
+  }
+  /// The same, checked with the shading of the copy's hits as `clmarch check` does.
+  template <typename Change>
+  CheckReport perturbed_and_reshaded(Change change) const {
+    const FrameBuffers copy = changed_copy(change);
+    return cross_check(scene_, copy, reference_, reshade_hits(scene_, copy));
   }
   static bool failed_on(const CheckReport& report, const std::string& criterion) {
     return std::any_of(report.failures.begin(), report.failures.end(),
@@ -288,6 +319,18 @@ TEST_F(CheckThresholds, ColorOfHitsAtTheShadingSlopeTimesTheNormalTolerance) {
   };
   EXPECT_FALSE(failed_on(brighten_by(0.7), "color error p99")) << brighten_by(0.7).to_text();
   EXPECT_TRUE(failed_on(brighten_by(1.5), "color error p99")) << brighten_by(1.5).to_text();
+}
+
+TEST_F(CheckThresholds, ShadingAtHalfAnEightBitStep) {
+  // The same hits shaded by both sides: only float arithmetic separates them, far below half a
+  // step of 8 bits, the tolerance.
+  const auto brighten_by = [&](double multiple) {
+    return perturbed_and_reshaded([&](FrameBuffers& b, int i, int j) {
+      if (hit(i, j)) b.at(Channel::G, i, j) += static_cast<float>(multiple * 0.5 / 255.0);
+    });
+  };
+  EXPECT_FALSE(failed_on(brighten_by(0.9), "shading error")) << brighten_by(0.9).to_text();
+  EXPECT_TRUE(failed_on(brighten_by(1.1), "shading error")) << brighten_by(1.1).to_text();
 }
 
 TEST_F(CheckThresholds, StepsAtOneOnAverage) {

@@ -166,7 +166,7 @@ TEST(ConePass, KernelAndReferenceAgree) {
     OpenClOptions options;
     options.purpose = KernelPurpose::Shaded;
     const FrameBuffers opencl = render_opencl(scene, options).buffers;
-    const CheckReport report = cross_check(scene, opencl, render_reference(scene));
+    const CheckReport report = cross_check(scene, opencl, render_reference(scene), reshade_hits(scene, opencl));
     EXPECT_TRUE(report.passed()) << scene.source_name << ":\n" << report.to_text();
   }
 }

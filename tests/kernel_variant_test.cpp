@@ -94,7 +94,7 @@ TEST_P(KernelVariantCheck, PassesTheCheck) {
   scene.render.width = 64;
   scene.render.height = 36;
   const RenderResult render = render_opencl(scene, variant_options(v.lanes, v.precision, v.native_math, v.fast_math));
-  const CheckReport report = cross_check(scene, render.buffers, render_reference(scene));
+  const CheckReport report = cross_check(scene, render.buffers, render_reference(scene), reshade_hits(scene, render.buffers));
   EXPECT_TRUE(report.passed()) << report.to_text();
   EXPECT_GT(report.both_hit, 100);
 }

@@ -215,7 +215,7 @@ TEST(MarchSettings, KernelAndReferenceAgreeWithTheSettingsOn) {
       OpenClOptions options;
       options.purpose = KernelPurpose::Shaded;
       const FrameBuffers opencl = render_opencl(scene, options).buffers;
-      const CheckReport report = cross_check(scene, opencl, render_reference(scene));
+      const CheckReport report = cross_check(scene, opencl, render_reference(scene), reshade_hits(scene, opencl));
       EXPECT_TRUE(report.passed()) << name << ", setting " << setting << ":\n" << report.to_text();
     }
   }

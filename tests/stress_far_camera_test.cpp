@@ -214,7 +214,7 @@ TEST(FarCamera, EveryNodeKindRendersInTheMapFrame) {
     const Scene scene = testing::scene_from_yaml(yaml);
     EXPECT_EQ(map_frame_origin(scene), glm::round(scene.camera.position / kMapFrameGrid) * kMapFrameGrid);
     const FrameBuffers opencl = render_checked(scene, KernelPurpose::Shaded);
-    const CheckReport report = cross_check(scene, opencl, render_reference(scene));
+    const CheckReport report = cross_check(scene, opencl, render_reference(scene), reshade_hits(scene, opencl));
     EXPECT_TRUE(report.passed()) << report.to_text();
     EXPECT_GT(report.both_hit, 64 * 36 / 2);
   }
@@ -232,7 +232,7 @@ TEST(FarCamera, DisplacementTakesTheAbsolutePoint) {
   const Scene scene = testing::scene_from_yaml(yaml);
   ASSERT_NE(map_frame_origin(scene), glm::dvec3(0.0));
   const FrameBuffers opencl = render_checked(scene, KernelPurpose::Shaded);
-  const CheckReport report = cross_check(scene, opencl, render_reference(scene));
+  const CheckReport report = cross_check(scene, opencl, render_reference(scene), reshade_hits(scene, opencl));
   EXPECT_TRUE(report.passed()) << report.to_text();
   EXPECT_GT(report.both_hit, 64 * 36 / 2);
 }

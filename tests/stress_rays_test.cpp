@@ -169,7 +169,7 @@ void expect_kernel_matches_reference(const Scene& scene) {
   const FrameBuffers opencl = render_checked(scene, KernelPurpose::Shaded);
   const FrameBuffers reference = render_reference(scene);
   EXPECT_EQ(invariant_violation(reference, scene.render.max_steps, true), "") << "reference";
-  const CheckReport report = cross_check(scene, opencl, reference);
+  const CheckReport report = cross_check(scene, opencl, reference, reshade_hits(scene, opencl));
   EXPECT_TRUE(report.passed()) << report.to_text();
 }
 

@@ -237,7 +237,7 @@ TEST(DegenerateSettings, ExtremeValidValuesCrossCheck) {
     const FrameBuffers opencl = render_checked(scene, KernelPurpose::Shaded);
     const FrameBuffers reference = render_reference(scene);
     EXPECT_EQ(invariant_violation(reference, scene.render.max_steps, true), "") << "reference";
-    const CheckReport report = cross_check(scene, opencl, reference);
+    const CheckReport report = cross_check(scene, opencl, reference, reshade_hits(scene, opencl));
     EXPECT_TRUE(report.passed()) << report.to_text();
   }
 }

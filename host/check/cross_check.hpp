@@ -46,6 +46,12 @@ struct CheckReport {
   double miss_color_p99_abs = 0.0;
   /// Pixels whose color the hit and miss criteria compared.
   int color_compared = 0;
+  /// The shading alone, over the pixels the OpenCL render hit: its color against the reference's
+  /// color of the same depth, normal and steps (reshade_hits), so that differences of geometry
+  /// drop out. Compared pixels: 0 when the check ran without the reshaded render.
+  double shading_max_abs = 0.0;
+  double shading_p99_abs = 0.0;
+  int shading_compared = 0;
 
   /// The tolerances in force, and what failed.
   struct Tolerances {
@@ -56,6 +62,7 @@ struct CheckReport {
     double normal_angle_p99 = 0.0;
     double color_p99_abs = 0.0;
     double miss_color_p99_abs = 0.0;
+    double shading_p99_abs = 0.0;
   } tolerances;
   std::vector<std::string> failures;
 
@@ -67,6 +74,10 @@ struct CheckReport {
 
 /// Compares opencl (rendered from scene) with reference (the same scene on the CPU reference).
 CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const FrameBuffers& reference);
+/// The same, and the shading alone: reshaded is reshade_hits(scene, opencl), the reference's color
+/// of the OpenCL render's own hits. `clmarch check` runs this one.
+CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const FrameBuffers& reference,
+                        const FrameBuffers& reshaded);
 
 /// |a - b| per channel, for the difference image of a failing check.
 FrameBuffers difference_image(const FrameBuffers& a, const FrameBuffers& b);

@@ -49,7 +49,7 @@ int run_check_command(const CheckCommandOptions& options) {
   cl.purpose = KernelPurpose::Shaded;
   const RenderResult opencl = render_opencl(scene, cl);
   const FrameBuffers reference = render_reference(scene);
-  const CheckReport report = cross_check(scene, opencl.buffers, reference);
+  const CheckReport report = cross_check(scene, opencl.buffers, reference, reshade_hits(scene, opencl.buffers));
   if (options.json) {
     nlohmann::json json = report.to_json();
     json["scene"] = options.scene.scene_path;

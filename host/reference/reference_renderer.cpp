@@ -10,6 +10,7 @@
 #include "reference/reference_shading.hpp"
 #include "scene/camera_model.hpp"
 #include "scene/scene_bounds.hpp"
+#include "scene/tiling_model.hpp"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -46,14 +47,19 @@ glm::dvec3 normal_of(const Field& f, const glm::dvec3& p, NormalMethod method, d
   return glm::dvec3(0.0);
 }
 
+/// The material of the tree at a point of its frame.
+Material material_at(const Scene& scene, const glm::dvec3& local) {
+  const SdfSample sample = reference_sample(scene.sdf, local);
+  return Material{sample.color, sample.surface.x, sample.surface.y, sample.surface.z};
+}
+
 /// The surface where a march from world point world_origin along direction ended with a hit.
 SurfacePoint surface_at(const Scene& scene, const MarchEnd& end, const glm::dvec3& world_origin, const glm::dvec3& direction) {
   SurfacePoint s;
   s.local = end.local;
   s.world = world_origin + end.depth * direction;
   s.normal = normal_of(scene_field(scene), end.local, scene.render.normal_method, scene.render.normal_epsilon);
-  const SdfSample sample = reference_sample(scene.sdf, end.local);
-  s.material = Material{sample.color, sample.surface.x, sample.surface.y, sample.surface.z};
+  s.material = material_at(scene, end.local);
   s.steps = end.steps;
   return s;
 }
@@ -90,13 +96,26 @@ glm::dvec3 reference_normal(const Node& root, const glm::dvec3& p, NormalMethod 
 
 namespace {
 
+/// The world point origin in the frame the march runs in: under the cells tiling the march runs
+/// in the camera's cell.
+glm::dvec3 march_frame_origin(const Scene& scene, const glm::dvec3& origin) {
+  return uses_cells_tiling(scene) ? origin - scene.camera.position + camera_origin_in_frame(scene) : origin;
+}
+
+/// The color of a camera ray's hit at depth: shading, mirror bounces, fog and tone mapping.
+glm::dvec3 hit_color(const Scene& scene, const SurfacePoint& hit, const glm::dvec3& direction, double depth) {
+  glm::dvec3 color = reference_shade(scene, hit, direction);
+  if (scene.shading.reflection_bounces > 0) color = add_reflections(scene, color, hit, direction);
+  return reference_tone_map(scene, reference_fog(scene, color, direction, depth));
+}
+
 // The trace of a camera ray clipped to bounds (camera_ray_bounds(scene), computed once per image),
 // starting no nearer than t_min (its block's cone start under the coarse pass).
 RayResult trace_within(const Scene& scene, const std::optional<BoundingSphere>& bounds, const glm::dvec3& origin,
                        const glm::dvec3& direction, double t_min = 0.0) {
   const MarchLimits limits = camera_march_limits(scene);
-  // Under the cells tiling the march runs in the camera's cell; origin is the world position.
-  const glm::dvec3 frame_origin = uses_cells_tiling(scene) ? origin - scene.camera.position + camera_origin_in_frame(scene) : origin;
+  // origin is the world position.
+  const glm::dvec3 frame_origin = march_frame_origin(scene, origin);
   // Camera rays march only inside the scene's bounding sphere, if it has one (scene_bounds.hpp).
   double t_start = 0.0;
   double t_end = scene.render.max_distance;
@@ -126,9 +145,7 @@ RayResult trace_within(const Scene& scene, const std::optional<BoundingSphere>& 
   r.depth = end.depth;
   const SurfacePoint hit = surface_at(scene, end, origin, direction);
   r.normal = hit.normal;
-  glm::dvec3 color = reference_shade(scene, hit, direction);
-  if (scene.shading.reflection_bounces > 0) color = add_reflections(scene, color, hit, direction);
-  r.color = reference_tone_map(scene, reference_fog(scene, color, direction, end.depth));
+  r.color = hit_color(scene, hit, direction, end.depth);
   return r;
 }
 
@@ -167,6 +184,34 @@ FrameBuffers render_reference(const Scene& scene, const std::optional<ConeStarts
         fb.at(Channel::WallSteps, i, j) = static_cast<float>(r.wall_steps);
       }
       progress.advance();
+    }
+  });
+  return fb;
+}
+
+FrameBuffers reshade_hits(const Scene& scene, const FrameBuffers& render) {
+  const CameraBasis basis = camera_basis(scene.camera, render.width, render.height);
+  const glm::dvec3 frame_origin = march_frame_origin(scene, basis.origin);
+  FrameBuffers fb = render;
+  tbb::parallel_for(tbb::blocked_range<int>(0, render.height), [&](const tbb::blocked_range<int>& rows) {
+    for (int j = rows.begin(); j != rows.end(); ++j) {
+      throw_if_cancelled();
+      for (int i = 0; i < render.width; ++i) {
+        const double depth = render.at(Channel::Depth, i, j);
+        if (!std::isfinite(depth)) continue;
+        const glm::dvec3 direction = pixel_ray_direction(basis, i, j);
+        SurfacePoint hit;
+        hit.local = frame_origin + depth * direction;
+        if (scene.tiling) hit.local = floor_mod(hit.local, scene.tiling->cell);
+        hit.world = basis.origin + depth * direction;
+        hit.normal = glm::dvec3(render.at(Channel::NX, i, j), render.at(Channel::NY, i, j), render.at(Channel::NZ, i, j));
+        hit.material = material_at(scene, hit.local);
+        hit.steps = static_cast<int>(render.at(Channel::Steps, i, j));
+        const glm::dvec3 color = hit_color(scene, hit, direction, depth);
+        fb.at(Channel::R, i, j) = static_cast<float>(color.r);
+        fb.at(Channel::G, i, j) = static_cast<float>(color.g);
+        fb.at(Channel::B, i, j) = static_cast<float>(color.b);
+      }
     }
   });
   return fb;

@@ -44,4 +44,9 @@ FrameBuffers render_reference(const Scene& scene);
 /// that also report the cones' steps.
 FrameBuffers render_reference(const Scene& scene, const std::optional<ConeStarts>& cones);
 
+/// The reference's color of another render's hits: for each pixel that render hit, the color the
+/// reference gives a surface at that render's depth, with its normal and step count (its other
+/// channels are copied). Comparing the two colors leaves out the geometry and tests the shading.
+FrameBuffers reshade_hits(const Scene& scene, const FrameBuffers& render);
+
 }  // namespace clmarch
