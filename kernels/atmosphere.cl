@@ -41,10 +41,11 @@ SDF_INLINE vec3v apply_fog(SceneValues values, vec3v color, vec3v dir, vfloat t,
   color = v3_mix(v3_from(FOG_COLOR), color, exp(-FOG_DENSITY * t));
 #endif
 #if defined(HEIGHT_FOG_DENSITY)
-  /* (a / b) exp(-y0 b) (1 - exp(-t dy b)) / dy, whose limit for a level ray is a exp(-y0 b) t. */
+  /* (a / b) exp(-y0 b) (1 - exp(-t dy b)) / dy, whose limit for a level ray is a exp(-y0 b) t;
+   * 1 - exp(-x) as -expm1(-x), which keeps float's digits where x is small (a small falloff). */
   const float a = HEIGHT_FOG_DENSITY, b = HEIGHT_FOG_FALLOFF;
   const vint level = MASK(fabs(dir.y) < 1e-5f);
-  const vfloat slanted = (a / b) * exp(-camera_y * b) * (1.0f - exp(-t * dir.y * b)) / select(dir.y, (vfloat)(1.0f), level);
+  const vfloat slanted = (a / b) * exp(-camera_y * b) * -expm1(-t * dir.y * b) / select(dir.y, (vfloat)(1.0f), level);
   const vfloat amount = clamp(select(slanted, a * exp(-camera_y * b) * t, level), 0.0f, 1.0f);
   const float4 sun = HEIGHT_FOG_SUN_DIRECTION;
   const vfloat sun_amount = fmax(dir.x * sun.x + dir.y * sun.y + dir.z * sun.z, 0.0f);

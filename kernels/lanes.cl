@@ -199,6 +199,7 @@ SDF_INLINE vec3v v3_mul(vec3v a, vec3v b) { return v3(a.x * b.x, a.y * b.y, a.z 
 SDF_INLINE vec3v v3_abs(vec3v a) { return v3(fabs(a.x), fabs(a.y), fabs(a.z)); }
 SDF_INLINE vec3v v3_max0(vec3v a) { return v3(fmax(a.x, 0.0f), fmax(a.y, 0.0f), fmax(a.z, 0.0f)); }
 SDF_INLINE vfloat v3_dot(vec3v a, vec3v b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+SDF_INLINE vec3v v3_cross(vec3v a, vec3v b) { return v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x); }
 /* sqrt(dot) rather than length(): PoCL's length() carries overflow-rescaling branches. */
 SDF_INLINE vfloat v3_length(vec3v a) { return vsqrt(v3_dot(a, a)); }
 SDF_INLINE vfloat v3_max_component(vec3v a) { return fmax(a.x, fmax(a.y, a.z)); }

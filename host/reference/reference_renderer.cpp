@@ -204,7 +204,9 @@ FrameBuffers reshade_hits(const Scene& scene, const FrameBuffers& render) {
         hit.local = frame_origin + depth * direction;
         if (scene.tiling) hit.local = floor_mod(hit.local, scene.tiling->cell);
         hit.world = basis.origin + depth * direction;
-        hit.normal = glm::dvec3(render.at(Channel::NX, i, j), render.at(Channel::NY, i, j), render.at(Channel::NZ, i, j));
+        // The float normal is unit only to float's rounding, which 1 - (n.h)^2 in the GGX
+        // distribution would turn into its whole value at a low roughness (a^2 ~ 1e-7).
+        hit.normal = normalize_or_zero(glm::dvec3(render.at(Channel::NX, i, j), render.at(Channel::NY, i, j), render.at(Channel::NZ, i, j)));
         hit.material = material_at(scene, hit.local);
         hit.steps = static_cast<int>(render.at(Channel::Steps, i, j));
         const glm::dvec3 color = hit_color(scene, hit, direction, depth);
