@@ -11,7 +11,7 @@ namespace clmarch {
 
 /// The field at a point: signed distance and the material of the surface there.
 struct SdfSample {
-  double distance;
+  double distance = 0.0;
   glm::dvec3 color;
   /// metallic, roughness, reflectivity (defaults of Material until the tree walk sets them).
   glm::dvec3 surface{0.0, 0.5, 0.0};
