@@ -41,11 +41,16 @@ SDF_INLINE vec3v apply_fog(SceneValues values, vec3v color, vec3v dir, vfloat t,
   color = v3_mix(v3_from(FOG_COLOR), color, exp(-FOG_DENSITY * t));
 #endif
 #if defined(HEIGHT_FOG_DENSITY)
-  /* (a / b) exp(-y0 b) (1 - exp(-t dy b)) / dy, whose limit for a level ray is a exp(-y0 b) t;
-   * 1 - exp(-x) as -expm1(-x), which keeps float's digits where x is small (a small falloff). */
+  /* (a / b) exp(-y0 b) (1 - exp(-x)) / dy with x = t dy b, whose limit for a level ray is
+   * a exp(-y0 b) t. 1 - exp(-x) is -expm1(-x), which keeps float's digits where x is small (a
+   * small falloff); a descending ray (x < 0) takes exp(-y0 b - x) expm1(x) instead, the density
+   * where it ends, as exp(-x) overflows float from x < -88 (a high camera looking down). */
   const float a = HEIGHT_FOG_DENSITY, b = HEIGHT_FOG_FALLOFF;
   const vint level = MASK(fabs(dir.y) < 1e-5f);
-  const vfloat slanted = (a / b) * exp(-camera_y * b) * -expm1(-t * dir.y * b) / select(dir.y, (vfloat)(1.0f), level);
+  const vfloat x = t * dir.y * b;
+  const vint descending = MASK(x < 0.0f);
+  const vfloat start = exp(select((vfloat)(-camera_y * b), -camera_y * b - x, descending));
+  const vfloat slanted = (a / b) * start * select(-expm1(-x), expm1(x), descending) / select(dir.y, (vfloat)(1.0f), level);
   const vfloat amount = clamp(select(slanted, a * exp(-camera_y * b) * t, level), 0.0f, 1.0f);
   const float4 sun = HEIGHT_FOG_SUN_DIRECTION;
   const vfloat sun_amount = fmax(dir.x * sun.x + dir.y * sun.y + dir.z * sun.z, 0.0f);

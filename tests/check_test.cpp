@@ -9,6 +9,7 @@
 #include "scene/scene_loader.hpp"
 #include "support/test_support.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -116,16 +117,30 @@ TEST(CheckFeatures, ThePeakOfAnAlmostSmoothMetal) {
   }
 }
 
+Scene fog_seen_from_above(const std::string& falloff) {
+  return testing::scene_from_yaml(
+      "camera: {position: [0, 100, 30], look_at: [0, 0, 0], fov: 40}\n"
+      "render: {width: 48, height: 27, epsilon: 1.0e-4, max_distance: 300}\n"
+      "sdf: {union: [{plane: {normal: [0, 1, 0], offset: 0, color: 0.8}},"
+      " {sphere: {center: [0, 1, 0], radius: 1, color: [0.9, 0.3, 0.2]}}]}\n"
+      "lights: [{directional: {direction: [-1, 2, 1]}}]\n"
+      "shading: {model: lambert, height_fog: {density: 0.5, falloff: " + falloff + ", color: [0.5, 0.6, 0.7]}}\n");
+}
+
 // Where float's rounding is amplified, the shading's tolerance follows: a Phong highlight of
 // shininess 16384 at its peak (the power multiplies the rounding of its base, some 1e-3 of the
 // color here), and HDR colors of thousands without tone mapping (half an 8-bit step of the
-// color's own size). And a height fog of falloff 1e-6, whose 1 - exp(-x) the kernel must not
-// take as a difference (it was 4.5 times the tolerance off).
-TEST(CheckFeatures, AmplifiedRoundingAndASmallFogFalloff) {
+// color's own size). And the height fog at its extremes: a falloff of 1e-6, whose 1 - exp(-x) the
+// kernel must not take as a difference (it was 4.5 times the tolerance off), and a camera 100
+// above the floor with falloff 1 and 10, where exp(-x) of a descending ray overflowed, float's
+// from x < -88 (the whole image fog, or NaN) and double's from x < -709 (the reference's NaN).
+TEST(CheckFeatures, AmplifiedRoundingAndHeightFogAtItsExtremes) {
   const std::vector<std::pair<std::string, Scene>> cases = {
       {"shininess 16384", metal_cave("intensity: 1", "{model: phong, specular: 1, shininess: 16384}")},
       {"HDR", small_scene("sphere_shadows.yaml", {{"lights.0.point.intensity", "5000"}})},
-      {"falloff 1e-6", small_scene("moving_shapes.yaml", {{"shading.height_fog", "{density: 0.08, falloff: 1.0e-6}"}})}};
+      {"falloff 1e-6", small_scene("moving_shapes.yaml", {{"shading.height_fog", "{density: 0.08, falloff: 1.0e-6}"}})},
+      {"falloff 1 from above", fog_seen_from_above("1")},
+      {"falloff 10 from above", fog_seen_from_above("10")}};
   for (const auto& [name, scene] : cases) {
     const CheckReport report = check_against(scene, scene);
     EXPECT_TRUE(report.passed()) << name << "\n" << report.to_text();
@@ -389,6 +404,38 @@ TEST_F(CheckThresholds, ShadingAtHalfAnEightBitStep) {
   };
   EXPECT_FALSE(failed_on(brighten_by(0.9), "shading error")) << brighten_by(0.9).to_text();
   EXPECT_TRUE(failed_on(brighten_by(1.1), "shading error")) << brighten_by(1.1).to_text();
+}
+
+// A NaN or an infinity where the contract has a number fails the check, whichever side holds it:
+// a NaN would drop out of every max and sort, and compare as agreement.
+TEST_F(CheckThresholds, ANanOrAnInfinityFails) {
+  int hit_i = -1, hit_j = -1;
+  for (int j = 0; j < reference_.height && hit_i < 0; ++j) {
+    for (int i = 0; i < reference_.width; ++i) {
+      if (interior(i, j) && hit(i, j)) {
+        hit_i = i;
+        hit_j = j;
+        break;
+      }
+    }
+  }
+  ASSERT_GE(hit_i, 0);
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  // A +inf depth is a miss, not a bad value.
+  const std::vector<std::pair<Channel, float>> bad_values = {{Channel::R, nan}, {Channel::R, inf}, {Channel::NX, nan},
+                                                             {Channel::NX, inf}, {Channel::Depth, nan}};
+  for (const auto& [channel, bad] : bad_values) {
+    SCOPED_TRACE(fmt::format("{} = {}", kChannelNames[static_cast<int>(channel)], bad));
+    FrameBuffers copy = reference_;
+    copy.at(channel, hit_i, hit_j) = bad;
+    const CheckReport on_opencl = cross_check(scene_, copy, reference_);
+    EXPECT_TRUE(failed_on(on_opencl, "1 OpenCL and 0 reference pixels hold a NaN or an infinity")) << on_opencl.to_text();
+    const CheckReport on_reference = cross_check(scene_, reference_, copy);
+    EXPECT_TRUE(failed_on(on_reference, "0 OpenCL and 1 reference pixels hold a NaN or an infinity")) << on_reference.to_text();
+    if (channel == Channel::R) {
+      EXPECT_TRUE(std::isinf(on_opencl.color_max_abs)) << "a NaN must not drop out of the max";
+    }
+  }
 }
 
 TEST_F(CheckThresholds, StepsAtOneOnAverage) {

@@ -55,6 +55,8 @@ glm::dvec3 normal_at(const FrameBuffers& b, int i, int j) {
 
 double angle_between(const glm::dvec3& a, const glm::dvec3& b) {
   const double la = glm::length(a), lb = glm::length(b);
+  // A NaN must not reach the sorts of the p99s; has_non_finite_value fails the pixel anyway.
+  if (!std::isfinite(la) || !std::isfinite(lb)) return M_PI;
   // Both zero: both found a vanishing gradient (a camera at a sphere's centre), which agrees.
   if (la == 0.0 && lb == 0.0) return 0.0;
   if (la == 0.0 || lb == 0.0) return M_PI;
@@ -110,12 +112,29 @@ double color_per_closest_approach(const Shading& s) {
   return 2.0 * std::max({s.glow->color.r, s.glow->color.g, s.glow->color.b}) / s.glow->radius;
 }
 
+/// |a - b|; a NaN or an infinity on either side differs infinitely, so that it never passes (a NaN
+/// would drop out of every max and sort).
+double difference(float a, float b) {
+  if (!std::isfinite(a) || !std::isfinite(b)) return std::numeric_limits<double>::infinity();
+  return std::abs(static_cast<double>(a) - static_cast<double>(b));
+}
+
 double max_color_difference(const FrameBuffers& a, const FrameBuffers& b, int i, int j) {
   double diff = 0.0;
-  for (Channel c : {Channel::R, Channel::G, Channel::B}) {
-    diff = std::max(diff, static_cast<double>(std::abs(a.at(c, i, j) - b.at(c, i, j))));
-  }
+  for (Channel c : {Channel::R, Channel::G, Channel::B}) diff = std::max(diff, difference(a.at(c, i, j), b.at(c, i, j)));
   return diff;
+}
+
+/// A value the contract says is a number that is not: a color channel, a hit's normal, or a NaN
+/// depth (a miss's depth is +inf).
+bool has_non_finite_value(const FrameBuffers& b, int i, int j) {
+  for (Channel c : {Channel::R, Channel::G, Channel::B}) {
+    if (!std::isfinite(b.at(c, i, j))) return true;
+  }
+  if (std::isnan(b.at(Channel::Depth, i, j))) return true;
+  if (!is_hit(b, i, j)) return false;
+  return !std::isfinite(b.at(Channel::NX, i, j)) || !std::isfinite(b.at(Channel::NY, i, j)) ||
+         !std::isfinite(b.at(Channel::NZ, i, j));
 }
 
 }  // namespace
@@ -151,8 +170,10 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
       const double step_diff = std::abs(opencl.at(Channel::Steps, i, j) - reference.at(Channel::Steps, i, j));
       steps_sum += step_diff;
       r.steps_diff_max = std::max(r.steps_diff_max, step_diff);
+      r.non_finite_opencl += has_non_finite_value(opencl, i, j);
+      r.non_finite_reference += has_non_finite_value(reference, i, j);
       for (Channel c : {Channel::R, Channel::G, Channel::B}) {
-        const double diff = std::abs(opencl.at(c, i, j) - reference.at(c, i, j));
+        const double diff = difference(opencl.at(c, i, j), reference.at(c, i, j));
         squared_color += diff * diff;
         r.color_max_abs = std::max(r.color_max_abs, diff);
       }
@@ -225,6 +246,10 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
   t.color_p99_abs = r.color_p99_abs / std::max(color_ratio_p99, 1e-300);
   t.miss_color_p99_abs = r.miss_color_p99_abs / std::max(miss_color_ratio_p99, 1e-300);
 
+  if (r.non_finite_opencl + r.non_finite_reference > 0) {
+    r.failures.push_back(fmt::format("{} OpenCL and {} reference pixels hold a NaN or an infinity (color, a hit's "
+                                     "normal, or a NaN depth)", r.non_finite_opencl, r.non_finite_reference));
+  }
   if (r.mask_mismatch_interior > t.mask_mismatch_interior) {
     r.failures.push_back(fmt::format("{} interior pixels hit on one side only (at most {})", r.mask_mismatch_interior,
                                      t.mask_mismatch_interior));
@@ -313,6 +338,7 @@ nlohmann::json CheckReport::to_json() const {
             {"miss_p99_abs", miss_color_p99_abs},
             {"compared", color_compared}}},
           {"shading", {{"max_abs", shading_max_abs}, {"p99_abs", shading_p99_abs}, {"compared", shading_compared}}},
+          {"non_finite", {{"opencl", non_finite_opencl}, {"reference", non_finite_reference}}},
           {"tolerances",
            {{"mask_mismatch_interior", tolerances.mask_mismatch_interior},
             {"mask_mismatch_silhouette", tolerances.mask_mismatch_silhouette},

@@ -27,6 +27,9 @@ struct CheckReport {
   /// Pixels where exactly one side hits, next to a hit/miss edge in either image, or elsewhere.
   int mask_mismatch_silhouette = 0;
   int mask_mismatch_interior = 0;
+  /// Pixels holding a NaN or an infinity where the contract has a number (has_non_finite_value).
+  int non_finite_opencl = 0;
+  int non_finite_reference = 0;
   ErrorSummary depth_abs;
   ErrorSummary depth_rel;
   /// Depth error divided by epsilon, the hit threshold.

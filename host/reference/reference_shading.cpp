@@ -114,9 +114,11 @@ glm::dvec3 reference_fog(const Scene& scene, const glm::dvec3& color_in, const g
   if (sh.height_fog) {
     const HeightFog& f = *sh.height_fog;
     const double a = f.density, b = f.falloff, y0 = scene.camera.position.y;
-    // (a / b) exp(-y0 b) (1 - exp(-t dy b)) / dy, whose limit for a level ray is a exp(-y0 b) t.
+    // The density a exp(-b y) integrated along the ray from height y0 to y1 = y0 + t dy:
+    // (a / (b dy)) (exp(-b y0) - exp(-b y1)), whose limit for a level ray is a exp(-b y0) t.
+    const double y1 = y0 + depth * d.y;
     const double amount = std::abs(d.y) < 1e-5 ? a * std::exp(-y0 * b) * depth
-                                                : (a / b) * std::exp(-y0 * b) * (1.0 - std::exp(-depth * d.y * b)) / d.y;
+                                                : a / (b * d.y) * (std::exp(-b * y0) - std::exp(-b * y1));
     const double sun = std::pow(std::max(glm::dot(d, f.sun_direction), 0.0), f.sun_power);
     const glm::dvec3 fog = f.color + (f.sun_color - f.color) * sun;
     color = color + (fog - color) * std::clamp(amount, 0.0, 1.0);
