@@ -2,7 +2,7 @@
  * Menger sponge. Same conventions as primitives.cl (p first, local frame, float4 parameters);
  * host/reference/reference_fractals.cpp is the independent double version. */
 
-/* Keeps acos and log finite at the centre, where the orbit can sit at exactly 0. */
+/* Keeps log finite at the centre, where the orbit can sit at exactly 0. */
 #define MANDELBULB_TINY_RADIUS 1e-30f
 /* Estimates are capped at 1 before meeting the enclosing ball: far from the set the escape-time
  * estimate grows like r log r / 2 and would overshoot. */
@@ -21,7 +21,10 @@ SDF_INLINE vfloat sd_mandelbulb(vec3v p, float4 center, float power, int iterati
   vfloat r = v3_length(z);
   vint active = MASK(r <= bailout);
   for (int i = 0; i < iterations && LANE_ANY(active); ++i) {
-    vfloat theta = acos(clamp(z.z / fmax(r, MANDELBULB_TINY_RADIUS), -1.0f, 1.0f)) * power;
+    /* The polar angle as atan2(rho, z), not acos(z / r): near the pole z / r is within float's
+     * rounding of 1 and acos loses theta's digits (6 % at theta = 1e-3), which the power then
+     * multiplies each iteration. At the centre (r = 0) theta does not matter: z^power is 0. */
+    vfloat theta = atan2(vsqrt(z.x * z.x + z.y * z.y), z.z) * power;
     vfloat phi = atan2(z.y, z.x) * power;
     vfloat r_n1 = vpow(r, power - 1.0f);
     vfloat next_dr = r_n1 * power * dr + 1.0f;
