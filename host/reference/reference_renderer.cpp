@@ -114,7 +114,7 @@ glm::dvec3 hit_color(const Scene& scene, const SurfacePoint& hit, const glm::dve
 RayResult trace_within(const Scene& scene, const std::optional<BoundingSphere>& bounds, const glm::dvec3& origin,
                        const glm::dvec3& direction, double t_min = 0.0) {
   const MarchLimits limits = camera_march_limits(scene);
-  // origin is the world position.
+  // origin is a world position; the march runs in its own frame.
   const glm::dvec3 frame_origin = march_frame_origin(scene, origin);
   // Camera rays march only inside the scene's bounding sphere, if it has one (scene_bounds.hpp).
   double t_start = 0.0;
