@@ -36,6 +36,22 @@ typedef cl_float4 float4;
 #define CLMARCH_COARSE_BLOCK 8
 #define CLMARCH_COARSE_BLOCKS(n) (((n) + CLMARCH_COARSE_BLOCK - 1) / CLMARCH_COARSE_BLOCK)
 
+/* The operand grid of a large union (host/prune/operand_grid.hpp, kernels/operand_grid.cl): its
+ * header at the start of the scene data (SCENE_DATA), float words; the _AT words hold int offsets
+ * into the scene data (bit patterns, read with as_int). The cells are a CSR index into the list:
+ * cell c lists the words list[cells[c]] .. list[cells[c + 1] - 1], each the offset of an operand's
+ * record: its distance shape, its color shape, the offset of its color literals, then literals. */
+#define CLMARCH_GRID_ORIGIN 0          /* 3 words: the grid's lowest corner, in map()'s frame */
+#define CLMARCH_GRID_INVERSE_CELL 3    /* 1 / the cells' side */
+#define CLMARCH_GRID_DIMS 4            /* 3 words: cells per axis, as floats (at most 2^24 cells) */
+#define CLMARCH_GRID_UPPER 7           /* 3 words: the grid's highest corner */
+#define CLMARCH_GRID_OUTSIDE 10        /* 3 words: outside the grid the field is at least
+                                          (distance to the grid + [0]) * [1] - [2] */
+#define CLMARCH_GRID_CELLS_AT 13
+#define CLMARCH_GRID_LIST_AT 14
+#define CLMARCH_GRID_HEADER_WORDS 15
+#define CLMARCH_GRID_RECORD_WORDS 3    /* distance shape, color shape, offset of the color literals */
+
 /* Lights, two float4 each, positions relative to the camera (computed on the host in double). */
 #define CLMARCH_LIGHT_FLOAT4S 2
 

@@ -6,6 +6,7 @@
 #include "codegen/embedded_kernels.hpp"
 #include "codegen/sdf_codegen.hpp"
 #include "device_types.h"
+#include "prune/operand_grid.hpp"
 #include "scene/camera_model.hpp"
 #include "scene/scene_bounds.hpp"
 
@@ -17,13 +18,6 @@
 
 namespace clmarch {
 namespace {
-
-std::string kernel_file(std::string_view name) {
-  for (const EmbeddedFile& file : embedded_kernel_files()) {
-    if (file.name == name) return fmt::format("#line 1 \"kernels/{}\"\n{}\n", name, file.contents);
-  }
-  throw std::logic_error(fmt::format("kernel file {} is not embedded", name));
-}
 
 /// The numbers of shading, shadows, occlusion, reflections, sky, glows, fog and tone mapping, for
 /// kernels/shading.cl and atmosphere.cl: defined after map(), their literals marked like its own,
@@ -119,8 +113,14 @@ std::string feature_defines(const Scene& scene, const KernelOptions& options) {
   return out;
 }
 
-/// The scene's code as a march program built with options has it.
+/// The scene's code as eval_points has it: world points, every literal spelled.
+SdfCode eval_points_scene_code(const Scene& scene) {
+  return generate_sdf_code(scene.sdf, glm::dvec3(0.0), scene.render.subtree_bounds == SceneBounds::Sphere, grid_union(scene));
+}
+
+/// The scene's code as a program built with options has it.
 SdfCode program_scene_code(const Scene& scene, const KernelOptions& options) {
+  if (options.purpose == KernelPurpose::EvalPoints) return eval_points_scene_code(scene);
   return march_scene_code(scene, march_outputs(scene, options.purpose).color);
 }
 
@@ -132,6 +132,13 @@ bool uses_kind(const Node& node, std::initializer_list<NodeKind> kinds) {
 }
 
 }  // namespace
+
+std::string kernel_file(std::string_view name) {
+  for (const EmbeddedFile& file : embedded_kernel_files()) {
+    if (file.name == name) return fmt::format("#line 1 \"kernels/{}\"\n{}\n", name, file.contents);
+  }
+  throw std::logic_error(fmt::format("kernel file {} is not embedded", name));
+}
 
 std::vector<int> MarchOutputs::planes() const {
   std::vector<int> planes = {CLMARCH_CHANNEL_DEPTH, CLMARCH_CHANNEL_STEPS};
@@ -172,7 +179,7 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
   if (options.purpose == KernelPurpose::EvalPoints) {
     if (!options.value_slots.empty()) throw std::invalid_argument("value slots are for march programs, not eval_points");
     // eval_points takes world points; the march's points are relative to map_frame_origin.
-    src += spell_sdf_code(generate_sdf_code(scene.sdf, glm::dvec3(0.0), scene.render.subtree_bounds == SceneBounds::Sphere));
+    src += spell_sdf_code(eval_points_scene_code(scene));
     src += kernel_file("eval_points.cl");
     return src;
   }
@@ -196,7 +203,8 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
 SdfCode march_scene_code(const Scene& scene, bool with_shading) {
   Literals literals;
   SdfCode code;
-  code.source = sdf_functions(scene.sdf, map_frame_origin(scene), scene.render.subtree_bounds == SceneBounds::Sphere, literals);
+  code.source = sdf_functions(scene.sdf, map_frame_origin(scene), scene.render.subtree_bounds == SceneBounds::Sphere, literals,
+                              grid_union(scene), code.data);
   // Recorded whether or not the program shades, so that a literal's index is the same in every program.
   const std::string shading = shading_value_defines(scene, literals);
   if (with_shading) code.source += shading;

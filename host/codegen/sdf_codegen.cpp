@@ -3,7 +3,10 @@
 #include "codegen/sdf_codegen.hpp"
 
 #include "codegen/cl_literals.hpp"
+#include "codegen/embedded_kernels.hpp"
 #include "common/errors.hpp"
+#include "device_types.h"
+#include "prune/operand_grid.hpp"
 #include "scene/scene_bounds.hpp"
 #include "scene/tiling_model.hpp"
 
@@ -11,8 +14,11 @@
 
 #include <glm/gtc/matrix_access.hpp>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -110,12 +116,25 @@ int subtree_cost(const Node& node) {
 /// Subtrees from this cost on are gated behind their bounding sphere inside unions and subtractions.
 constexpr int kGateCost = 8;
 
+class SdfEmitter;
+
+/// The one union evaluated from its operand grid (grid_union), and what emitting it produced:
+/// the functions of its operands' shapes, and the data they and kernels/operand_grid.cl read.
+struct GridEmission {
+  const Node* node = nullptr;
+  bool emitted = false;
+  std::string functions;
+  std::vector<float> data;
+
+  void emit(const Node& union_node, const Material& color, const glm::dvec3& offset, bool gate_subtrees, Literals& lit);
+};
+
 /// Emits the statements of one function body; with_color also tracks the material (albedo and
 /// surface = metallic, roughness, reflectivity), blended by the same rules as the albedo.
 class SdfEmitter {
  public:
-  SdfEmitter(bool with_color, bool gate_subtrees, Literals& literals)
-      : with_color_(with_color), gate_subtrees_(gate_subtrees), lit_(literals) {}
+  SdfEmitter(bool with_color, bool gate_subtrees, Literals& literals, GridEmission* grid = nullptr)
+      : with_color_(with_color), gate_subtrees_(gate_subtrees), lit_(literals), grid_(grid) {}
 
   struct Value {
     std::string distance;
@@ -146,6 +165,36 @@ class SdfEmitter {
   }
 
   std::string body() const { return body_; }
+
+  /// The blend of the material of an operator's operands, as combine() writes it: {0} and {1} are
+  /// the first and second operand's colors, a and b their distances, k the blend radius's mark.
+  static std::string blend_rule(NodeKind kind, const std::string& a, const std::string& b, const std::string& k) {
+    switch (kind) {
+      case NodeKind::Union: return fmt::format("v3_select({}, {}, MASK({} <= {}))", "{1}", "{0}", a, b);
+      case NodeKind::Intersection: return fmt::format("v3_select({}, {}, MASK({} >= {}))", "{1}", "{0}", a, b);
+      case NodeKind::Subtraction: return fmt::format("v3_select({}, {}, MASK({} >= -{}))", "{1}", "{0}", a, b);
+      case NodeKind::SmoothUnion:
+        return fmt::format("v3_mix({}, {}, smooth_union_blend({}, {}, {}))", "{1}", "{0}", a, b, k);
+      case NodeKind::SmoothIntersection:
+        return fmt::format("v3_mix({}, {}, smooth_intersection_blend({}, {}, {}))", "{1}", "{0}", a, b, k);
+      case NodeKind::SmoothSubtraction:
+        return fmt::format("v3_mix({}, {}, smooth_subtraction_blend({}, {}, {}))", "{0}", "{1}", a, b, k);
+      default: throw std::logic_error("blend_rule() called on a primitive or modifier");
+    }
+  }
+
+  /// The distance of an operator's operands a and b, as combine() writes it.
+  static std::string combine_rule(NodeKind kind, const std::string& a, const std::string& b, const std::string& k) {
+    switch (kind) {
+      case NodeKind::Union: return fmt::format("op_union({}, {})", a, b);
+      case NodeKind::Intersection: return fmt::format("op_intersection({}, {})", a, b);
+      case NodeKind::Subtraction: return fmt::format("op_subtraction({}, {})", a, b);
+      case NodeKind::SmoothUnion: return fmt::format("op_smooth_union({}, {}, {})", a, b, k);
+      case NodeKind::SmoothIntersection: return fmt::format("op_smooth_intersection({}, {}, {})", a, b, k);
+      case NodeKind::SmoothSubtraction: return fmt::format("op_smooth_subtraction({}, {}, {})", a, b, k);
+      default: throw std::logic_error("combine_rule() called on a primitive or modifier");
+    }
+  }
 
  private:
   std::string fresh(const char* prefix) { return fmt::format("{}{}", prefix, counter_++); }
@@ -193,6 +242,7 @@ class SdfEmitter {
   }
 
   Value emit_operator(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
+    if (grid_ && &node == grid_->node) return emit_grid(node, p, color, offset);
     if (node.kind == NodeKind::Repeat) return emit_repeat(node, p, color, offset);
     if (node.kind == NodeKind::Displace) return emit_displace(node, p, color, offset);
     if (node.kind == NodeKind::Union) return emit_union(node, p, color, offset);
@@ -309,54 +359,147 @@ class SdfEmitter {
   Value combine(const Node& node, const Value& a, const Value& b) {
     Value out{fresh("d"), "", ""};
     const std::string k = lit_.f(node.smooth_k);
-    const std::string& da = a.distance;
-    const std::string& db = b.distance;
-    std::string distance, blend;  // blend: {0} = first operand's, {1} = second's
-    switch (node.kind) {
-      case NodeKind::Union:
-        distance = fmt::format("op_union({}, {})", da, db);
-        blend = fmt::format("v3_select({}, {}, MASK({} <= {}))", "{1}", "{0}", da, db);
-        break;
-      case NodeKind::Intersection:
-        distance = fmt::format("op_intersection({}, {})", da, db);
-        blend = fmt::format("v3_select({}, {}, MASK({} >= {}))", "{1}", "{0}", da, db);
-        break;
-      case NodeKind::Subtraction:
-        distance = fmt::format("op_subtraction({}, {})", da, db);
-        blend = fmt::format("v3_select({}, {}, MASK({} >= -{}))", "{1}", "{0}", da, db);
-        break;
-      case NodeKind::SmoothUnion:
-        distance = fmt::format("op_smooth_union({}, {}, {})", da, db, k);
-        blend = fmt::format("v3_mix({}, {}, smooth_union_blend({}, {}, {}))", "{1}", "{0}", da, db, k);
-        break;
-      case NodeKind::SmoothIntersection:
-        distance = fmt::format("op_smooth_intersection({}, {}, {})", da, db, k);
-        blend = fmt::format("v3_mix({}, {}, smooth_intersection_blend({}, {}, {}))", "{1}", "{0}", da, db, k);
-        break;
-      case NodeKind::SmoothSubtraction:
-        distance = fmt::format("op_smooth_subtraction({}, {}, {})", da, db, k);
-        blend = fmt::format("v3_mix({}, {}, smooth_subtraction_blend({}, {}, {}))", "{0}", "{1}", da, db, k);
-        break;
-      default:
-        throw std::logic_error("combine() called on a primitive");
-    }
     if (with_color_) {
+      const std::string blend = blend_rule(node.kind, a.distance, b.distance, k);
       out.color = fresh("c");
       line(fmt::format("vec3v {} = {};", out.color, fmt::format(fmt::runtime(blend), a.color, b.color)));
       out.surface = fresh("s");
       line(fmt::format("vec3v {} = {};", out.surface, fmt::format(fmt::runtime(blend), a.surface, b.surface)));
     }
-    line(fmt::format("vfloat {} = {};", out.distance, distance));
+    line(fmt::format("vfloat {} = {};", out.distance, combine_rule(node.kind, a.distance, b.distance, k)));
+    return out;
+  }
+
+  /// The union of many operands, read from its operand grid (kernels/operand_grid.cl).
+  Value emit_grid(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
+    if (!grid_->emitted) grid_->emit(node, color, offset, gate_subtrees_, lit_);
+    Value out{fresh("d"), "", ""};
+    const std::string what = fmt::format("{} of {} operands, from its operand grid", node_kind_name(node.kind), node.children.size());
+    if (with_color_) {
+      out.color = fresh("c");
+      out.surface = fresh("s");
+      line(fmt::format("vec3v {}, {};", out.color, out.surface));
+      line(fmt::format("vfloat {} = grid_distance_color(values, {}, &{}, &{});  /* {} */", out.distance, p, out.color,
+                       out.surface, what));
+    } else {
+      line(fmt::format("vfloat {} = grid_distance(values, {});  /* {} */", out.distance, p, what));
+    }
     return out;
   }
 
   bool with_color_;
   bool gate_subtrees_;
   Literals& lit_;
+  GridEmission* grid_;
   int counter_ = 0;
   std::string body_;
   std::string indent_;
 };
+
+/// A float word holding an int's bits (the kernel reads it with as_int).
+float int_word(std::uint32_t value) { return std::bit_cast<float>(value); }
+
+/// The body of an operand's code with its literal marks read from the operand's record instead.
+std::string read_literals_from_record(const std::string& body) {
+  std::string out;
+  std::size_t at = 0;
+  for (std::size_t mark = body.find('@'); mark != std::string::npos; mark = body.find('@', at)) {
+    const std::size_t end = body.find('@', mark + 1);
+    out += body.substr(at, mark - at);
+    out += fmt::format("SCENE_DATA[literals + {}]", body.substr(mark + 1, end - mark - 1));
+    at = end + 1;
+  }
+  return out + body.substr(at);
+}
+
+/// One function over the shapes of the operands: a switch on the shape word of the record, the
+/// last shape as its default so that every path returns.
+std::string shape_function(const std::string& signature, const std::string& literals_at, const std::string& shape_word,
+                           const std::vector<std::string>& shapes) {
+  std::string out = signature + " {\n" + fmt::format("  const int literals = {};\n", literals_at);
+  if (shapes.size() == 1) return out + read_literals_from_record(shapes.front()) + "}\n";
+  out += fmt::format("  switch (as_int({})) {{\n", shape_word);
+  for (std::size_t i = 0; i < shapes.size(); ++i) {
+    out += i + 1 < shapes.size() ? fmt::format("    case {}: {{\n", i) : std::string("    default: {\n");
+    out += read_literals_from_record(shapes[i]) + "    }\n";
+  }
+  return out + "  }\n}\n";
+}
+
+void GridEmission::emit(const Node& union_node, const Material& color, const glm::dvec3& offset, bool gate_subtrees,
+                        Literals& lit) {
+  const OperandGrid grid = build_operand_grid(union_node, offset);
+  // Each operand's code, its literals left open: operands whose code reads alike share a shape.
+  std::map<std::string, std::uint32_t> distance_ids, color_ids;
+  std::vector<std::string> distance_shapes, color_shapes;
+  const auto shape_of = [](std::map<std::string, std::uint32_t>& ids, std::vector<std::string>& shapes, std::string code) {
+    const auto [it, added] = ids.emplace(std::move(code), static_cast<std::uint32_t>(shapes.size()));
+    if (added) shapes.push_back(it->first);
+    return it->second;
+  };
+  std::vector<float> records;
+  std::vector<std::uint32_t> record_at;
+  record_at.reserve(union_node.children.size());
+  for (const Node& operand : union_node.children) {
+    Literals distance_literals, color_literals;
+    SdfEmitter distance(false, gate_subtrees, distance_literals);
+    const SdfEmitter::Value d = distance.emit(operand, "p", color, offset);
+    SdfEmitter colored(true, gate_subtrees, color_literals);
+    const SdfEmitter::Value c = colored.emit(operand, "p", color, offset);
+    const std::uint32_t distance_shape =
+        shape_of(distance_ids, distance_shapes, distance.body() + fmt::format("  return {};\n", d.distance));
+    const std::uint32_t color_shape = shape_of(
+        color_ids, color_shapes,
+        colored.body() + fmt::format("  *albedo = {};\n  *surface = {};\n  return {};\n", c.color, c.surface, c.distance));
+    const std::vector<float> distance_values = distance_literals.take(), color_values = color_literals.take();
+    record_at.push_back(static_cast<std::uint32_t>(records.size()));
+    records.push_back(int_word(distance_shape));
+    records.push_back(int_word(color_shape));
+    records.push_back(int_word(static_cast<std::uint32_t>(CLMARCH_GRID_RECORD_WORDS + distance_values.size())));
+    records.insert(records.end(), distance_values.begin(), distance_values.end());
+    records.insert(records.end(), color_values.begin(), color_values.end());
+  }
+
+  const long long cells = grid.cell_count();
+  const std::size_t cells_at = CLMARCH_GRID_HEADER_WORDS;
+  const std::size_t list_at = cells_at + static_cast<std::size_t>(cells) + 1;
+  const std::size_t records_at = list_at + grid.operands.size();
+  data.assign(CLMARCH_GRID_HEADER_WORDS, 0.0f);
+  for (int axis = 0; axis < 3; ++axis) {
+    data[CLMARCH_GRID_ORIGIN + axis] = static_cast<float>(grid.lower[axis]);
+    data[CLMARCH_GRID_DIMS + axis] = static_cast<float>(grid.dims[axis]);
+    data[CLMARCH_GRID_UPPER + axis] = static_cast<float>(grid.upper[axis]);
+  }
+  data[CLMARCH_GRID_INVERSE_CELL] = static_cast<float>(1.0 / grid.cell_size);
+  data[CLMARCH_GRID_OUTSIDE + 0] = static_cast<float>(grid.outside_margin);
+  data[CLMARCH_GRID_OUTSIDE + 1] = static_cast<float>(grid.outside_inverse_gain);
+  data[CLMARCH_GRID_OUTSIDE + 2] = static_cast<float>(grid.outside_undershoot);
+  data[CLMARCH_GRID_CELLS_AT] = int_word(static_cast<std::uint32_t>(cells_at));
+  data[CLMARCH_GRID_LIST_AT] = int_word(static_cast<std::uint32_t>(list_at));
+  data.reserve(records_at + records.size());
+  for (std::uint32_t start : grid.cell_start) data.push_back(int_word(start));
+  for (std::uint32_t operand : grid.operands) data.push_back(int_word(static_cast<std::uint32_t>(records_at + record_at[operand])));
+  data.insert(data.end(), records.begin(), records.end());
+
+  const std::string k = lit.f(union_node.smooth_k);
+  functions = fmt::format(
+      "/* The {} of {} operands evaluated from its operand grid ({} x {} x {} cells, {:.1f} operands a cell on\n"
+      " * average; host/prune/operand_grid.hpp). Each operand's numbers are in its record, read by its\n"
+      " * shape's code ({} shapes). */\n",
+      node_kind_name(union_node.kind), union_node.children.size(), grid.dims.x, grid.dims.y, grid.dims.z,
+      static_cast<double>(grid.operands.size()) / static_cast<double>(cells), distance_shapes.size());
+  functions += fmt::format("#define GRID_COMBINE(a, b) {}\n", SdfEmitter::combine_rule(union_node.kind, "(a)", "(b)", k));
+  functions += fmt::format("#define GRID_BLEND(first, second, a, b) {}\n",
+                           fmt::format(fmt::runtime(SdfEmitter::blend_rule(union_node.kind, "(a)", "(b)", k)), "(first)", "(second)"));
+  functions += shape_function("SDF_INLINE vfloat grid_operand_distance(SceneValues values, int at, vec3v p)",
+                              "at + CLMARCH_GRID_RECORD_WORDS", "SCENE_DATA[at]", distance_shapes);
+  functions += shape_function(
+      "SDF_INLINE vfloat grid_operand_color(SceneValues values, int at, vec3v p, vec3v* albedo, vec3v* surface)",
+      "at + as_int(SCENE_DATA[at + 2])", "SCENE_DATA[at + 1]", color_shapes);
+  functions += kernel_file("operand_grid.cl");
+  functions += "#line 1 \"generated scene\"\n";
+  emitted = true;
+}
 
 }  // namespace
 
@@ -378,19 +521,29 @@ std::string Literals::f4(const glm::dvec3& v) {
   return cl_float4_of(x, y, z);
 }
 
-std::string sdf_functions(const Node& root, const glm::dvec3& frame_origin, bool gate_subtrees, Literals& literals) {
-  SdfEmitter distance_only(false, gate_subtrees, literals);
+std::string sdf_functions(const Node& root, const glm::dvec3& frame_origin, bool gate_subtrees, Literals& literals,
+                          const Node* grid_node, std::vector<float>& data) {
+  GridEmission grid;
+  grid.node = grid_node;
+  SdfEmitter distance_only(false, gate_subtrees, literals, &grid);
   const SdfEmitter::Value d = distance_only.emit(root, "p", Material{}, frame_origin);
-  SdfEmitter with_color(true, gate_subtrees, literals);
+  SdfEmitter with_color(true, gate_subtrees, literals, &grid);
   const SdfEmitter::Value dc = with_color.emit(root, "p", Material{}, frame_origin);
+  data = std::move(grid.data);
   const std::string frame = frame_origin == glm::dvec3(0.0)
                                 ? std::string()
                                 : fmt::format("/* p is relative to the world point ({}, {}, {}) (map_frame_origin). */\n",
                                               frame_origin.x, frame_origin.y, frame_origin.z);
-  return frame + fmt::format(
-      "/* Literals of the scene that change between the frames of an animation are read from the\n"
-      " * kernel's values buffer (values[j]) instead, so that those frames share this program. */\n"
-      "typedef __constant const float* SceneValues;\n\n"
+  // The operand grid's data can pass the 64 KiB of constant memory that every device has.
+  const std::string values_type = grid.emitted
+                                      ? "/* Literals of the scene that change between the frames of an animation are read from the\n"
+                                        " * kernel's values buffer (values[j]) instead, so that those frames share this program; the\n"
+                                        " * operand grid's data follows them (SCENE_DATA), in global memory for its size. */\n"
+                                        "typedef __global const float* SceneValues;\n\n"
+                                      : "/* Literals of the scene that change between the frames of an animation are read from the\n"
+                                        " * kernel's values buffer (values[j]) instead, so that those frames share this program. */\n"
+                                        "typedef __constant const float* SceneValues;\n\n";
+  return frame + values_type + grid.functions + fmt::format(
       "/* Distance to the scene. */\n"
       "SDF_INLINE vfloat map(SceneValues values, vec3v p) {{\n{}  return {};\n}}\n\n"
       "/* Distance to the scene and the material there: albedo, surface = (metallic, roughness,\n"
@@ -400,10 +553,10 @@ std::string sdf_functions(const Node& root, const glm::dvec3& frame_origin, bool
       distance_only.body(), d.distance, with_color.body(), dc.color, dc.surface, dc.distance);
 }
 
-SdfCode generate_sdf_code(const Node& root, const glm::dvec3& frame_origin, bool gate_subtrees) {
+SdfCode generate_sdf_code(const Node& root, const glm::dvec3& frame_origin, bool gate_subtrees, const Node* grid_node) {
   Literals literals;
   SdfCode code;
-  code.source = sdf_functions(root, frame_origin, gate_subtrees, literals);
+  code.source = sdf_functions(root, frame_origin, gate_subtrees, literals, grid_node, code.data);
   code.literals = literals.take();
   return code;
 }
@@ -452,6 +605,7 @@ std::string spell_sdf_code(const SdfCode& code, const ValueSlots& slots) {
   if (!order.empty()) {
     out += fmt::format("/* values[0 .. {}]: the literals that change from frame to frame. */\n", order.size() - 1);
   }
+  if (!code.data.empty()) out += fmt::format("#define SCENE_DATA (values + {})\n", order.size());
   for_each_mark(code.source, [&](std::string_view text, std::size_t k) {
     out += text;
     if (k == std::string::npos) return;
@@ -463,6 +617,7 @@ std::string spell_sdf_code(const SdfCode& code, const ValueSlots& slots) {
 std::vector<float> slot_values(const SdfCode& code, const ValueSlots& slots) {
   std::vector<float> values;
   for (std::size_t k : slots_in_reading_order(code, slots)) values.push_back(code.literals[k]);
+  values.insert(values.end(), code.data.begin(), code.data.end());
   return values;
 }
 

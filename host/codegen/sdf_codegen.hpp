@@ -21,6 +21,9 @@ struct SdfCode {
   std::string source;
   /// Every float literal of the code, rounded to float, by index.
   std::vector<float> literals;
+  /// The operand grid's data, which the code reads after the values of its slots (SCENE_DATA);
+  /// empty without a grid.
+  std::vector<float> data;
 };
 
 /// Writes float literals as their marks "@k@" and keeps their values, for SdfCode.
@@ -37,14 +40,18 @@ class Literals {
   std::vector<float> values_;
 };
 
-/// map and map_color for this tree, their literals written to literals (see generate_sdf_code).
-std::string sdf_functions(const Node& root, const glm::dvec3& frame_origin, bool gate_subtrees, Literals& literals);
+/// map and map_color for this tree, their literals written to literals and the operand grid's data
+/// to data (see generate_sdf_code).
+std::string sdf_functions(const Node& root, const glm::dvec3& frame_origin, bool gate_subtrees, Literals& literals,
+                          const Node* grid_node, std::vector<float>& data);
 
 /// The code of map and map_color for this tree, taking points relative to the world point
 /// frame_origin (its positions are baked relative to it, in double). With gate_subtrees, unions
 /// and subtractions evaluate an expensive bounded subtree only where its bounding sphere shows it
-/// can change their result (render.subtree_bounds).
-SdfCode generate_sdf_code(const Node& root, const glm::dvec3& frame_origin = glm::dvec3(0.0), bool gate_subtrees = true);
+/// can change their result (render.subtree_bounds). grid_node, a union of root's tree
+/// (grid_union), is evaluated from its operand grid rather than from code of every operand.
+SdfCode generate_sdf_code(const Node& root, const glm::dvec3& frame_origin = glm::dvec3(0.0), bool gate_subtrees = true,
+                          const Node* grid_node = nullptr);
 
 /// Indices into SdfCode::literals, ascending: the literals a program reads from its values
 /// (values[j] is the j-th of them that the source reads, in the source's order).
@@ -54,7 +61,8 @@ using ValueSlots = std::vector<int>;
 /// Throws std::invalid_argument for a slot that is no literal of the code.
 std::string spell_sdf_code(const SdfCode& code, const ValueSlots& slots = {});
 
-/// What values[j] holds for this code: its literals at slots, in the order the source reads them.
+/// What values[j] holds for this code: its literals at slots, in the order the source reads them,
+/// then its data.
 std::vector<float> slot_values(const SdfCode& code, const ValueSlots& slots);
 
 }  // namespace clmarch

@@ -184,9 +184,14 @@ std::optional<cl::Buffer> make_scene_values(const PreparedProgram& program, cons
                     values.data());
 }
 
-void write_scene_values(PreparedProgram& program, const Scene& scene, const std::optional<cl::Buffer>& values) {
+void write_scene_values(PreparedProgram& program, const Scene& scene, std::optional<cl::Buffer>& values) {
   if (!values) return;
   const std::vector<float> data = scene_values(scene, program.kernel_options);
+  // An operand grid's data changes size with the frame's scene: a larger one takes a new buffer.
+  if (data.size() * sizeof(float) > values->getInfo<CL_MEM_SIZE>()) {
+    values = make_scene_values(program, scene);
+    return;
+  }
   program.program.queue.enqueueWriteBuffer(*values, CL_TRUE, 0, data.size() * sizeof(float), data.data());
 }
 

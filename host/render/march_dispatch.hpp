@@ -79,10 +79,12 @@ MarchParams march_params(const Scene& scene, const Dispatch& dispatch);
 std::vector<cl_float4> light_data(const Scene& scene);
 
 /// The values buffer of program (its kernels' SceneValues), holding scene's literals at the
-/// program's value slots; nothing for a program without slots (its kernels get NULL).
+/// program's value slots, then its operand grid's data; nothing for a program without either (its
+/// kernels get NULL).
 std::optional<cl::Buffer> make_scene_values(const PreparedProgram& program, const Scene& scene);
-/// Writes scene's literals at the program's value slots into values (made for the same slots).
-void write_scene_values(PreparedProgram& program, const Scene& scene, const std::optional<cl::Buffer>& values);
+/// Writes scene's literals at the program's value slots and its grid's data into values (made for the
+/// same slots), or into a new buffer when the data outgrew it.
+void write_scene_values(PreparedProgram& program, const Scene& scene, std::optional<cl::Buffer>& values);
 /// Sets kernel argument index, a SceneValues pointer, to values or NULL.
 void set_scene_values_arg(cl::Kernel& kernel, int index, const std::optional<cl::Buffer>& values);
 

@@ -164,7 +164,9 @@ PointSamples eval_points_opencl(const Scene& scene, const std::vector<glm::dvec3
       out_buffers.emplace_back(dp.context, CL_MEM_WRITE_ONLY, n * sizeof(float));
       kernel.setArg(3 + i, out_buffers.back());
     }
-    set_scene_values_arg(kernel, 8, std::nullopt);  // eval_points programs spell every literal
+    // eval_points programs spell every literal; their values hold only an operand grid's data.
+    const std::optional<cl::Buffer> values = make_scene_values(prepared, scene);
+    set_scene_values_arg(kernel, 8, values);
     dp.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(dispatch.global_items),
                                   cl::NDRange(dispatch.local_items));
     for (int i = 0; i < 5; ++i) dp.queue.enqueueReadBuffer(out_buffers[i], CL_TRUE, 0, n * sizeof(float), outputs[i].data());

@@ -151,6 +151,12 @@ inline constexpr const char* kSceneBoundsNames[] = {"none", "sphere"};
 enum class CoarsePass { None, Cone, Auto };
 inline constexpr const char* kCoarsePassNames[] = {"none", "cone", "auto"};
 
+/// How a union of many operands is evaluated: from generated code, or from a grid whose cells list
+/// only the operands that can change the union there (host/prune/operand_grid.hpp); auto: the grid
+/// for the largest union of at least kAutoGridOperands bounded operands.
+enum class Pruning { Auto, None, Grid };
+inline constexpr const char* kPruningNames[] = {"auto", "none", "grid"};
+
 /// Settings of the march itself.
 struct RenderSettings {
   int width = 640;
@@ -176,6 +182,7 @@ struct RenderSettings {
   /// cone: camera rays start where their block's cone march stopped (docs/scene-format.md); auto
   /// (the default): the cone for scenes without a bounding sphere or step-count occlusion.
   CoarsePass coarse_pass = CoarsePass::Auto;
+  Pruning pruning = Pruning::Auto;
 
   bool operator==(const RenderSettings&) const = default;
 };

@@ -77,7 +77,7 @@ class SceneReader {
     RenderSettings render;
     yaml_.expect_map(node, "render", {"width", "height", "max_steps", "epsilon", "max_distance", "normal_method", "normal_epsilon",
                                       "over_relaxation", "hit_threshold", "cone_factor", "bounds", "subtree_bounds",
-                                      "coarse_pass"});
+                                      "coarse_pass", "pruning"});
     const Range side = Range::closed(1, kMaxImageSide);
     if (node["width"]) render.width = yaml_.integer(node["width"], "render.width", side);
     if (node["height"]) render.height = yaml_.integer(node["height"], "render.height", side);
@@ -94,6 +94,7 @@ class SceneReader {
       render.subtree_bounds =
           static_cast<SceneBounds>(yaml_.choice(node["subtree_bounds"], "render.subtree_bounds", kSceneBoundsNames));
     }
+    if (node["pruning"]) render.pruning = static_cast<Pruning>(yaml_.choice(node["pruning"], "render.pruning", kPruningNames));
     if (node["coarse_pass"]) {
       render.coarse_pass = static_cast<CoarsePass>(yaml_.choice(node["coarse_pass"], "render.coarse_pass", kCoarsePassNames));
     }
