@@ -28,12 +28,13 @@ std::string alias_bomb(int levels) {
 }
 
 TEST(SceneLimits, AliasBombStopsAtTheNodeLimit) {
-  // 10^9 nodes if expanded; the walk must stop at node 10001, inside the expansion of level 4
-  // (the list item on line 7). An aliased node is the anchored one, so the position is its anchor's
-  // (line 3, the spheres of level 0) and the path says how the walk got there.
+  // 10^9 nodes if expanded; the walk must stop at the 10001st node reached through an alias, inside
+  // the expansion of level 4 (the list item on line 7). An aliased node is the anchored one, so the
+  // position is its anchor's (line 3, the spheres of level 0) and the path says how the walk got there.
   const std::string message = error_of(alias_bomb(9));
   EXPECT_EQ(message.find("s.yaml:3:7: sdf.union[4].union[7]"), 0u) << message;
-  EXPECT_NE(message.find("the tree has too many nodes (got node 10001 here, expected at most 10000"), std::string::npos)
+  EXPECT_NE(message.find("the tree has too many nodes through aliases (got aliased node 10001 here, expected at most 10000"),
+            std::string::npos)
       << message;
 }
 
@@ -41,10 +42,11 @@ TEST(SceneLimits, TreesUpToTheNodeLimitLoad) {
   // 1 + 11 + 111 + 1111 = 1234 nodes with level 3, plus the root: well inside the limit.
   const Scene scene = load_scene_text(alias_bomb(3), "s.yaml");
   EXPECT_EQ(scene.sdf.children.size(), 4u);
+  // Nodes written out, not aliased, count only against the tree's limit (kMaxTreeNodes, tested with
+  // instance files in instance_file_test.cpp).
   std::string flat = "sdf:\n  union:\n";
-  for (int i = 0; i < kMaxTreeNodes - 1; ++i) flat += "    - sphere: {}\n";
-  EXPECT_EQ(load_scene_text(flat, "s.yaml").sdf.children.size(), static_cast<std::size_t>(kMaxTreeNodes - 1));
-  EXPECT_NE(error_of(flat + "    - sphere: {}\n").find("got node 10001 here"), std::string::npos);
+  for (int i = 0; i < 3 * kMaxAliasedNodes; ++i) flat += "    - sphere: {}\n";
+  EXPECT_EQ(load_scene_text(flat, "s.yaml").sdf.children.size(), static_cast<std::size_t>(3 * kMaxAliasedNodes));
 }
 
 TEST(SceneLimits, AliasCycleIsTooDeep) {
@@ -61,13 +63,13 @@ TEST(SceneLimits, HugeListsFailBeforeTheyAreBuilt) {
   EXPECT_NE(error_of(lights).find("s.yaml:2:9: lights has too many entries (got 1025, expected at most 1024)"),
             std::string::npos)
       << error_of(lights);
-  // A million lights: the counting parse stops at value 250001, long before the list is built.
+  // Three million lights: the counting parse stops at value 2500001, long before the list is built.
   std::string million = "sdf: {sphere: {}}\nlights: [";
-  for (int i = 0; i < 1000000; ++i) million += "0,";
+  for (int i = 0; i < 3000000; ++i) million += "0,";
   million += "]\n";
   const std::string message = error_of(million);
   EXPECT_NE(message.find("s.yaml:2:"), std::string::npos) << message;
-  EXPECT_NE(message.find("too many YAML values (got value 250001 here, expected at most 250000)"), std::string::npos)
+  EXPECT_NE(message.find("too many YAML values (got value 2500001 here, expected at most 2500000)"), std::string::npos)
       << message;
 }
 
@@ -98,13 +100,13 @@ TEST(SceneLimits, HugeFilesAreNotRead) {
   testing::TempDir dir;
   const std::filesystem::path big = dir / "big.yaml";
   std::ofstream(big) << "sdf: {sphere: {}}\n";
-  // A sparse file: no disk space, but reading it would cost 64 MiB of memory and a long parse.
-  std::filesystem::resize_file(big, 64 << 20);
+  // A sparse file: no disk space, but reading it would cost 80 MiB of memory and a long parse.
+  std::filesystem::resize_file(big, 80 << 20);
   try {
     load_scene_file(big.string());
-    FAIL() << "a 64 MiB scene file loaded";
+    FAIL() << "an 80 MiB scene file loaded";
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), big.string() + ": the scene file is too large (got more than 16777216 bytes, expected at most 16777216)");
+    EXPECT_EQ(std::string(e.what()), big.string() + ": the scene file is too large (got more than 67108864 bytes, expected at most 67108864)");
   }
   try {
     load_scene_file(dir.path().string());

@@ -3,6 +3,7 @@
 
 #include "common/cancellation.hpp"
 #include "common/errors.hpp"
+#include "scene/instance_file.hpp"
 #include "scene/yaml_reader.hpp"
 
 #include <fmt/format.h>
@@ -17,6 +18,7 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <unordered_set>
 
 namespace clmarch {
 namespace {
@@ -29,7 +31,7 @@ constexpr int kMaxStepBudget = 1000000;
 
 class SceneReader {
  public:
-  SceneReader(const std::string& source_name, double time) : yaml_(source_name, time) {}
+  SceneReader(const std::string& source_name, double time) : yaml_(source_name, time), source_name_(source_name) {}
 
   Scene read(const YAML::Node& root, const std::string& source_name) {
     Scene scene;
@@ -283,12 +285,16 @@ class SceneReader {
                                    "*name inside its own anchor &name makes an endless tree)",
                                    path, kMaxTreeDepth, depth, kMaxTreeDepth));
     }
-    // Counted on the way in, so that an alias bomb stops after kMaxTreeNodes nodes: yaml-cpp
-    // shares an aliased subtree, and only this walk would expand it.
     if (++node_count_ > kMaxTreeNodes) {
-      yaml_.fail(yaml, fmt::format("{}: the tree has too many nodes (got node {} here, expected at most {}; an alias "
-                                   "*name counts its nodes again at every use)",
-                                   path, node_count_, kMaxTreeNodes));
+      yaml_.fail(yaml, fmt::format("{}: the tree has too many nodes (got node {} here, expected at most {})", path,
+                                   node_count_, kMaxTreeNodes));
+    }
+    // Counted on the way in, so that an alias bomb stops after kMaxAliasedNodes nodes: yaml-cpp
+    // shares an aliased subtree (one position in the file), and only this walk would expand it.
+    if (!yaml.Mark().is_null() && !positions_read_.insert(yaml.Mark().pos).second && ++aliased_nodes_ > kMaxAliasedNodes) {
+      yaml_.fail(yaml, fmt::format("{}: the tree has too many nodes through aliases (got aliased node {} here, expected "
+                                   "at most {}; an alias *name counts its nodes again at every use)",
+                                   path, aliased_nodes_, kMaxAliasedNodes));
     }
     if (!yaml.IsMap() || yaml.size() != 1) {
       // Blamed on a key that --set added, if any (--set sdf.sphere.radius=1 on a torus adds a kind).
@@ -500,13 +506,103 @@ class SceneReader {
       yaml_.fail(children, fmt::format("{} takes exactly 1 child node (got {}); wrap several in a union", path, children.size()));
     }
     for (std::size_t i = 0; i < children.size(); ++i) {
-      node.children.push_back(read_node(children[i], fmt::format("{}[{}]", path, i), depth + 1));
+      const YAML::Node child = children[i];
+      const std::string child_path = fmt::format("{}[{}]", path, i);
+      if (child.IsMap() && child.size() == 1 && child.begin()->first.Scalar() == "instances") {
+        read_instances(node, child.begin()->second, child_path + ".instances", depth + 1);
+      } else {
+        node.children.push_back(read_node(child, child_path, depth + 1));
+      }
     }
   }
 
+  /// instances: {file, primitive}: one child of node per row of the CSV file (its path relative to
+  /// the scene file's folder), the columns naming the primitive's keys (scene-format.md).
+  void read_instances(Node& node, const YAML::Node& params, const std::string& path, int depth) {
+    yaml_.expect_map(params, path, {"file", "primitive"});
+    const YAML::Node file_key = yaml_.required(params, "file", path + ".file");
+    const YAML::Node primitive_key = yaml_.required(params, "primitive", path + ".primitive");
+    const std::string primitive = yaml_.text(primitive_key, path + ".primitive");
+    const std::optional<NodeKind> kind = node_kind_from_name(primitive);
+    if (!kind || !is_primitive(*kind)) {
+      std::vector<std::string_view> names;
+      for (NodeKind k : kAllNodeKinds) {
+        if (is_primitive(k)) names.push_back(node_kind_name(k));
+      }
+      yaml_.fail(primitive_key, fmt::format("{}.primitive: '{}' is not a primitive (expected one of: {})", path, primitive,
+                                            fmt::join(names, ", ")));
+    }
+    std::filesystem::path file = yaml_.text(file_key, path + ".file");
+    if (file.is_relative()) file = std::filesystem::path(source_name_).parent_path() / file;
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(file, error)) {
+      yaml_.fail(file_key, fmt::format("{}.file: cannot read the instance file {} (no such file)", path, file.string()));
+    }
+    const InstanceTable table = read_instance_table(file.string(), kMaxTreeNodes - node_count_);
+    const std::vector<InstanceColumn> columns = instance_columns(table);
+    for (std::size_t r = 0; r < table.rows.size(); ++r) {
+      YAML::Node keys(YAML::NodeType::Map);
+      for (std::size_t c = 0; c < columns.size(); ++c) {
+        const double value = table.rows[r][c];
+        if (columns[c].component < 0) {
+          keys[columns[c].key] = value;
+        } else {
+          if (!keys[columns[c].key]) keys[columns[c].key] = YAML::Node(std::vector<double>(3, 0.0));
+          keys[columns[c].key][columns[c].component] = value;
+        }
+      }
+      YAML::Node item(YAML::NodeType::Map);
+      item[primitive] = keys;
+      try {
+        node.children.push_back(read_node(item, fmt::format("{}[{}]", path, r), depth));
+      } catch (const InputError& e) {
+        // The row's own place instead of the scene's, which it has none of.
+        std::string message = e.what();
+        const std::string unplaced = yaml_.where(YAML::Node()) + ": ";
+        if (message.starts_with(unplaced)) message.erase(0, unplaced.size());
+        throw InputError(fmt::format("{}:{}: {}", table.path, table.lines[r], message));
+      }
+    }
+  }
+
+  /// Where a column of an instance file goes: key, and for vectors the component (x, y, z or
+  /// r, g, b as 0, 1, 2; -1 for a number).
+  struct InstanceColumn {
+    std::string key;
+    int component = -1;
+  };
+
+  static std::vector<InstanceColumn> instance_columns(const InstanceTable& table) {
+    std::vector<InstanceColumn> columns;
+    for (const std::string& name : table.columns) {
+      InstanceColumn column{name, -1};
+      static constexpr std::string_view kSuffixes[] = {"_x", "_y", "_z", "_r", "_g", "_b"};
+      for (int s = 0; s < 6; ++s) {
+        if (name.size() > 2 && name.ends_with(kSuffixes[s])) column = {name.substr(0, name.size() - 2), s % 3};
+      }
+      columns.push_back(column);
+    }
+    for (const InstanceColumn& column : columns) {
+      if (column.component < 0) continue;
+      for (int component = 0; component < 3; ++component) {
+        const bool present = std::any_of(columns.begin(), columns.end(), [&](const InstanceColumn& other) {
+          return other.key == column.key && other.component == component;
+        });
+        if (!present) {
+          throw InputError(fmt::format("{}:1: column {} needs its companions: {}_x, {}_y, {}_z (or _r, _g, _b for a color)",
+                                       table.path, column.key, column.key, column.key, column.key));
+        }
+      }
+    }
+    return columns;
+  }
+
   YamlReader yaml_;
-  /// SDF nodes read so far.
+  std::string source_name_;
+  /// SDF nodes read so far, and those of them reached again through an alias.
   int node_count_ = 0;
+  int aliased_nodes_ = 0;
+  std::unordered_set<std::size_t> positions_read_;
 };
 
 /// A copy of a parsed --set value built from fresh nodes, which carry no position: messages about
