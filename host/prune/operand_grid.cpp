@@ -48,6 +48,11 @@ bool is_one_lipschitz(const Node& node) {
   return std::all_of(node.children.begin(), node.children.end(), is_one_lipschitz);
 }
 
+/// A sphere with neither step_factor nor a scale: its field is its bounding sphere's distance.
+bool is_bare_sphere(const Node& node) {
+  return node.kind == NodeKind::Sphere && node.step_factor == 1.0 && node.transform.scale == 1.0;
+}
+
 /// The polynomial smooth minimum of kernels/operators.cl, extended to infinite bounds; it rises
 /// with both arguments, so it maps bounds of its operands to bounds of its value.
 double smooth_min(double a, double b, double k) {
@@ -67,7 +72,10 @@ class CellPruner {
       : node_(union_node), offset_(offset), bvh_(bvh), rounding_(rounding),
         k_(union_node.kind == NodeKind::SmoothUnion ? union_node.smooth_k : 0.0) {
     lipschitz_.reserve(union_node.children.size());
-    for (const Node& child : union_node.children) lipschitz_.push_back(is_one_lipschitz(child));
+    for (const Node& child : union_node.children) {
+      lipschitz_.push_back(is_one_lipschitz(child));
+      bare_spheres_.push_back(is_bare_sphere(child));
+    }
   }
 
   /// Appends to out the operands that can change the union's value in the ball (m, reach), ascending.
@@ -123,7 +131,13 @@ class CellPruner {
   /// where the field is 1-Lipschitz. The value is the reference's, in double; rounding_ covers
   /// the kernel's float.
   Interval bounds(std::uint32_t i) const {
-    Interval b{operand_lower_bound(bvh_.operands()[i], m_, reach_), kInfinity};
+    const OperandBounds& sphere = bvh_.operands()[i];
+    if (bare_spheres_[i]) {
+      // The bounding sphere is the operand: its distance at the centre needs no tree walk.
+      const double at_centre = glm::length(m_ - sphere.center) - sphere.radius;
+      return {at_centre - reach_, at_centre + reach_};
+    }
+    Interval b{operand_lower_bound(sphere, m_, reach_), kInfinity};
     if (lipschitz_[i]) {
       const double at_centre = reference_distance(node_.children[i], m_ + offset_);
       b.lower = std::max(b.lower, at_centre - reach_);
@@ -143,7 +157,7 @@ class CellPruner {
   const OperandBvh& bvh_;
   double rounding_;
   double k_;
-  std::vector<bool> lipschitz_;
+  std::vector<bool> lipschitz_, bare_spheres_;
   glm::dvec3 m_{0.0};
   double reach_ = 0.0;
   std::vector<std::uint32_t> candidates_, kept_;
