@@ -34,8 +34,10 @@ KernelPurpose purpose_for(const Scene& scene, bool want_buffers) {
   switch (scene.shading.view) {
     case View::Shaded: return want_buffers ? KernelPurpose::Shaded : KernelPurpose::Color;
     case View::Normals: return KernelPurpose::Normals;
-    default: return want_buffers ? KernelPurpose::Normals : KernelPurpose::DepthSteps;
+    case View::Depth:
+    case View::Steps: return want_buffers ? KernelPurpose::Normals : KernelPurpose::DepthSteps;
   }
+  return KernelPurpose::Shaded;
 }
 
 }  // namespace
