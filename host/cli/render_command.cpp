@@ -9,11 +9,11 @@
 #include "common/errors.hpp"
 #include "common/log.hpp"
 #include "common/progress.hpp"
+#include "frame/views.hpp"
 #include "image/atomic_file.hpp"
 #include "image/image_writer.hpp"
 #include "reference/reference_cones.hpp"
 #include "reference/reference_renderer.hpp"
-#include "render/views.hpp"
 #include "scene/scene_bounds.hpp"
 
 #include <fmt/format.h>

@@ -2,7 +2,7 @@
 #pragma once
 
 #include "codegen/kernel_source.hpp"
-#include "render/frame_buffers.hpp"
+#include "frame/frame_buffers.hpp"
 #include "scene/scene.hpp"
 
 #include <glm/glm.hpp>
