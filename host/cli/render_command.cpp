@@ -5,12 +5,12 @@
 
 #include "cl/devices.hpp"
 #include "codegen/varying_literals.hpp"
+#include "common/atomic_file.hpp"
 #include "common/cancellation.hpp"
 #include "common/errors.hpp"
 #include "common/log.hpp"
 #include "common/progress.hpp"
 #include "frame/views.hpp"
-#include "image/atomic_file.hpp"
 #include "image/image_writer.hpp"
 #include "reference/reference_cones.hpp"
 #include "reference/reference_renderer.hpp"

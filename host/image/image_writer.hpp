@@ -2,8 +2,8 @@
 // float EXR of all buffers.
 #pragma once
 
+#include "common/atomic_file.hpp"
 #include "frame/frame_buffers.hpp"
-#include "image/atomic_file.hpp"
 
 #include <filesystem>
 #include <string>

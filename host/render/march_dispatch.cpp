@@ -3,8 +3,8 @@
 
 #include "cl/cl_errors.hpp"
 #include "codegen/kernel_source.hpp"
+#include "common/atomic_file.hpp"
 #include "common/cancellation.hpp"
-#include "image/atomic_file.hpp"
 #include "scene/camera_model.hpp"
 #include "scene/scene_bounds.hpp"
 #include "scene/tiling_model.hpp"
