@@ -168,7 +168,9 @@ RenderResult render_scene(const RenderCommandOptions& options, const Scene& scen
   }
   OpenClOptions cl = opencl_options(options.scene);
   cl.purpose = purpose_for(scene, !files.buffers.empty());
-  cl.dump_kernel_path = files.dump_kernel;
+  if (!files.dump_kernel.empty()) {
+    cl.before_build = [path = files.dump_kernel](const std::string& source) { write_file_atomically(path, source); };
+  }
   std::optional<OpenClRenderer> single;
   std::optional<OpenClRenderer>* renderer = &single;
   if (sequence) {

@@ -3,7 +3,6 @@
 
 #include "cl/cl_errors.hpp"
 #include "codegen/kernel_source.hpp"
-#include "common/atomic_file.hpp"
 #include "common/cancellation.hpp"
 #include "scene/camera_model.hpp"
 #include "scene/scene_bounds.hpp"
@@ -80,7 +79,7 @@ PreparedProgram prepare_program(const Scene& scene, const OpenClOptions& options
   const bool march = purpose != KernelPurpose::EvalPoints;
   if (march) kernel_options.value_slots = options.value_slots;
   const std::string source = generate_kernel_source(scene, kernel_options);
-  if (!options.dump_kernel_path.empty()) write_file_atomically(options.dump_kernel_path, source);
+  if (options.before_build) options.before_build(source);
   return {build_device_program(device, source, kernel_build_options(options.variant)), kernel_options.lanes,
           march ? packets_per_item(scene, kernel_options.lanes) : 1,
           march ? march_outputs(scene, purpose).planes() : std::vector<int>{}, source, kernel_options};

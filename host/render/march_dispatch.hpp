@@ -28,8 +28,8 @@ struct PreparedProgram {
   KernelOptions kernel_options;
 };
 
-/// Generates and builds the scene's program for purpose (writing it to options.dump_kernel_path
-/// first when set).
+/// Generates and builds the scene's program for purpose (handing the source to
+/// options.before_build first when set).
 PreparedProgram prepare_program(const Scene& scene, const OpenClOptions& options, KernelPurpose purpose);
 
 /// Columns of the tile a packet of `lanes` pixels covers (PACKET_WIDTH of kernels/lanes.cl).
