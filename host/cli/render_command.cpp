@@ -186,7 +186,7 @@ RenderResult render_scene(const RenderCommandOptions& options, const Scene& scen
     renderer->emplace(scene, cl);
   }
   RenderResult result = (*renderer)->render();
-  // The renderer's dispatch takes default_local_size for its work-groups (render/march_dispatch.cpp).
+  // The renderer's dispatch takes default_local_size for its work-groups (render/dispatch_plan.cpp).
   log_verbose(fmt::format("lanes {} (pixels per work-item), local size {}, {} chunk{}, kernel {:.1f} ms",
                           result.stats.lanes, default_local_size(select_device(options.scene.device)),
                           result.stats.chunks, result.stats.chunks == 1 ? "" : "s", result.stats.kernel_ms));
