@@ -3,7 +3,8 @@
 #   1. the suite on the Release build (build/),
 #   2. the same suite under AddressSanitizer and UndefinedBehaviorSanitizer (build-sanitize/),
 #   3. the scene fuzzer for a bounded time (scripts/fuzz.sh, build-fuzz/; CLMARCH_FUZZ_SECONDS).
-# CLMARCH_QUICK=1 runs step 1 only. Each step prints its wall time.
+# CLMARCH_QUICK=1 runs step 1 only. Each step prints its wall time. The Release and sanitizer
+# builds treat warnings as errors (CLMARCH_WERROR): a warning fails CI, not just the log.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc)
@@ -16,7 +17,7 @@ step() {
 }
 
 scripts/setup.sh
-step "build" scripts/build.sh
+step "build" scripts/build.sh -DCLMARCH_WERROR=ON
 step "tests" ctest --test-dir build --output-on-failure -j "$jobs"
 [ "${CLMARCH_QUICK:-0}" = 1 ] && exit 0
 
@@ -24,7 +25,7 @@ step "tests" ctest --test-dir build --output-on-failure -j "$jobs"
 # Debug keeps assertions on.
 sanitize_build() {
   cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" \
-    -DCLMARCH_SANITIZE=ON >/dev/null
+    -DCLMARCH_SANITIZE=ON -DCLMARCH_WERROR=ON >/dev/null
   cmake --build build-sanitize
 }
 step "sanitizer build" sanitize_build

@@ -1,8 +1,8 @@
 // write_atomically and StagedFiles: the targets appear whole or not at all, whatever stops the
 // writes, and files staged together replace their targets only when all of them were written.
+#include "common/atomic_file.hpp"
 #include "common/cancellation.hpp"
 #include "common/errors.hpp"
-#include "image/atomic_file.hpp"
 #include "support/test_support.hpp"
 
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 // Images too large for the machine's memory: the estimate, the message, and the CLI refusing them
 // before anything is allocated (exit code 2, one line naming --size or render.width/height).
 #include "common/errors.hpp"
-#include "render/frame_buffers.hpp"
+#include "frame/frame_buffers.hpp"
 #include "render/host_memory.hpp"
 #include "support/test_support.hpp"
 

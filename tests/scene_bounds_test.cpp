@@ -3,7 +3,9 @@
 // clipped to the bound equal unclipped ones with fewer distance evaluations.
 #include "reference/reference_renderer.hpp"
 #include "reference/reference_sdf.hpp"
-#include "render/march_dispatch.hpp"
+#include "render/device_inputs.hpp"
+#include "render/dispatch_plan.hpp"
+#include "render/live_tiles.hpp"
 #include "render/opencl_renderer.hpp"
 #include "scene/scene_bounds.hpp"
 #include "support/test_support.hpp"

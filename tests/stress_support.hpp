@@ -3,7 +3,7 @@
 // bitwise run-to-run comparison.
 #pragma once
 
-#include "render/frame_buffers.hpp"
+#include "frame/frame_buffers.hpp"
 #include "render/opencl_renderer.hpp"
 #include "scene/scene.hpp"
 

@@ -1,6 +1,6 @@
 // The debug views (shading.view) against their definitions in docs/scene-format.md, on buffers
 // whose values are chosen by hand.
-#include "render/views.hpp"
+#include "frame/views.hpp"
 
 #include <gtest/gtest.h>
 

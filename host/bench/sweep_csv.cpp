@@ -1,8 +1,8 @@
 // Sweep rows as CSV (RFC 4180 quoting for the few text fields that may need it).
 #include "bench/sweep_csv.hpp"
 
+#include "common/atomic_file.hpp"
 #include "common/errors.hpp"
-#include "image/atomic_file.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>

@@ -3,7 +3,10 @@
 
 #include "cl/cl_errors.hpp"
 #include "codegen/kernel_source.hpp"
-#include "render/march_dispatch.hpp"
+#include "render/cone_pass.hpp"
+#include "render/device_inputs.hpp"
+#include "render/dispatch_plan.hpp"
+#include "render/prepared_program.hpp"
 
 #include <algorithm>
 #include <numeric>

@@ -3,8 +3,8 @@
 #pragma once
 
 #include "cl/device_program.hpp"
-#include "render/march_dispatch.hpp"
 #include "render/opencl_renderer.hpp"
+#include "render/prepared_program.hpp"
 #include "scene/scene.hpp"
 
 #include <glm/glm.hpp>

@@ -2,7 +2,7 @@
 // scene's settings (docs/accuracy.md).
 #pragma once
 
-#include "render/frame_buffers.hpp"
+#include "frame/frame_buffers.hpp"
 #include "scene/scene.hpp"
 
 #include <nlohmann/json.hpp>

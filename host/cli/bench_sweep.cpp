@@ -4,9 +4,9 @@
 #include "bench/sweep_csv.hpp"
 #include "bench/sweep_run.hpp"
 #include "cl/devices.hpp"
+#include "common/atomic_file.hpp"
 #include "common/errors.hpp"
 #include "common/log.hpp"
-#include "image/atomic_file.hpp"
 #include "scene/scene_bounds.hpp"
 
 #include <fmt/format.h>

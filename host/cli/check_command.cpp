@@ -2,9 +2,9 @@
 #include "cli/check_command.hpp"
 
 #include "check/cross_check.hpp"
+#include "common/atomic_file.hpp"
 #include "common/errors.hpp"
 #include "common/log.hpp"
-#include "image/atomic_file.hpp"
 #include "image/image_writer.hpp"
 #include "reference/reference_renderer.hpp"
 

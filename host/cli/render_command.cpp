@@ -5,15 +5,15 @@
 
 #include "cl/devices.hpp"
 #include "codegen/varying_literals.hpp"
+#include "common/atomic_file.hpp"
 #include "common/cancellation.hpp"
 #include "common/errors.hpp"
 #include "common/log.hpp"
 #include "common/progress.hpp"
-#include "image/atomic_file.hpp"
+#include "frame/views.hpp"
 #include "image/image_writer.hpp"
 #include "reference/reference_cones.hpp"
 #include "reference/reference_renderer.hpp"
-#include "render/views.hpp"
 #include "scene/scene_bounds.hpp"
 
 #include <fmt/format.h>
@@ -34,8 +34,10 @@ KernelPurpose purpose_for(const Scene& scene, bool want_buffers) {
   switch (scene.shading.view) {
     case View::Shaded: return want_buffers ? KernelPurpose::Shaded : KernelPurpose::Color;
     case View::Normals: return KernelPurpose::Normals;
-    default: return want_buffers ? KernelPurpose::Normals : KernelPurpose::DepthSteps;
+    case View::Depth:
+    case View::Steps: return want_buffers ? KernelPurpose::Normals : KernelPurpose::DepthSteps;
   }
+  return KernelPurpose::Shaded;
 }
 
 }  // namespace
@@ -166,7 +168,9 @@ RenderResult render_scene(const RenderCommandOptions& options, const Scene& scen
   }
   OpenClOptions cl = opencl_options(options.scene);
   cl.purpose = purpose_for(scene, !files.buffers.empty());
-  cl.dump_kernel_path = files.dump_kernel;
+  if (!files.dump_kernel.empty()) {
+    cl.before_build = [path = files.dump_kernel](const std::string& source) { write_file_atomically(path, source); };
+  }
   std::optional<OpenClRenderer> single;
   std::optional<OpenClRenderer>* renderer = &single;
   if (sequence) {
@@ -182,7 +186,7 @@ RenderResult render_scene(const RenderCommandOptions& options, const Scene& scen
     renderer->emplace(scene, cl);
   }
   RenderResult result = (*renderer)->render();
-  // The renderer's dispatch takes default_local_size for its work-groups (render/march_dispatch.cpp).
+  // The renderer's dispatch takes default_local_size for its work-groups (render/dispatch_plan.cpp).
   log_verbose(fmt::format("lanes {} (pixels per work-item), local size {}, {} chunk{}, kernel {:.1f} ms",
                           result.stats.lanes, default_local_size(select_device(options.scene.device)),
                           result.stats.chunks, result.stats.chunks == 1 ? "" : "s", result.stats.kernel_ms));

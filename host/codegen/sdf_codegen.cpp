@@ -109,8 +109,21 @@ int subtree_cost(const Node& node) {
     case NodeKind::Menger: return 3 * std::get<Menger>(node.primitive).iterations;
     case NodeKind::Terrain: return 4 * std::get<Terrain>(node.primitive).octaves;
     case NodeKind::Displace: return cost + 6;
-    default: return std::max(2, cost + 1);
+    case NodeKind::Box:
+    case NodeKind::RoundBox:
+    case NodeKind::BoxFrame:
+    case NodeKind::Torus:
+    case NodeKind::Capsule:
+    case NodeKind::Cylinder:
+    case NodeKind::Union:
+    case NodeKind::Intersection:
+    case NodeKind::Subtraction:
+    case NodeKind::SmoothUnion:
+    case NodeKind::SmoothIntersection:
+    case NodeKind::SmoothSubtraction:
+    case NodeKind::Repeat: return std::max(2, cost + 1);
   }
+  return std::max(2, cost + 1);
 }
 
 /// Subtrees from this cost on are gated behind their bounding sphere inside unions and subtractions.
@@ -179,8 +192,13 @@ class SdfEmitter {
         return fmt::format("v3_mix({}, {}, smooth_intersection_blend({}, {}, {}))", "{1}", "{0}", a, b, k);
       case NodeKind::SmoothSubtraction:
         return fmt::format("v3_mix({}, {}, smooth_subtraction_blend({}, {}, {}))", "{0}", "{1}", a, b, k);
-      default: throw std::logic_error("blend_rule() called on a primitive or modifier");
+      case NodeKind::Repeat:
+      case NodeKind::Displace:
+#define CLMARCH_PRIMITIVE(kind, name) case NodeKind::kind:
+#include "scene/node_kinds.def"
+        break;
     }
+    throw std::logic_error("blend_rule() called on a primitive or a modifier");
   }
 
   /// The distance of an operator's operands a and b, as combine() writes it.
@@ -192,8 +210,13 @@ class SdfEmitter {
       case NodeKind::SmoothUnion: return fmt::format("op_smooth_union({}, {}, {})", a, b, k);
       case NodeKind::SmoothIntersection: return fmt::format("op_smooth_intersection({}, {}, {})", a, b, k);
       case NodeKind::SmoothSubtraction: return fmt::format("op_smooth_subtraction({}, {}, {})", a, b, k);
-      default: throw std::logic_error("combine_rule() called on a primitive or modifier");
+      case NodeKind::Repeat:
+      case NodeKind::Displace:
+#define CLMARCH_PRIMITIVE(kind, name) case NodeKind::kind:
+#include "scene/node_kinds.def"
+        break;
     }
+    throw std::logic_error("combine_rule() called on a primitive or a modifier");
   }
 
  private:
@@ -265,8 +288,16 @@ class SdfEmitter {
       case NodeKind::SmoothUnion: return fmt::format("{} + {}", acc, k);
       case NodeKind::Subtraction: return fmt::format("-{}", acc);
       case NodeKind::SmoothSubtraction: return fmt::format("{} - {}", k, acc);
-      default: return std::nullopt;
+      case NodeKind::Union:
+      case NodeKind::Intersection:
+      case NodeKind::SmoothIntersection:
+      case NodeKind::Repeat:
+      case NodeKind::Displace:
+#define CLMARCH_PRIMITIVE(kind, name) case NodeKind::kind:
+#include "scene/node_kinds.def"
+        return std::nullopt;
     }
+    return std::nullopt;
   }
 
   /// A union's children in any order of evaluation (min is commutative, and the material follows

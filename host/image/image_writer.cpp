@@ -1,8 +1,8 @@
 // OpenImageIO output; every file is staged through StagedFiles (temporary, then renamed).
 #include "image/image_writer.hpp"
 
+#include "common/atomic_file.hpp"
 #include "common/errors.hpp"
-#include "image/atomic_file.hpp"
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>

@@ -2,8 +2,8 @@
 // float EXR of all buffers.
 #pragma once
 
-#include "image/atomic_file.hpp"
-#include "render/frame_buffers.hpp"
+#include "common/atomic_file.hpp"
+#include "frame/frame_buffers.hpp"
 
 #include <filesystem>
 #include <string>

@@ -2,8 +2,8 @@
 // rules of the OpenCL renderer (docs/scene-format.md), so the two can be compared pixel by pixel.
 #pragma once
 
+#include "frame/frame_buffers.hpp"
 #include "reference/reference_cones.hpp"
-#include "render/frame_buffers.hpp"
 #include "scene/scene.hpp"
 
 #include <glm/glm.hpp>

@@ -13,8 +13,10 @@ double specular_term(ShadingModel model, const glm::dvec3& n, const glm::dvec3& 
   switch (model) {
     case ShadingModel::Phong: return std::pow(std::max(glm::dot(glm::reflect(-l, n), v), 0.0), shininess);
     case ShadingModel::BlinnPhong: return std::pow(std::max(glm::dot(n, normalize_or_zero(l + v)), 0.0), shininess);
-    default: return 0.0;
+    case ShadingModel::Lambert:
+    case ShadingModel::Pbr: return 0.0;
   }
+  return 0.0;
 }
 
 // Cook-Torrance: GGX distribution, Smith-Schlick geometry with k = (r + 1)^2 / 8, Fresnel-Schlick

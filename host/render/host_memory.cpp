@@ -1,7 +1,7 @@
 // Host memory estimates and the memory left to this process (Linux: /proc, cgroups, rlimits).
 #include "render/host_memory.hpp"
 
-#include "render/frame_buffers.hpp"
+#include "frame/frame_buffers.hpp"
 
 #include <fmt/format.h>
 

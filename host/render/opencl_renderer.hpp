@@ -2,12 +2,13 @@
 #pragma once
 
 #include "codegen/kernel_source.hpp"
-#include "render/frame_buffers.hpp"
+#include "frame/frame_buffers.hpp"
 #include "scene/scene.hpp"
 
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -27,8 +28,9 @@ struct OpenClOptions {
   /// values buffer instead of spelling them (march_scene_code): the values an animation changes,
   /// so that its frames share one program (VaryingLiterals). Empty: every literal is spelled.
   ValueSlots value_slots;
-  /// Where to write the exact program source before building; empty: nowhere.
-  std::string dump_kernel_path;
+  /// Called with the exact program source before it is built (--dump-kernel writes it to a file,
+  /// so that a program that fails to build can be read); empty: not called.
+  std::function<void(const std::string& source)> before_build;
   /// Most pixels per dispatch; 0: as many as the device's largest buffer allows (capped so that
   /// progress and Ctrl-C stay responsive).
   std::size_t max_chunk_pixels = 0;
@@ -76,7 +78,7 @@ class OpenClRenderer {
   RenderResult render();
 
   /// Whether scene can be rendered with this program and buffers: the same image size, options
-  /// (but dump_kernel_path) and generated source, so only what the kernel takes as arguments
+  /// (but before_build) and generated source, so only what the kernel takes as arguments
   /// differs (the camera and lights, march limits, the literals at value_slots).
   bool can_render(const Scene& scene, const OpenClOptions& options) const;
   /// Makes scene the current one; can_render(scene, ...) must hold.

@@ -85,8 +85,12 @@ std::optional<BoundingSphere> operator_bounds(const Node& node) {
     }
     case NodeKind::Subtraction:
     case NodeKind::SmoothSubtraction: return node_bounds(node.children.front());
-    default: return std::nullopt;
+    // Primitives have primitive_bounds instead.
+#define CLMARCH_PRIMITIVE(kind, name) case NodeKind::kind:
+#include "scene/node_kinds.def"
+      return std::nullopt;
   }
+  return std::nullopt;
 }
 
 }  // namespace

@@ -461,7 +461,8 @@ class SceneReader {
         node.primitive = t;
         break;
       }
-      default:
+#define CLMARCH_OPERATOR(kind, name) case NodeKind::kind:
+#include "scene/node_kinds.def"
         throw std::logic_error("read_primitive() called on an operator");
     }
     read_common(node, params, path);

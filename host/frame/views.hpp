@@ -2,7 +2,7 @@
 // both backends show them identically and the kernel needs no shading for them.
 #pragma once
 
-#include "render/frame_buffers.hpp"
+#include "frame/frame_buffers.hpp"
 #include "scene/scene.hpp"
 
 namespace clmarch {

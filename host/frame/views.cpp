@@ -1,5 +1,5 @@
 // Debug views from the buffers.
-#include "render/views.hpp"
+#include "frame/views.hpp"
 
 #include <algorithm>
 #include <cmath>

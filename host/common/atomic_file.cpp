@@ -1,5 +1,5 @@
 // Temporary-then-rename file writing.
-#include "image/atomic_file.hpp"
+#include "common/atomic_file.hpp"
 
 #include "common/cancellation.hpp"
 #include "common/errors.hpp"

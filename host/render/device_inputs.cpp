@@ -1,0 +1,115 @@
+// The march kernel's parameters, lights and values, and how they are bound to its arguments.
+#include "render/device_inputs.hpp"
+
+#include "codegen/kernel_source.hpp"
+#include "render/live_tiles.hpp"
+#include "scene/camera_model.hpp"
+#include "scene/scene_bounds.hpp"
+#include "scene/tiling_model.hpp"
+
+namespace clmarch {
+namespace {
+
+cl_float4 to_cl(const glm::dvec3& v) {
+  cl_float4 out;
+  out.s[0] = static_cast<float>(v.x);
+  out.s[1] = static_cast<float>(v.y);
+  out.s[2] = static_cast<float>(v.z);
+  out.s[3] = 0.0f;
+  return out;
+}
+
+}  // namespace
+
+MarchParams march_params(const Scene& scene, const Dispatch& dispatch) {
+  const int width = scene.render.width;
+  const int height = scene.render.height;
+  const CameraBasis basis = camera_basis(scene.camera, width, height);
+  MarchParams params{};
+  params.origin = to_cl(basis.origin - map_frame_origin(scene));
+  params.forward = to_cl(basis.forward);
+  params.right_extent = to_cl(basis.right_extent);
+  params.up_extent = to_cl(basis.up_extent);
+  params.width = width;
+  params.height = height;
+  params.chunk_rows = dispatch.chunk_rows;
+  params.plane_stride = static_cast<cl_int>(dispatch.plane_stride);
+  params.max_steps = scene.render.max_steps;
+  params.epsilon = static_cast<float>(scene.render.epsilon);
+  params.max_distance = static_cast<float>(scene.render.max_distance);
+  params.normal_epsilon = static_cast<float>(scene.render.normal_epsilon);
+  if (scene.tiling) params.origin_in_cell = to_cl(offset_in_cell(scene.camera.position, scene.tiling->cell));
+  params.camera_height = static_cast<float>(scene.camera.position.y);
+  params.over_relaxation = static_cast<float>(camera_over_relaxation(scene));
+  params.hit_cone_slope = static_cast<float>(hit_cone_slope(scene.render, scene.camera));
+  if (const std::optional<BoundingSphere> bounds = camera_ray_bounds(scene)) {
+    const glm::dvec3 c = scene.camera.position - bounds->center;
+    params.bounds = to_cl(c);
+    params.bounds.s[3] = static_cast<float>(bounds->radius);
+    // The rays of a tile are q / |q| with q = f + sx r + sy u, |q| >= 1, where normalising is
+    // 1-Lipschitz: they lie within spread of the centre ray's direction, so each passes the centre
+    // no nearer than |c x centre| - |c| spread. Beyond reach = radius + |c| spread no ray of the tile
+    // meets the sphere; the margin covers the float arithmetic of the test.
+    const double spread = dispatch.tile_width / static_cast<double>(width) * glm::length(basis.right_extent) +
+                          dispatch.tile_height / static_cast<double>(height) * glm::length(basis.up_extent);
+    const double distance = glm::length(c);
+    const double reach = bounds->radius + distance * spread + 1e-5 * (distance + bounds->radius);
+    params.tile_reach.s[0] = static_cast<float>(reach * reach);
+    const TileRange live = live_tiles(basis, c, reach, dispatch.tile_width, dispatch.tile_height);
+    params.live_columns[0] = live.first_column;
+    params.live_columns[1] = live.last_column;
+    params.live_rows[0] = live.first_row;
+    params.live_rows[1] = live.last_row;
+  }
+  return params;
+}
+
+std::vector<cl_float4> light_data(const Scene& scene) {
+  std::vector<cl_float4> data;
+  for (const Light& light : scene.lights) {
+    cl_float4 where = light.kind == LightKind::Point ? to_cl(light.position - scene.camera.position) : to_cl(light.direction);
+    where.s[3] = light.kind == LightKind::Point ? 1.0f : 0.0f;
+    data.push_back(where);
+    data.push_back(to_cl(light.color * light.intensity));
+  }
+  if (data.empty()) data.push_back(to_cl(glm::dvec3(0.0)));  // a buffer may not be empty
+  return data;
+}
+
+std::optional<cl::Buffer> make_scene_values(const PreparedProgram& program, const Scene& scene) {
+  std::vector<float> values = scene_values(scene, program.kernel_options);
+  if (values.empty()) return std::nullopt;
+  return cl::Buffer(program.program.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, values.size() * sizeof(float),
+                    values.data());
+}
+
+void write_scene_values(PreparedProgram& program, const Scene& scene, std::optional<cl::Buffer>& values) {
+  if (!values) return;
+  const std::vector<float> data = scene_values(scene, program.kernel_options);
+  // An operand grid's data changes size with the frame's scene: a larger one takes a new buffer.
+  if (data.size() * sizeof(float) > values->getInfo<CL_MEM_SIZE>()) {
+    values = make_scene_values(program, scene);
+    return;
+  }
+  program.program.queue.enqueueWriteBuffer(*values, CL_TRUE, 0, data.size() * sizeof(float), data.data());
+}
+
+void set_scene_values_arg(cl::Kernel& kernel, int index, const std::optional<cl::Buffer>& values) {
+  if (values) {
+    kernel.setArg(index, *values);
+  } else {
+    kernel.setArg(index, sizeof(cl_mem), nullptr);  // a NULL pointer: the program spells every literal
+  }
+}
+
+int bind_march_inputs(cl::Kernel& march, const cl::Buffer& out, const cl::Buffer& lights,
+                      const std::optional<cl::Buffer>& values, const std::optional<ConePass>& cones) {
+  march.setArg(1, out);
+  march.setArg(2, lights);
+  set_scene_values_arg(march, 3, values);
+  if (!cones) return 4;
+  march.setArg(4, cones->starts);
+  return 5;
+}
+
+}  // namespace clmarch

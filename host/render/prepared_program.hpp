@@ -1,0 +1,30 @@
+// The program of one purpose, generated for a scene and built for its device: what every dispatch
+// of the renderer and the benchmarks starts from.
+#pragma once
+
+#include "cl/device_program.hpp"
+#include "render/opencl_renderer.hpp"
+#include "scene/scene.hpp"
+
+#include <string>
+#include <vector>
+
+namespace clmarch {
+
+/// A program built for one purpose, with its packet width, packets per work-item and the output
+/// planes its march kernel writes.
+struct PreparedProgram {
+  DeviceProgram program;
+  int lanes = 1;
+  int packets_per_item = 1;
+  std::vector<int> planes;
+  /// The generated OpenCL C it was built from, and what it was generated with.
+  std::string source;
+  KernelOptions kernel_options;
+};
+
+/// Generates and builds the scene's program for purpose (handing the source to
+/// options.before_build first when set).
+PreparedProgram prepare_program(const Scene& scene, const OpenClOptions& options, KernelPurpose purpose);
+
+}  // namespace clmarch
