@@ -155,7 +155,8 @@ const std::vector<DepthCase>& depth_cases() {
       {"sphere",
        "camera: {position: [0.3, 0.5, 4], look_at: [0, 0, 0]}\nsdf: {sphere: {center: [0, 0, 0], radius: 1}}\n",
        [](const glm::dvec3& o, const glm::dvec3& d) { return intersect_sphere(o, d, Sphere{{0, 0, 0}, 1.0}); },
-       [](const glm::dvec3& p) { return glm::normalize(p); }},
+       [](const glm::dvec3& p) { return glm::normalize(p); },
+       {}},
       {"box",
        "camera: {position: [-2, 3, 4], look_at: [0, 0, 0]}\nsdf: {box: {center: [0.2, 0, 0], half_size: [1, 0.5, 0.75]}}\n",
        [](const glm::dvec3& o, const glm::dvec3& d) { return intersect_box(o, d, Box{{0.2, 0, 0}, {1, 0.5, 0.75}}); },
@@ -165,11 +166,13 @@ const std::vector<DepthCase>& depth_cases() {
          if (a.x >= a.y && a.x >= a.z) return glm::dvec3(q.x > 0 ? 1 : -1, 0, 0);
          if (a.y >= a.z) return glm::dvec3(0, q.y > 0 ? 1 : -1, 0);
          return glm::dvec3(0, 0, q.z > 0 ? 1 : -1);
-       }},
+       },
+       {}},
       {"plane",
        "camera: {position: [-2, 4, 4], look_at: [0, 0, 0]}\nsdf: {plane: {normal: [0, 1, 0], offset: 1}}\n",
        [](const glm::dvec3& o, const glm::dvec3& d) { return intersect_plane(o, d, Plane{{0, 1, 0}, 1.0}); },
-       [](const glm::dvec3&) { return glm::dvec3(0, 1, 0); }},
+       [](const glm::dvec3&) { return glm::dvec3(0, 1, 0); },
+       {}},
   };
   return cases;
 }

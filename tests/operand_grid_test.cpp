@@ -44,7 +44,7 @@ std::string random_operand(std::mt19937& rng) {
   if (k % 3 == 0) extra += fmt::format(", color: {}", vec(0.5 * point() + 0.5));
   if (k % 4 == 1) extra += fmt::format(", translate: {}, rotate: {}, scale: 0.8", vec(0.1 * point()), vec(90.0 * point()));
   const std::string a = primitive(k % 5), b = primitive((k + 2) % 5);
-  if (k < 5) return "{" + a.substr(0, a.size() - 1) + extra + "}}";
+  if (k < 5) return fmt::format("{{{}{}}}}}", a.substr(0, a.size() - 1), extra);
   if (k == 5) return fmt::format("{{subtraction: [{{{}}}, {{{}}}]}}", a, b);
   if (k == 6) return fmt::format("{{intersection: [{{{}}}, {{sphere: {{radius: 2}}}}]}}", a);
   if (k == 7) return fmt::format("{{smooth_union: {{k: 0.1, children: [{{{}}}, {{{}}}]{}}}}}", a, b, extra);

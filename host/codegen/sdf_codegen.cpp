@@ -19,6 +19,8 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -457,9 +459,33 @@ std::string shape_function(const std::string& signature, const std::string& lite
   return out + "  }\n}\n";
 }
 
+/// FNV-1a over bytes, continuing from hash.
+std::uint64_t fnv1a(std::uint64_t hash, const void* bytes, std::size_t size) {
+  const auto* at = static_cast<const unsigned char*>(bytes);
+  for (std::size_t i = 0; i < size; ++i) hash = (hash ^ at[i]) * 0x100000001b3ULL;
+  return hash;
+}
+
+/// The grid of union_node, built once for the operands it was built for: a program's source and
+/// its values are generated apart (generate_kernel_source, scene_values) from the same scene, and
+/// a large union's grid takes seconds. key identifies the operands by their code and numbers.
+std::shared_ptr<const OperandGrid> operand_grid_for(const Node& union_node, const glm::dvec3& offset, std::uint64_t key) {
+  static std::mutex mutex;
+  static std::uint64_t last_key = 0;
+  static std::shared_ptr<const OperandGrid> last;
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    if (last && last_key == key) return last;
+  }
+  auto grid = std::make_shared<const OperandGrid>(build_operand_grid(union_node, offset));
+  const std::lock_guard<std::mutex> lock(mutex);
+  last_key = key;
+  last = grid;
+  return grid;
+}
+
 void GridEmission::emit(const Node& union_node, const Material& color, const glm::dvec3& offset, bool gate_subtrees,
                         Literals& lit) {
-  const OperandGrid grid = build_operand_grid(union_node, offset);
   // Each operand's code, its literals left open: operands whose code reads alike share a shape.
   std::map<std::string, std::uint32_t> distance_ids, color_ids;
   std::vector<std::string> distance_shapes, color_shapes;
@@ -490,6 +516,13 @@ void GridEmission::emit(const Node& union_node, const Material& color, const glm
     records.insert(records.end(), distance_values.begin(), distance_values.end());
     records.insert(records.end(), color_values.begin(), color_values.end());
   }
+  std::uint64_t key = 0xcbf29ce484222325ULL;
+  key = fnv1a(key, records.data(), records.size() * sizeof(float));
+  for (const std::string& shape : distance_shapes) key = fnv1a(key, shape.data(), shape.size());
+  const double numbers[] = {static_cast<double>(union_node.kind), union_node.smooth_k, offset.x, offset.y, offset.z};
+  key = fnv1a(key, numbers, sizeof(numbers));
+  const std::shared_ptr<const OperandGrid> shared_grid = operand_grid_for(union_node, offset, key);
+  const OperandGrid& grid = *shared_grid;
 
   const long long cells = grid.cell_count();
   const std::size_t cells_at = CLMARCH_GRID_HEADER_WORDS;
