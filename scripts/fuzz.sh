@@ -1,15 +1,17 @@
 #!/usr/bin/env bash
 # Fuzzes the scene loader and the code generator with libFuzzer for a bounded time.
 # Usage: scripts/fuzz.sh [SECONDS]   (default 60; scripts/test.sh runs it in CI)
-# Builds build-fuzz/ with clang, ASan and UBSan. New interesting inputs collect in
-# build-fuzz/corpus; an input that crashes, hangs (> 10 s) or trips a sanitizer is written to
-# build-fuzz/artifacts/ and the script fails: fix the bug and add the input to
-# tests/fuzz_regressions/ (tests/fuzz_regressions_test.cpp then loads it in every test run).
+# Builds build-fuzz/ with clang, ASan and UBSan, warnings as errors (CLMARCH_WERROR). New
+# interesting inputs collect in build-fuzz/corpus; an input that crashes, hangs (> 10 s) or trips
+# a sanitizer is written to build-fuzz/artifacts/ and the script fails: fix the bug and add the
+# input to tests/fuzz_regressions/ (tests/fuzz_regressions_test.cpp then loads it in every test
+# run).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" \
-  -DCMAKE_CXX_COMPILER=clang++ -DCLMARCH_FUZZ=ON -DCLMARCH_BUILD_TESTS=OFF >/dev/null
+  -DCMAKE_CXX_COMPILER=clang++ -DCLMARCH_FUZZ=ON -DCLMARCH_BUILD_TESTS=OFF -DCLMARCH_WERROR=ON \
+  >/dev/null
 cmake --build build-fuzz --target clmarch_fuzz_scene
 mkdir -p build-fuzz/corpus build-fuzz/artifacts
 # The first folder receives new inputs; scenes/ and the regression inputs only seed it.

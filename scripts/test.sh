@@ -3,8 +3,8 @@
 #   1. the suite on the Release build (build/),
 #   2. the same suite under AddressSanitizer and UndefinedBehaviorSanitizer (build-sanitize/),
 #   3. the scene fuzzer for a bounded time (scripts/fuzz.sh, build-fuzz/; CLMARCH_FUZZ_SECONDS).
-# CLMARCH_QUICK=1 runs step 1 only. Each step prints its wall time. The Release and sanitizer
-# builds treat warnings as errors (CLMARCH_WERROR): a warning fails CI, not just the log.
+# CLMARCH_QUICK=1 runs step 1 only. Each step prints its wall time. All three builds treat
+# warnings as errors (CLMARCH_WERROR): a warning fails CI, not just the log.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc)
