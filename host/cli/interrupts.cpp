@@ -3,6 +3,7 @@
 #include "cli/interrupts.hpp"
 
 #include "common/cancellation.hpp"
+#include "common/interrupt_note.hpp"
 #include "common/pending_file.hpp"
 
 #include <atomic>
@@ -24,6 +25,7 @@ extern "C" void on_interrupt(int signal) {
     // Inside a call with no cancellation point (BlockingCall): stopping now loses nothing.
     constexpr char kMessage[] = "clmarch: interrupted\n";
     [[maybe_unused]] const ssize_t written = write(STDERR_FILENO, kMessage, sizeof kMessage - 1);
+    write_interrupt_note();
   }
   // A second signal: the user does not want to wait for the current chunk or row to finish.
   remove_pending_files_in_signal_handler();
