@@ -15,7 +15,9 @@ namespace clmarch {
 namespace {
 
 MpiWorld g_world;
+#if CLMARCH_HAVE_MPI
 bool g_started = false;
+#endif
 
 std::string host_name() {
   char name[256] = {};
@@ -27,7 +29,7 @@ std::string host_name() {
 
 bool launched_as_ranks() {
 #if CLMARCH_HAVE_MPI
-  for (const char* variable : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE", "SLURM_NTASKS"}) {
+  for (const char* variable : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "SLURM_STEP_NUM_TASKS"}) {
     const char* value = std::getenv(variable);
     if (value && std::atoi(value) > 1) return true;
   }
@@ -45,8 +47,6 @@ void start_mpi_if_launched() {
     MPI_Abort(MPI_COMM_WORLD, 70);
   }
   g_started = true;
-  // Errors come back as codes, so that a lost rank is reported rather than aborting the job.
-  MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
   MPI_Comm_rank(MPI_COMM_WORLD, &g_world.rank);
   MPI_Comm_size(MPI_COMM_WORLD, &g_world.size);
   // The ranks sharing this node's memory, in rank order: the MPI-3 split that srun and mpirun both

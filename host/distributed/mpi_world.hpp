@@ -21,8 +21,9 @@ struct MpiWorld {
 };
 
 /// Whether the launcher's environment says this process is one of several ranks
-/// (OMPI_COMM_WORLD_SIZE, PMI_SIZE, PMIX_SIZE or SLURM_NTASKS above 1), read before MPI is
-/// initialised so that a plain run never starts it. Always false without MPI built in.
+/// (Open MPI's OMPI_COMM_WORLD_SIZE, PMI's PMI_SIZE or srun's SLURM_STEP_NUM_TASKS above 1), read
+/// before MPI is initialised so that a plain run never starts it. Always false without MPI built
+/// in. A failed MPI call ends the job (MPI's default error handler).
 bool launched_as_ranks();
 
 /// Initialises MPI (threads serialised: every call holds mpi_mutex()) when launched_as_ranks(),
