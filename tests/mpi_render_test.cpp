@@ -2,6 +2,7 @@
 // three ranks, are bit for bit one process's output; a rank that fails ends the run non-zero with
 // its message; an interrupted run leaves only complete files. Skipped when MPI was not built in.
 // Three ranks share the test machine's 2 cores (--oversubscribe), so the renders are small.
+#include "cli/render_tiles.hpp"
 #include "support/child_process.hpp"
 #include "support/test_support.hpp"
 
@@ -58,6 +59,22 @@ std::vector<float> pixels_of(const std::filesystem::path& path) { return testing
 
 bool same_bits(const std::vector<float>& a, const std::vector<float>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+
+// Tiles start where a band may (a multiple of 8 rows), and an image has about eight a rank.
+TEST(MpiTiles, RowsAreWholeBandsAboutEightTilesARank) {
+  for (int height : {1, 7, 8, 90, 720, 2160, 65536}) {
+    for (int ranks : {1, 2, 3, 16, 1000}) {
+      const int rows = tile_rows_for(height, ranks);
+      EXPECT_EQ(rows % kBandRowAlignment, 0) << height << " rows, " << ranks << " ranks";
+      EXPECT_GE(rows, kBandRowAlignment);
+      const int tiles = (height + rows - 1) / rows;
+      if (height >= 8 * kBandRowAlignment * ranks) {
+        EXPECT_GE(tiles, 8 * ranks) << height << " rows, " << ranks << " ranks";
+      }
+    }
+  }
+  EXPECT_EQ(tile_rows_for(720, 3), 24);
 }
 
 #define SKIP_WITHOUT_MPI()                                                        \
