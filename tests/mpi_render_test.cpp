@@ -30,15 +30,27 @@ constexpr const char* kMpiexec = CLMARCH_MPIEXEC;
 constexpr const char* kMpiexec = "";
 #endif
 
-// CI runs as root, which Open MPI refuses unless told.
-const std::vector<std::string> kRootAllowed = {"OMPI_ALLOW_RUN_AS_ROOT=1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1"};
+/// mpirun's environment. CI runs as root, which Open MPI refuses unless told. Under the sanitizers
+/// Open MPI would unload its components (mca_*.so) at MPI_Finalize, and its libraries keep no
+/// frame pointers: the ranks keep the components loaded and unwind allocations fully, so that
+/// the leak suppressions for Open MPI (tests/sanitize/sanitizer_defaults.cpp) see where its
+/// allocations come from.
+std::vector<std::string> mpirun_environment() {
+  std::vector<std::string> environment = {"OMPI_ALLOW_RUN_AS_ROOT=1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1"};
+#if defined(__SANITIZE_ADDRESS__)
+  environment.push_back("OMPI_MCA_mca_base_component_disable_dlclose=1");
+  environment.push_back("LSAN_OPTIONS=fast_unwind_on_malloc=0");
+#endif
+  return environment;
+}
+const std::vector<std::string> kMpirunEnvironment = mpirun_environment();
 
 /// mpirun -n ranks on this machine, however few its cores.
 std::vector<std::string> mpirun(int ranks) { return {kMpiexec, "--oversubscribe", "-n", std::to_string(ranks)}; }
 
 /// Runs clmarch args on ranks ranks and waits (at most two minutes).
 CommandResult run_under_mpirun(int ranks, const std::vector<std::string>& args) {
-  ClmarchProcess process(args, kRootAllowed, false, mpirun(ranks));
+  ClmarchProcess process(args, kMpirunEnvironment, false, mpirun(ranks));
   CommandResult result;
   result.exit_code = process.wait(120s).value_or(-1);
   result.out = process.out();
@@ -166,7 +178,7 @@ TEST(MpiRender, AFailingRankEndsTheRunWithItsMessage) {
   command.insert(command.end(), args.begin(), args.end());
   command.insert(command.end(), {":", "-n", "1"});
   // The last context's program is the one ClmarchProcess appends.
-  ClmarchProcess process(args, kRootAllowed, false, command);
+  ClmarchProcess process(args, kMpirunEnvironment, false, command);
   const std::optional<int> code = process.wait(120s);
   ASSERT_TRUE(code.has_value()) << process.err();
   EXPECT_NE(*code, 0) << process.err();
@@ -189,7 +201,7 @@ TEST(MpiRender, AnInterruptedRunLeavesOnlyCompleteFiles) {
   const std::string scene = testing::source_path("scenes/moving_shapes.yaml").string();
   ClmarchProcess process({"render", scene, "--size", "320x180", "--frames", "0:199", "-o", (dir / "f_####.png").string(),
                           "--buffers", (dir / "b_####.exr").string()},
-                         kRootAllowed, false, mpirun(3));
+                         kMpirunEnvironment, false, mpirun(3));
   const auto deadline = std::chrono::steady_clock::now() + 120s;
   while (dir.files().size() < 4 && std::chrono::steady_clock::now() < deadline) std::this_thread::sleep_for(20ms);
   ASSERT_GE(dir.files().size(), 4u) << process.err();

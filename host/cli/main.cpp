@@ -14,6 +14,7 @@
 #include "distributed/mpi_world.hpp"
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 
 #include <cstdio>
 #include <iostream>
@@ -95,6 +96,7 @@ int main(int argc, char** argv) {
   const MpiWorld& world = mpi_world();
   if (world.distributed()) {
     set_error_context(rank_label(world.rank, world.host));
+    exit_at_first_signal(fmt::format("clmarch: {}: interrupted", rank_label(world.rank, world.host)));
     // mpirun forwards rank 0's stderr through a pipe to its own terminal.
     if (world.rank == 0) draw_progress_anyway();
   }

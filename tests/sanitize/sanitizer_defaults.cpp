@@ -32,7 +32,8 @@ __attribute__((no_sanitize("address", "undefined"))) const char* __lsan_default_
          "leak:libclang-cpp\n"
          "leak:libnvidia-opencl.so\n"
          // Open MPI, under mpirun (tests/mpi_render_test.cpp): its libraries and the components
-         // it loads (mca_*.so) keep their state past MPI_Finalize.
+         // it loads (mca_*.so) keep their state past MPI_Finalize. The test keeps the components
+         // loaded and unwinds fully, or the stacks end in "<unknown module>".
          "leak:libmpi.so\n"
          "leak:libopen-pal.so\n"
          "leak:libopen-rte.so\n"
