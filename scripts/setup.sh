@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs what clmarch needs from Debian's packages, skipping what is present. Run as root (or
 # with sudo available); safe to run again. clang and libclang-rt-14-dev (libFuzzer and clang's
-# sanitizer runtimes) are for scripts/fuzz.sh. `setup.sh --plots` also installs python3-matplotlib
+# sanitizer runtimes) are for scripts/fuzz.sh; libopenmpi-dev and openmpi-bin let `clmarch render`
+# run under mpirun (docs/cli.md#mpi). `setup.sh --plots` also installs python3-matplotlib
 # for scripts/sweep-plot.py (run it with /usr/bin/python3).
 set -euo pipefail
 
@@ -12,6 +13,7 @@ packages=(
   libyaml-cpp-dev libcli11-dev libfmt-dev nlohmann-json3-dev libtbb-dev
   libgtest-dev libbenchmark-dev libmuparser-dev
   clang libclang-rt-14-dev
+  libopenmpi-dev openmpi-bin
 )
 for arg in "$@"; do
   case "$arg" in

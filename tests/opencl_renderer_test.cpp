@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace clmarch {
 namespace {
@@ -31,6 +32,42 @@ TEST(OpenClRenderer, ChunkedDispatchEqualsOneDispatch) {
       }
     }
   }
+}
+
+// A band of rows (a tile of an MPI render) is exactly those rows of the whole image, with the
+// coarse pass (run once, at the first band) and at every packet width; bands in any order, the
+// last one short, and a chunk limit that splits a band too.
+TEST(OpenClRenderer, BandsOfRowsEqualTheWholeImage) {
+  for (const char* yaml : {"sdf: {torus: {}}\nrender: {width: 67, height: 45}\n",
+                           "sdf: {torus: {}}\nrender: {width: 67, height: 45, coarse_pass: cone}\n"}) {
+    const Scene scene = testing::scene_from_yaml(yaml);
+    for (int lanes : {1, 4, 8, 16}) {
+      OpenClOptions options;
+      options.lanes = lanes;
+      const RenderResult whole = render_opencl(scene, options);
+      for (std::size_t max_chunk : {std::size_t{0}, std::size_t{600}}) {
+        options.max_chunk_pixels = max_chunk;
+        OpenClRenderer renderer(scene, options);
+        for (const auto& [first, rows] : {std::pair{16, 24}, std::pair{0, 8}, std::pair{40, 5}, std::pair{8, 8}}) {
+          const RenderResult band = renderer.render_rows(first, rows);
+          ASSERT_EQ(band.buffers.height, rows);
+          for (int c = 0; c < kChannelCount; ++c) {
+            const auto from = whole.buffers.planes[c].begin() + first * scene.render.width;
+            const std::vector<float> expected(from, from + rows * scene.render.width);
+            EXPECT_EQ(band.buffers.planes[c], expected)
+                << kChannelNames[c] << " rows " << first << " + " << rows << ", lanes " << lanes << "\n" << yaml;
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST(OpenClRenderer, BandsStartOnlyAtTheAlignment) {
+  const Scene scene = testing::scene_from_yaml("sdf: {torus: {}}\nrender: {width: 16, height: 16}\n");
+  OpenClRenderer renderer(scene, OpenClOptions{});
+  EXPECT_THROW(renderer.render_rows(4, 8), std::logic_error);
+  EXPECT_THROW(renderer.render_rows(8, 9), std::logic_error) << "past the last row";
 }
 
 // A color image alone (Color) writes what the full shaded program writes but the normal planes,

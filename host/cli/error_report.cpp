@@ -5,6 +5,7 @@
 #include "cli/interrupts.hpp"
 #include "common/cancellation.hpp"
 #include "common/errors.hpp"
+#include "common/interrupt_note.hpp"
 
 #include <fmt/format.h>
 
@@ -15,7 +16,17 @@
 namespace clmarch {
 namespace {
 
-void print(std::string_view text) { std::fputs(fmt::format("{}\n", text).c_str(), stderr); }
+std::string g_context;
+
+void print(std::string_view text) {
+  if (!g_context.empty()) {
+    constexpr std::string_view kPrefix = "clmarch: ";
+    if (text.starts_with(kPrefix)) text.remove_prefix(kPrefix.size());
+    std::fputs(fmt::format("clmarch: {}: {}\n", g_context, text).c_str(), stderr);
+    return;
+  }
+  std::fputs(fmt::format("{}\n", text).c_str(), stderr);
+}
 
 /// A device fault leaves the CPU renderer usable; the hint ends the first line (a build log may follow).
 void print_device_fault(std::string_view message) {
@@ -31,9 +42,17 @@ void print_device_fault(std::string_view message) {
 
 }  // namespace
 
+void set_error_context(std::string context) { g_context = std::move(context); }
+
+const std::string& error_context() { return g_context; }
+
 int run_reporting_errors(const std::function<int()>& command) {
   try {
     return command();
+  } catch (const RankFailure& e) {
+    // Said by rank 0 about another rank, or nothing: the rank's own error is printed already.
+    if (*e.what() != '\0') std::fputs(fmt::format("{}\n", e.what()).c_str(), stderr);
+    return e.exit_code;
   } catch (const InputError& e) {
     print(e.what());
     return kExitBadInput;
@@ -49,6 +68,7 @@ int run_reporting_errors(const std::function<int()>& command) {
     return kExitOutputFailed;
   } catch (const Cancelled&) {
     print("clmarch: interrupted");
+    write_interrupt_note();
     return interrupted_exit_code();
   } catch (const std::exception& e) {
     std::string what = e.what();

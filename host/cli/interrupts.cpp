@@ -3,10 +3,13 @@
 #include "cli/interrupts.hpp"
 
 #include "common/cancellation.hpp"
+#include "common/interrupt_note.hpp"
 #include "common/pending_file.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <csignal>
+#include <cstring>
 
 #include <pthread.h>
 #include <unistd.h>
@@ -16,14 +19,21 @@ namespace {
 
 std::atomic<int> g_first_signal{0};
 
+/// The line the first signal prints when it ends the process at once, and whether it always does
+/// (exit_at_first_signal); set before the handlers can see them change.
+char g_message[512] = "clmarch: interrupted\n";
+std::size_t g_message_length = sizeof "clmarch: interrupted\n" - 1;
+std::atomic<bool> g_exit_at_once{false};
+
 extern "C" void on_interrupt(int signal) {
   int none = 0;
   if (g_first_signal.compare_exchange_strong(none, signal)) {
     cancellation_requested().store(true);
-    if (blocking_calls_in_progress().load() == 0) return;
-    // Inside a call with no cancellation point (BlockingCall): stopping now loses nothing.
-    constexpr char kMessage[] = "clmarch: interrupted\n";
-    [[maybe_unused]] const ssize_t written = write(STDERR_FILENO, kMessage, sizeof kMessage - 1);
+    if (blocking_calls_in_progress().load() == 0 && !g_exit_at_once.load()) return;
+    // Inside a call with no cancellation point (BlockingCall), or a rank of an MPI job: stopping
+    // now loses nothing.
+    [[maybe_unused]] const ssize_t written = write(STDERR_FILENO, g_message, g_message_length);
+    write_interrupt_note();
   }
   // A second signal: the user does not want to wait for the current chunk or row to finish.
   remove_pending_files_in_signal_handler();
@@ -56,6 +66,14 @@ void install_interrupt_handlers() {
   // the threads the drivers start later inherit the mask.
   pthread_sigmask(SIG_BLOCK, &ignored, nullptr);
   std::signal(SIGXFSZ, SIG_IGN);
+}
+
+void exit_at_first_signal(std::string_view message) {
+  const std::size_t length = std::min(message.size(), sizeof g_message - 2);
+  std::memcpy(g_message, message.data(), length);
+  g_message[length] = '\n';
+  g_message_length = length + 1;
+  g_exit_at_once.store(true);
 }
 
 int interrupted_exit_code() {

@@ -5,12 +5,16 @@
 #include "cli/devices_command.hpp"
 #include "cli/error_report.hpp"
 #include "cli/interrupts.hpp"
+#include "cli/rank_work.hpp"
 #include "cli/render_command.hpp"
 #include "common/cancellation.hpp"
 #include "common/errors.hpp"
 #include "common/log.hpp"
+#include "common/progress.hpp"
+#include "distributed/mpi_world.hpp"
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 
 #include <cstdio>
 #include <iostream>
@@ -86,8 +90,30 @@ int main(int argc, char** argv) {
     return kExitBadInput;
   }
   set_verbosity(quiet ? Verbosity::Quiet : verbose ? Verbosity::Verbose : Verbosity::Normal);
+  // Under mpirun with several ranks, render and devices share the work out (docs/cli.md#mpi);
+  // the other commands run whole on every rank. A plain run never starts MPI.
+  if (render->parsed() || devices->parsed()) start_mpi_if_launched();
+  const MpiWorld& world = mpi_world();
+  if (world.distributed()) {
+    set_error_context(rank_label(world.rank, world.host));
+    exit_at_first_signal(fmt::format("clmarch: {}: interrupted", rank_label(world.rank, world.host)));
+    // mpirun forwards rank 0's stderr through a pipe to its own terminal.
+    if (world.rank == 0) draw_progress_anyway();
+  }
+  bool coordinated = true;
   const int code = run_reporting_errors([&] {
-    if (render->parsed()) return run_render_command(render_options);
+    if (render->parsed()) {
+      try {
+        return run_render_command(render_options);
+      } catch (const RankFailure&) {
+        throw;
+      } catch (...) {
+        // An error before the ranks shared out the work (the options, the scene, the devices) or
+        // while they did has no coordinator to tell: the job is aborted below.
+        coordinated = every_rank_stopped();
+        throw;
+      }
+    }
     if (check->parsed()) return run_check_command(check_options);
     if (devices->parsed()) return run_devices_command();
     if (bench->parsed()) return run_bench_command(bench_options);
@@ -103,5 +129,12 @@ int main(int argc, char** argv) {
     std::fflush(nullptr);
     _exit(code);
   }
+  if (world.distributed() && code != kExitOk && !coordinated) {
+    // The other ranks may wait for this one's report: end them all, with this code.
+    std::cout.flush();
+    std::fflush(nullptr);
+    abort_mpi(code);
+  }
+  finish_mpi();
   return code;
 }

@@ -2,6 +2,9 @@
 #include "cli/render_command.hpp"
 
 #include "cli/frame_sequence.hpp"
+#include "cli/rank_work.hpp"
+#include "cli/render_outputs.hpp"
+#include "cli/render_tiles.hpp"
 
 #include "cl/devices.hpp"
 #include "codegen/varying_literals.hpp"
@@ -10,6 +13,9 @@
 #include "common/errors.hpp"
 #include "common/log.hpp"
 #include "common/progress.hpp"
+#include "distributed/mpi_world.hpp"
+#include "distributed/rank_device.hpp"
+#include "distributed/work_queue.hpp"
 #include "frame/views.hpp"
 #include "image/image_writer.hpp"
 #include "reference/reference_cones.hpp"
@@ -27,20 +33,6 @@
 #include <optional>
 
 namespace clmarch {
-namespace {
-
-/// The kernel work the outputs need: buffers include normals, the image needs what its view shows.
-KernelPurpose purpose_for(const Scene& scene, bool want_buffers) {
-  switch (scene.shading.view) {
-    case View::Shaded: return want_buffers ? KernelPurpose::Shaded : KernelPurpose::Color;
-    case View::Normals: return KernelPurpose::Normals;
-    case View::Depth:
-    case View::Steps: return want_buffers ? KernelPurpose::Normals : KernelPurpose::DepthSteps;
-  }
-  return KernelPurpose::Shaded;
-}
-
-}  // namespace
 
 CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& options) {
   CLI::App* render = app.add_subcommand("render", "Render a scene to an image and per-pixel buffers");
@@ -55,6 +47,7 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& options) {
       "  clmarch render scenes/torus.yaml --dump-kernel torus.cl   # the OpenCL C that is built\n"
       "  clmarch render scenes/moving_shapes.yaml --time 1.5       # t = 1.5 in the scene's expressions\n"
       "  clmarch render scenes/moving_shapes.yaml --frames 0:47 --fps 24 -o frames/shot_####.png\n"
+      "  mpirun -n 4 clmarch render scenes/moving_shapes.yaml --frames 0:47 -o frames/shot_####.png   # over 4 MPI ranks\n"
       "  clmarch render scenes/torus.yaml --quiet                  # nothing on stderr unless it fails\n"
       "  clmarch render scenes/torus.yaml --verbose                # device, build, cache, lanes, local size\n"
       "Ctrl-C stops the render and writes nothing (exit code 130). Options: docs/cli.md.");
@@ -130,13 +123,6 @@ void check_render_options(const RenderCommandOptions& options, const std::string
   }
 }
 
-/// Where one image goes: the files named by the options, numbered when rendering a sequence.
-struct FrameFiles {
-  std::string output;
-  std::string buffers;
-  std::string dump_kernel;
-};
-
 /// What the frames of a sequence carry from one to the next: the OpenCL renderer of the previous
 /// frame, kept when this frame's program is the same (the camera, lights and the varying literals
 /// are its inputs), and the literals of the distance function that vary among the frames.
@@ -208,34 +194,24 @@ std::string march_summary(const Scene& scene) {
                      scene.render.over_relaxation ? "" : " (auto)");
 }
 
-/// Renders and writes one image (and its buffers); frame is set for sequences.
-void render_image(const RenderCommandOptions& options, const Scene& scene, const FrameFiles& files,
-                  std::optional<int> frame, SequenceState* sequence = nullptr) {
+/// Renders and writes one image (and its buffers); frame is set for sequences. Returns its figures.
+RenderStats render_image(const RenderCommandOptions& options, const Scene& scene, const FrameFiles& files,
+                         std::optional<int> frame, SequenceState* sequence = nullptr) {
   RenderResult result = render_scene(options, scene, files, sequence);
-  // A Ctrl-C that came too late for the renderer's own checks still writes nothing.
-  throw_if_cancelled();
-  apply_view(result.buffers, scene.shading.view, scene.render);
-
-  // Both files are written before either replaces its target: a failure leaves both as they were.
-  StagedFiles written;
-  write_color_image(written, files.output, result.buffers);
-  if (!files.buffers.empty()) write_buffers_exr(written, files.buffers, result.buffers);
-  written.commit();
-  log_info(fmt::format("wrote {}{}", files.output, files.buffers.empty() ? "" : " and " + files.buffers));
-
+  write_outputs(files, scene, result.buffers);
   if (options.stats) {
-    const RenderStats& s = result.stats;
-    nlohmann::json line = {{"backend", options.backend}, {"device", s.device},         {"lanes", s.lanes},
-                           {"width", scene.render.width}, {"height", scene.render.height}, {"build_ms", s.build_ms},
-                           {"kernel_ms", s.kernel_ms},  {"steps", s.steps},            {"rays_per_s", s.rays_per_s},
-                           {"chunks", s.chunks}, {"surface_steps", s.steps - s.wall_steps}, {"wall_steps", s.wall_steps},
-                           {"coarse_steps", s.coarse_steps}};
+    nlohmann::json line = stats_json(options, scene, result.stats);
     if (frame) {
       line["frame"] = *frame;
       line["time"] = scene.time;
     }
-    std::cout << line.dump() << std::endl;
+    if (mpi_world().distributed()) {
+      line["rank"] = mpi_world().rank;
+      line["host"] = mpi_world().host;
+    }
+    print_json_line(line);
   }
+  return result.stats;
 }
 
 /// The numbered files of one frame of a sequence, checked as names (their folders were checked
@@ -260,41 +236,58 @@ FrameFiles frame_files(const RenderCommandOptions& options, const std::string& o
 /// next to a program build).
 constexpr int kSampledFrames = 64;
 
-/// Every frame of --frames in turn; each image is complete before the next begins, so a Ctrl-C
-/// leaves the finished frames and nothing of the one in progress.
+/// The frames of --frames, in turn in one process, or handed out to the ranks of an MPI job as
+/// they come free (each rank writes its own). Each image is complete before the next begins, so a
+/// Ctrl-C leaves the finished frames and nothing of the ones in progress.
 void render_sequence(const RenderCommandOptions& options, const std::string& output) {
   const FrameRange range = parse_frame_range(options.frames, options.fps);
-  std::optional<ProgressLine> progress;
   SequenceState sequence;
   // Every frame is loaded, and so checked, before the first renders: a scene that breaks at some
   // time fails with nothing written (a load costs little next to a render). Knowing up front
   // which literals vary, the frames of one shape build one program between them (OpenCL).
   const std::vector<int> sampled = sample_frames(range, kSampledFrames);
   // So are the frames' files: a numbered name can be an existing folder, or longer than a folder takes.
+  double pixels = 0.0;
   for (int frame = range.first; frame <= range.last; ++frame) {
     throw_if_cancelled();
     frame_files(options, output, frame, range);
     const Scene scene = load_scene_with_options(options.scene, range.time_of(frame));
+    pixels = static_cast<double>(scene.render.width) * scene.render.height;
     if (options.backend == "opencl" && std::binary_search(sampled.begin(), sampled.end(), frame)) {
       sequence.varying.add(scene);
     }
   }
-  for (int frame = range.first; frame <= range.last; ++frame) {
-    const Scene scene = load_scene_with_options(options.scene, range.time_of(frame));
-    if (!progress) progress.emplace("frames", range.count(), static_cast<double>(scene.render.width) * scene.render.height);
-    const FrameFiles files = frame_files(options, output, frame, range);
-    log_verbose(fmt::format("frame {} at t = {} s", frame, scene.time));
-    render_image(options, scene, files, frame, &sequence);
-    progress->advance();
-  }
+  // Rank 0 counts every rank's frames.
+  std::optional<ProgressLine> progress;
+  if (mpi_world().rank == 0) progress.emplace("frames", range.count(), pixels);
+  const UnitName name = [&](int unit) { return fmt::format("frame {}", range.first + unit); };
+  const std::unique_ptr<WorkQueue> queue = make_work_queue(
+      range.count(), [&](int, int, const UnitFigures&, std::span<const float>) { progress->count(); }, name);
+  render_units(
+      *queue,
+      [&](int unit) {
+        const int frame = range.first + unit;
+        const Scene scene = load_scene_with_options(options.scene, range.time_of(frame));
+        const FrameFiles files = frame_files(options, output, frame, range);
+        log_verbose(fmt::format("frame {} at t = {} s", frame, scene.time));
+        const RenderStats stats = render_image(options, scene, files, frame, &sequence);
+        queue->done(unit, UnitFigures{stats, pixels, ""}, {});
+        throw_if_cancelled();
+      },
+      name);
 }
 
 }  // namespace
 
-int run_render_command(const RenderCommandOptions& options) {
+int run_render_command(const RenderCommandOptions& given) {
+  RenderCommandOptions options = given;
   std::string output = options.output;
   if (output.empty()) output = std::filesystem::path(options.scene.scene_path).stem().string() + ".png";
   check_render_options(options, output);
+  const MpiWorld& world = mpi_world();
+  if (world.distributed() && options.backend == "opencl" && !options.scene.device) {
+    options.scene.device = rank_default_device(list_devices(), world.local_rank);
+  }
   if (!options.frames.empty()) {
     render_sequence(options, output);
     return kExitOk;
@@ -303,7 +296,13 @@ int run_render_command(const RenderCommandOptions& options) {
   log_verbose(fmt::format("scene {}: {}x{} pixels, max_steps {}", options.scene.scene_path, scene.render.width,
                           scene.render.height, scene.render.max_steps));
   log_verbose(march_summary(scene));
-  render_image(options, scene, FrameFiles{output, options.buffers, options.dump_kernel}, std::nullopt);
+  const FrameFiles files{output, options.buffers, options.dump_kernel};
+  if (world.distributed() && options.backend == "opencl") {
+    render_image_in_tiles(options, scene, files);
+  } else if (world.rank == 0) {
+    // The CPU reference renders whole images only: under MPI, rank 0 renders it alone.
+    render_image(options, scene, files, std::nullopt);
+  }
   return kExitOk;
 }
 

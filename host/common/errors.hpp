@@ -46,4 +46,13 @@ class OutputError : public std::runtime_error {
   explicit OutputError(std::string_view message) : std::runtime_error(one_line(message)) {}
 };
 
+/// A failure that ends the command with exit_code: a rank of a distributed render whose unit
+/// failed (its error was printed with the rank, host and unit), or rank 0 saying which rank
+/// failed. An empty message prints nothing more.
+class RankFailure : public std::runtime_error {
+ public:
+  RankFailure(int exit_code, std::string_view message) : std::runtime_error(std::string(message)), exit_code(exit_code) {}
+  int exit_code;
+};
+
 }  // namespace clmarch

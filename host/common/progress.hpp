@@ -9,8 +9,13 @@
 
 namespace clmarch {
 
-/// True when progress lines are drawn: stderr is a terminal and the verbosity is not Quiet.
+/// True when progress lines are drawn: stderr is a terminal (or draw_progress_anyway() was
+/// called) and the verbosity is not Quiet.
 bool progress_enabled();
+/// Draws progress even though stderr is not a terminal: rank 0 of an MPI job, whose stderr mpirun
+/// forwards to its own through a pipe. Then progress comes as whole lines, at most one every 2 s,
+/// from the outermost progress line only (the frames or tiles of all ranks).
+void draw_progress_anyway();
 
 class ProgressLine {
  public:
@@ -25,6 +30,9 @@ class ProgressLine {
   /// Throws Cancelled once cancellation was requested, so that every loop which reports progress
   /// (the OpenCL chunks, the reference's rows inside tbb::parallel_for) stops at its next unit.
   void advance(long long done = 1);
+  /// advance() without its cancellation point: for a thread that must not throw (the coordinator
+  /// of an MPI job counting the other ranks' units).
+  void count(long long done = 1);
 
  private:
   std::string label_;

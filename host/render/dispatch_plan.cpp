@@ -3,7 +3,10 @@
 
 #include "common/cancellation.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
+#include <stdexcept>
 
 namespace clmarch {
 namespace {
@@ -54,14 +57,24 @@ std::size_t march_output_bytes(const Dispatch& dispatch) {
 
 void for_each_chunk(cl::CommandQueue& queue, cl::Kernel& kernel, MarchParams params, const Dispatch& dispatch, int height,
                     const std::function<void(int first_row, int rows, const cl::Event& event)>& done) {
-  for (int first_row = 0; first_row < height; first_row += dispatch.chunk_rows) {
+  for_each_chunk(queue, kernel, params, dispatch, 0, height, done);
+}
+
+void for_each_chunk(cl::CommandQueue& queue, cl::Kernel& kernel, MarchParams params, const Dispatch& dispatch,
+                    int band_first_row, int end_row,
+                    const std::function<void(int first_row, int rows, const cl::Event& event)>& done) {
+  if (band_first_row % dispatch.tile_height != 0) {
+    throw std::logic_error(fmt::format("for_each_chunk: first row {} is not a multiple of the tile height {}",
+                                       band_first_row, dispatch.tile_height));
+  }
+  for (int first_row = band_first_row; first_row < end_row; first_row += dispatch.chunk_rows) {
     throw_if_cancelled();
     params.first_row = first_row;
     kernel.setArg(0, sizeof(MarchParams), &params);
     cl::Event event;
     queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(dispatch.global_items), cl::NDRange(dispatch.local_items),
                                nullptr, &event);
-    done(first_row, std::min(dispatch.chunk_rows, height - first_row), event);
+    done(first_row, std::min(dispatch.chunk_rows, end_row - first_row), event);
   }
 }
 

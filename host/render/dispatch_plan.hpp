@@ -47,5 +47,11 @@ std::size_t march_output_bytes(const Dispatch& dispatch);
 /// planes) for every pixel of its rows. Polls cancellation between chunks.
 void for_each_chunk(cl::CommandQueue& queue, cl::Kernel& kernel, MarchParams params, const Dispatch& dispatch, int height,
                     const std::function<void(int first_row, int rows, const cl::Event& event)>& done);
+/// The same for image rows first_row .. end_row - 1 only (a band of a distributed render): first_row
+/// must be a multiple of the dispatch's tile height, so that every packet covers the pixels it
+/// covers in the whole image.
+void for_each_chunk(cl::CommandQueue& queue, cl::Kernel& kernel, MarchParams params, const Dispatch& dispatch,
+                    int first_row, int end_row,
+                    const std::function<void(int first_row, int rows, const cl::Event& event)>& done);
 
 }  // namespace clmarch

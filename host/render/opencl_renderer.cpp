@@ -10,8 +10,11 @@
 #include "render/dispatch_plan.hpp"
 #include "render/prepared_program.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <numeric>
+#include <stdexcept>
 
 namespace clmarch {
 namespace {
@@ -35,6 +38,8 @@ struct OpenClRenderer::State {
   std::optional<cl::Buffer> values;
   cl::Kernel kernel;
   std::optional<ConePass> cones;
+  /// Whether the coarse pass ran for the current scene (render_rows runs it at the first band).
+  bool cones_run = false;
 };
 
 OpenClRenderer::OpenClRenderer(const Scene& scene, const OpenClOptions& options) : state_(std::make_unique<State>()) {
@@ -75,6 +80,7 @@ bool OpenClRenderer::can_render(const Scene& scene, const OpenClOptions& options
 void OpenClRenderer::set_scene(const Scene& scene) {
   State& s = *state_;
   s.scene = scene;
+  s.cones_run = false;
   s.params = march_params(scene, s.dispatch);
   // The same source has the same LIGHT_COUNT, so the buffer keeps its size.
   const std::vector<cl_float4> lights = light_data(scene);
@@ -87,27 +93,49 @@ void OpenClRenderer::set_scene(const Scene& scene) {
 const std::string& OpenClRenderer::source() const { return state_->prepared.source; }
 
 RenderResult OpenClRenderer::render() {
+  state_->cones_run = false;
+  return render_rows(0, state_->scene.render.height);
+}
+
+RenderResult OpenClRenderer::render_rows(int band_first_row, int band_rows) {
   State& s = *state_;
   DeviceProgram& dp = s.prepared.program;
   const int width = s.scene.render.width;
-  const int height = s.scene.render.height;
-  const std::size_t pixels = static_cast<std::size_t>(width) * height;
+  const int end_row = band_first_row + band_rows;
+  const std::size_t pixels = static_cast<std::size_t>(width) * band_rows;
+  static_assert(kBandRowAlignment % CLMARCH_COARSE_BLOCK == 0, "a band starts at a row of coarse blocks");
+  if (band_first_row < 0 || band_rows <= 0 || end_row > s.scene.render.height ||
+      band_first_row % kBandRowAlignment != 0) {
+    throw std::logic_error(fmt::format("render_rows: rows {} .. {} of an image of {} rows, not starting at a multiple of {}",
+                                       band_first_row, end_row - 1, s.scene.render.height, kBandRowAlignment));
+  }
+  // A band smaller than the whole image gets a dispatch of its own size (the output buffer, made
+  // for the whole image's chunks, holds it); the parameters keep the whole image's camera and tiles.
+  Dispatch dispatch = s.dispatch;
+  MarchParams params = s.params;
+  if (band_rows < s.scene.render.height) {
+    dispatch = plan_tile_dispatch(s.prepared, width, band_rows, s.dispatch.plane_stride);
+    params.chunk_rows = dispatch.chunk_rows;
+    params.plane_stride = static_cast<cl_int>(dispatch.plane_stride);
+  }
   RenderResult result;
-  result.buffers = FrameBuffers(width, height);
-  const std::size_t chunk_count = (static_cast<std::size_t>(height) + s.dispatch.chunk_rows - 1) / s.dispatch.chunk_rows;
+  result.buffers = FrameBuffers(width, band_rows);
+  const std::size_t chunk_count = (static_cast<std::size_t>(band_rows) + dispatch.chunk_rows - 1) / dispatch.chunk_rows;
   ProgressLine progress("OpenCL chunks", static_cast<long long>(chunk_count),
                         static_cast<double>(pixels) / static_cast<double>(chunk_count));
   double kernel_ms = 0.0;
   std::uint64_t coarse_steps = 0;
   with_device_errors(dp.device, [&] {
     std::optional<cl::Event> cones_done;
-    if (s.cones) cones_done = enqueue_cone_pass(dp.queue, *s.cones, s.params);
+    if (s.cones && !s.cones_run) cones_done = enqueue_cone_pass(dp.queue, *s.cones, s.params);
+    s.cones_run = true;
     // Planes the program does not write stay as FrameBuffers made them: 0.
-    for_each_chunk(dp.queue, s.kernel, s.params, s.dispatch, height, [&](int first_row, int rows, const cl::Event& done) {
-      const std::size_t first = static_cast<std::size_t>(first_row) * width;
+    for_each_chunk(dp.queue, s.kernel, params, dispatch, band_first_row, end_row,
+                   [&](int first_row, int rows, const cl::Event& done) {
+      const std::size_t first = static_cast<std::size_t>(first_row - band_first_row) * width;
       const std::size_t count = static_cast<std::size_t>(rows) * width;
       for (int c : s.prepared.planes) {
-        dp.queue.enqueueReadBuffer(s.out, CL_FALSE, c * s.dispatch.plane_stride * sizeof(float), count * sizeof(float),
+        dp.queue.enqueueReadBuffer(s.out, CL_FALSE, c * dispatch.plane_stride * sizeof(float), count * sizeof(float),
                                    result.buffers.planes[c].data() + first);
       }
       {

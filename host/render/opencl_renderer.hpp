@@ -64,6 +64,10 @@ struct RenderResult {
 /// normals, N stays 0. Polls cancellation between chunks.
 RenderResult render_opencl(const Scene& scene, const OpenClOptions& options);
 
+/// Rows a band of render_rows starts at a multiple of: the coarse pass's block, which every packet
+/// height (1, 2 or 4 rows) divides.
+inline constexpr int kBandRowAlignment = 8;
+
 /// render_opencl again and again (benchmarks, the frames of an animation): the program, the kernel
 /// and the output buffer are made once, so later renders neither build nor touch fresh buffer
 /// pages, and time the march alone.
@@ -76,6 +80,11 @@ class OpenClRenderer {
 
   /// Renders the current scene. Its build_ms is the build's on the first render, 0 after.
   RenderResult render();
+  /// Renders rows first_row .. first_row + rows - 1 of the current scene's image into buffers of
+  /// width x rows (a tile of a distributed render): bit for bit the pixels of render()'s whole
+  /// image, since the camera, the coarse pass and the packets are the whole image's. first_row must
+  /// be a multiple of kBandRowAlignment. The coarse pass runs once per scene, at its first band.
+  RenderResult render_rows(int first_row, int rows);
 
   /// Whether scene can be rendered with this program and buffers: the same image size, options
   /// (but before_build) and generated source, so only what the kernel takes as arguments

@@ -41,8 +41,10 @@ std::vector<std::string> merged_environment(const std::vector<std::string>& extr
 }
 
 pid_t spawn(const std::vector<std::string>& args, const std::vector<std::string>& environment,
-            posix_spawn_file_actions_t* actions, bool sigint_ignored = false) {
-  std::vector<std::string> argv_storage = {CLMARCH_BINARY};
+            posix_spawn_file_actions_t* actions, bool sigint_ignored = false,
+            const std::vector<std::string>& launcher = {}) {
+  std::vector<std::string> argv_storage = launcher;
+  argv_storage.push_back(CLMARCH_BINARY);
   // The shell ignores SIGINT, then becomes clmarch (same process), which inherits the disposition.
   if (sigint_ignored) argv_storage = {"/bin/sh", "-c", "trap '' INT; exec \"$0\" \"$@\"", CLMARCH_BINARY};
   argv_storage.insert(argv_storage.end(), args.begin(), args.end());
@@ -71,7 +73,7 @@ int exit_code_of(int status) { return WIFEXITED(status) ? WEXITSTATUS(status) : 
 }  // namespace
 
 ClmarchProcess::ClmarchProcess(const std::vector<std::string>& args, const std::vector<std::string>& environment,
-                               bool sigint_ignored) {
+                               bool sigint_ignored, const std::vector<std::string>& launcher) {
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
@@ -79,7 +81,7 @@ ClmarchProcess::ClmarchProcess(const std::vector<std::string>& args, const std::
   const std::string err = (capture_ / "err").string();
   posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  pid_ = spawn(args, environment, &actions, sigint_ignored);
+  pid_ = spawn(args, environment, &actions, sigint_ignored, launcher);
   posix_spawn_file_actions_destroy(&actions);
   running_ = true;
 }
@@ -122,6 +124,8 @@ std::optional<int> ClmarchProcess::wait(std::chrono::milliseconds timeout) {
 }
 
 std::string ClmarchProcess::err() const { return read_text(capture_ / "err"); }
+
+std::string ClmarchProcess::out() const { return read_text(capture_ / "out"); }
 
 CommandResult run_clmarch_on_terminal(const std::vector<std::string>& args) {
   int master = -1;

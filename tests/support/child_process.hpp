@@ -17,9 +17,10 @@ namespace clmarch::testing {
 class ClmarchProcess {
  public:
   /// environment holds extra NAME=VALUE settings; sigint_ignored starts clmarch with SIGINT
-  /// ignored, as a script's shell starts its background jobs.
+  /// ignored, as a script's shell starts its background jobs; launcher (a program by its full
+  /// path, and its arguments) runs clmarch, e.g. mpirun -n 3.
   explicit ClmarchProcess(const std::vector<std::string>& args, const std::vector<std::string>& environment = {},
-                          bool sigint_ignored = false);
+                          bool sigint_ignored = false, const std::vector<std::string>& launcher = {});
   pid_t pid() const { return pid_; }
   /// Kills the process if it still runs.
   ~ClmarchProcess();
@@ -32,6 +33,7 @@ class ClmarchProcess {
   /// The exit code (128 + signal when a signal killed it), or nothing on timeout.
   std::optional<int> wait(std::chrono::milliseconds timeout);
   std::string err() const;
+  std::string out() const;
 
  private:
   TempDir capture_;

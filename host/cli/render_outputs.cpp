@@ -1,0 +1,52 @@
+// The outputs of `clmarch render`.
+#include "cli/render_outputs.hpp"
+
+#include "common/cancellation.hpp"
+#include "common/log.hpp"
+#include "common/atomic_file.hpp"
+#include "image/image_writer.hpp"
+#include "frame/views.hpp"
+
+#include <fmt/format.h>
+
+#include <cstdio>
+
+namespace clmarch {
+
+KernelPurpose purpose_for(const Scene& scene, bool want_buffers) {
+  switch (scene.shading.view) {
+    case View::Shaded: return want_buffers ? KernelPurpose::Shaded : KernelPurpose::Color;
+    case View::Normals: return KernelPurpose::Normals;
+    case View::Depth:
+    case View::Steps: return want_buffers ? KernelPurpose::Normals : KernelPurpose::DepthSteps;
+  }
+  return KernelPurpose::Shaded;
+}
+
+void write_outputs(const FrameFiles& files, const Scene& scene, FrameBuffers& buffers) {
+  // A Ctrl-C that came too late for the renderer's own checks still writes nothing.
+  throw_if_cancelled();
+  apply_view(buffers, scene.shading.view, scene.render);
+  // Both files are written before either replaces its target: a failure leaves both as they were.
+  StagedFiles written;
+  write_color_image(written, files.output, buffers);
+  if (!files.buffers.empty()) write_buffers_exr(written, files.buffers, buffers);
+  written.commit();
+  log_info(fmt::format("wrote {}{}", files.output, files.buffers.empty() ? "" : " and " + files.buffers));
+}
+
+nlohmann::json stats_json(const RenderCommandOptions& options, const Scene& scene, const RenderStats& s) {
+  return {{"backend", options.backend}, {"device", s.device},         {"lanes", s.lanes},
+          {"width", scene.render.width}, {"height", scene.render.height}, {"build_ms", s.build_ms},
+          {"kernel_ms", s.kernel_ms},  {"steps", s.steps},            {"rays_per_s", s.rays_per_s},
+          {"chunks", s.chunks}, {"surface_steps", s.steps - s.wall_steps}, {"wall_steps", s.wall_steps},
+          {"coarse_steps", s.coarse_steps}};
+}
+
+void print_json_line(const nlohmann::json& json) {
+  const std::string line = json.dump() + "\n";
+  std::fwrite(line.data(), 1, line.size(), stdout);
+  std::fflush(stdout);
+}
+
+}  // namespace clmarch
