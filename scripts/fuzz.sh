@@ -14,11 +14,16 @@ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEB
   >/dev/null
 cmake --build build-fuzz --target clmarch_fuzz_scene
 mkdir -p build-fuzz/corpus build-fuzz/artifacts
+# The dictionary: the node kinds' names and keys from their declarations, then the other words.
+{
+  CLMARCH_FUZZ_PRINT_KINDS=1 build-fuzz/clmarch_fuzz_scene
+  cat tests/fuzz/scene.dict
+} > build-fuzz/scene.dict
 # The first folder receives new inputs; scenes/ and the regression inputs only seed it.
 seeds=(scenes)
 [ -d tests/fuzz_regressions ] && seeds+=(tests/fuzz_regressions)
 build-fuzz/clmarch_fuzz_scene -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=4096 \
-  -dict=tests/fuzz/scene.dict -artifact_prefix=build-fuzz/artifacts/ -print_final_stats=1 \
+  -dict=build-fuzz/scene.dict -artifact_prefix=build-fuzz/artifacts/ -print_final_stats=1 \
   build-fuzz/corpus "${seeds[@]}" 2> build-fuzz/fuzz.log || {
   tail -n 60 build-fuzz/fuzz.log >&2
   echo "fuzz.sh: the fuzzer found a bug; its input is in build-fuzz/artifacts/" >&2

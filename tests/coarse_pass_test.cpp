@@ -80,7 +80,7 @@ TEST(ConePass, StartsStayBeforeEveryRaysFirstSurface) {
   for (const auto& [position, fov] : cameras) {
     const Scene scene = with_cones(scene_from_yaml("camera: {position: " + position + ", look_at: [0.3, 0, 0.1], fov: " + fov + "}\n"
                                                    "render: {width: 83, height: 47, epsilon: 1e-3}\nsdf: {torus: {}}\n"));
-    const Torus& torus = std::get<Torus>(scene.sdf.primitive);
+    const Torus& torus = std::get<Torus>(scene.sdf.params);
     const CameraBasis basis = camera_basis(scene.camera, scene.render.width, scene.render.height);
     const ConeStarts reference = reference_cone_starts(scene);
     const std::vector<float> kernel = kernel_cone_starts(scene);

@@ -263,14 +263,14 @@ TEST(MengerKernel, MatchesTheReference) {
 
 TEST(FractalKeys, DefaultsAndRanges) {
   const Scene bulb = scene_from_yaml("sdf: {mandelbulb: {}}\n");
-  const Mandelbulb& m = std::get<Mandelbulb>(bulb.sdf.primitive);
+  const Mandelbulb& m = std::get<Mandelbulb>(bulb.sdf.params);
   EXPECT_EQ(m.power, 8.0);
   EXPECT_EQ(m.iterations, 8);
   EXPECT_EQ(m.bailout, 2.0);
   EXPECT_EQ(bulb.sdf.step_factor, 1.0);
   const Scene sponge = scene_from_yaml("sdf: {menger: {half_size: 2}}\n");
-  EXPECT_EQ(std::get<Menger>(sponge.sdf.primitive).half_size, 2.0);
-  EXPECT_EQ(std::get<Menger>(sponge.sdf.primitive).iterations, 4);
+  EXPECT_EQ(std::get<Menger>(sponge.sdf.params).half_size, 2.0);
+  EXPECT_EQ(std::get<Menger>(sponge.sdf.params).iterations, 4);
 
   EXPECT_EQ(error_of("sdf: {mandelbulb: {power: 1.5}}\n"), "s.yaml:1:27: sdf.mandelbulb.power must be in [2, 16] (got 1.5)");
   EXPECT_EQ(error_of("sdf: {mandelbulb: {iterations: 0}}\n"),

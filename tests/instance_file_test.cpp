@@ -38,18 +38,18 @@ TEST(InstanceFile, EachRowIsAChildInTheFilesOrder) {
                                             "1,2,3,0.5,1,0,0\n\n-1, 0, 0.25 ,1.5,0,0,1\n");
   const Scene scene = load_scene_file(path);
   ASSERT_EQ(scene.sdf.children.size(), 3u);
-  const Sphere& second = std::get<Sphere>(scene.sdf.children[2].primitive);
+  const Sphere& second = std::get<Sphere>(scene.sdf.children[2].params);
   EXPECT_EQ(second.center, glm::dvec3(-1, 0, 0.25));
   EXPECT_EQ(second.radius, 1.5);
   EXPECT_EQ(*scene.sdf.children[1].color, glm::dvec3(1, 0, 0));
-  EXPECT_EQ(std::get<Sphere>(scene.sdf.children[1].primitive).center, glm::dvec3(1, 2, 3));
+  EXPECT_EQ(std::get<Sphere>(scene.sdf.children[1].params).center, glm::dvec3(1, 2, 3));
 }
 
 TEST(InstanceFile, OtherPrimitivesAndTheirKeys) {
   TempDir dir;
   const std::string path = write_scene(dir, "half_size_x,half_size_y,half_size_z,translate_x,translate_y,translate_z\n1,2,3,0,1,0\n", "box");
   const Scene scene = load_scene_file(path);
-  EXPECT_EQ(std::get<Box>(scene.sdf.children[1].primitive).half_size, glm::dvec3(1, 2, 3));
+  EXPECT_EQ(std::get<Box>(scene.sdf.children[1].params).half_size, glm::dvec3(1, 2, 3));
   EXPECT_EQ(scene.sdf.children[1].transform.translate, glm::dvec3(0, 1, 0));
 }
 

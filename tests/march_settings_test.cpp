@@ -108,7 +108,7 @@ TEST(OverRelaxation, StepIntoTheSolidFallsBackInTheKernel) {
 TEST(OverRelaxation, ReferenceHitsNeverPassTheSurface) {
   Scene scene = load_scene("torus.yaml", 64, 36);
   scene.render.over_relaxation = 1.6;
-  const Torus& torus = std::get<Torus>(scene.sdf.primitive);
+  const Torus& torus = std::get<Torus>(scene.sdf.params);
   ASSERT_TRUE(scene.sdf.transform.is_identity());
   const CameraBasis basis = camera_basis(scene.camera, scene.render.width, scene.render.height);
   int hits = 0, near_misses = 0;

@@ -47,10 +47,10 @@ struct AnalyticShape {
   std::vector<Camera> cameras;
 };
 
-Node leaf(Primitive primitive, NodeKind kind) {
+Node leaf(NodeParams params, NodeKind kind) {
   Node n;
   n.kind = kind;
-  n.primitive = std::move(primitive);
+  n.params = std::move(params);
   return n;
 }
 
@@ -442,7 +442,7 @@ Scene small_lit_scene() {
   ring.transform.rotate_degrees = {30.0, 0.0, 0.0};
   Node ground = leaf(Plane{{0.0, 1.0, 0.0}, 0.5}, NodeKind::Plane);
   s.sdf.kind = NodeKind::SmoothUnion;
-  s.sdf.smooth_k = 0.2;
+  s.sdf.params = SmoothUnion{0.2};
   s.sdf.children = {ball, ring, ground};
   s.camera = camera_at({1.0, 1.5, 4.0}, {0.0, 0.2, 0.0});
   s.render.width = 13;

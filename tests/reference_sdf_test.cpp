@@ -19,10 +19,10 @@ constexpr double kRotated = 1e-12;
 
 const glm::dvec3 kWhite(1.0), kRed(1.0, 0.0, 0.0), kBlue(0.0, 0.0, 1.0);
 
-Node leaf(Primitive primitive, NodeKind kind) {
+Node leaf(NodeParams params, NodeKind kind) {
   Node n;
   n.kind = kind;
-  n.primitive = std::move(primitive);
+  n.params = std::move(params);
   return n;
 }
 
@@ -33,10 +33,11 @@ Node sphere_node(glm::dvec3 center, double radius, std::optional<glm::dvec3> col
 }
 
 Node op_node(NodeKind kind, std::vector<Node> children, double k = 0.0) {
-  Node n;
-  n.kind = kind;
+  Node n = node_of_kind(kind);
   n.children = std::move(children);
-  n.smooth_k = k;
+  std::visit([k](auto& params) {
+    if constexpr (requires { params.k; }) params.k = k;
+  }, n.params);
   return n;
 }
 
@@ -298,41 +299,36 @@ TEST(ReferenceSdf, MalformedTreesThrow) {
                std::invalid_argument);
 }
 
-// The default parameters of the primitive at list position i: Primitive's alternatives follow the
-// order of node_kinds.def (checked: reference_distance throws on a mismatch).
-template <std::size_t... I>
-Primitive default_primitive(std::size_t i, std::index_sequence<I...>) {
-  const Primitive all[] = {Primitive(std::in_place_index<I>)...};
-  return all[i];
-}
-
 // The step factor that makes a default primitive 1-Lipschitz, for the check below. A value-noise
 // terrain's height has slope at most amplitude * frequency * octaves * 1.5 sqrt(2) (value noise
 // changes by at most 1.5 per lattice unit along each axis; octave i has weight 0.5^i at frequency
 // 2^i), so p.y - height has slope at most 1 + that. The Mandelbulb's escape-time estimate is no
 // proven bound: its slope was measured up to 1.62 over 2e5 pairs in [-2, 2]^3 (steepest where
 // the escaping iteration changes), so it gets 0.5.
-double unit_slope_step_factor(const Primitive& primitive) {
-  if (const Terrain* t = std::get_if<Terrain>(&primitive)) {
+double unit_slope_step_factor(const NodeParams& params) {
+  if (const Terrain* t = std::get_if<Terrain>(&params)) {
     EXPECT_EQ(t->noise, TerrainNoise::Value);
     return 1.0 / (1.0 + t->amplitude * t->frequency * t->octaves * 1.5 * std::sqrt(2.0));
   }
-  if (std::holds_alternative<Mandelbulb>(primitive)) return 0.5;
+  if (std::holds_alternative<Mandelbulb>(params)) return 0.5;
   return 1.0;
 }
 
-Node default_node(NodeKind kind, std::size_t primitive_index) {
+Node default_node(NodeKind kind) {
   if (is_primitive(kind)) {
-    Node node = leaf(default_primitive(primitive_index, std::make_index_sequence<std::variant_size_v<Primitive>>()), kind);
-    node.step_factor = unit_slope_step_factor(node.primitive);
+    Node node = node_of_kind(kind);
+    node.step_factor = unit_slope_step_factor(node.params);
     return node;
   }
-  if (kind == NodeKind::Repeat || kind == NodeKind::Displace) {
+  if (kind == NodeKind::Repeat) {
     // One child that fits its repetition cell, so the field stays continuous and 1-Lipschitz.
-    Node node = op_node(kind, {sphere_node({0.0, 0.0, 0.0}, 0.5)}, 0.0);
-    node.repeat_period = {2.0, 0.0, 2.0};
-    node.displace_amplitude = 0.1;
-    node.displace_frequency = 2.0;
+    Node node = op_node(kind, {sphere_node({0.0, 0.0, 0.0}, 0.5)});
+    node.params = Repeat{{2.0, 0.0, 2.0}};
+    return node;
+  }
+  if (kind == NodeKind::Displace) {
+    Node node = op_node(kind, {sphere_node({0.0, 0.0, 0.0}, 0.5)});
+    node.params = Displace{0.1, 2.0};
     return node;
   }
   Node other = sphere_node({0.3, 0.2, 0.0}, 0.6, kRed);
@@ -345,13 +341,11 @@ Node default_node(NodeKind kind, std::size_t primitive_index) {
 TEST(ReferenceSdf, EveryNodeKindIsEvaluated) {
   // Rounding of O(1) values across a few operations.
   constexpr double kLipschitzSlack = 1e-12;
-  std::size_t primitive_index = 0;
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> coord(-2.0, 2.0);
   for (NodeKind kind : kAllNodeKinds) {
     SCOPED_TRACE(std::string(node_kind_name(kind)));
-    const Node node = default_node(kind, primitive_index);
-    if (is_primitive(kind)) ++primitive_index;
+    const Node node = default_node(kind);
     for (int i = 0; i < 200; ++i) {
       const glm::dvec3 p(coord(rng), coord(rng), coord(rng));
       const glm::dvec3 q = p + 0.1 * glm::dvec3(coord(rng), coord(rng), coord(rng));
@@ -362,7 +356,6 @@ TEST(ReferenceSdf, EveryNodeKindIsEvaluated) {
       EXPECT_LE(std::abs(reference_distance(node, q) - s.distance), glm::length(q - p) + kLipschitzSlack);
     }
   }
-  EXPECT_EQ(primitive_index, std::variant_size_v<Primitive>);
 }
 
 }  // namespace

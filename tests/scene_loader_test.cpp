@@ -21,7 +21,7 @@ TEST(SceneLoader, DefaultsOfTheContract) {
   EXPECT_EQ(scene.render.max_steps, 255);
   EXPECT_EQ(scene.render.epsilon, 1e-4);
   EXPECT_EQ(scene.render.max_distance, 100.0);
-  EXPECT_EQ(std::get<Sphere>(scene.sdf.primitive).radius, 1.0);
+  EXPECT_EQ(std::get<Sphere>(scene.sdf.params).radius, 1.0);
 }
 
 TEST(SceneLoader, ContractExampleOfTheIssue) {
@@ -37,19 +37,19 @@ sdf:
 )");
   ASSERT_EQ(scene.sdf.kind, NodeKind::Union);
   ASSERT_EQ(scene.sdf.children.size(), 4u);
-  EXPECT_EQ(std::get<Torus>(scene.sdf.children[2].primitive).minor_radius, 0.3);
-  EXPECT_EQ(std::get<Plane>(scene.sdf.children[3].primitive).offset, 1.0);
+  EXPECT_EQ(std::get<Torus>(scene.sdf.children[2].params).minor_radius, 0.3);
+  EXPECT_EQ(std::get<Plane>(scene.sdf.children[3].params).offset, 1.0);
 }
 
 TEST(SceneLoader, AcceptsJson) {
   const Scene scene = scene_from_yaml(R"({"render": {"width": 32, "height": 16}, "sdf": {"box": {"half_size": [1, 2, 3]}}})");
   EXPECT_EQ(scene.render.width, 32);
-  EXPECT_EQ(std::get<Box>(scene.sdf.primitive).half_size, glm::dvec3(1, 2, 3));
+  EXPECT_EQ(std::get<Box>(scene.sdf.params).half_size, glm::dvec3(1, 2, 3));
 }
 
 TEST(SceneLoader, NormalisesPlaneNormalsAndLightDirections) {
   const Scene scene = scene_from_yaml("sdf: {plane: {normal: [0, 3, 4]}}\nlights: [{directional: {direction: [2, 0, 0]}}]\n");
-  EXPECT_NEAR(glm::length(std::get<Plane>(scene.sdf.primitive).normal), 1.0, 1e-15);
+  EXPECT_NEAR(glm::length(std::get<Plane>(scene.sdf.params).normal), 1.0, 1e-15);
   EXPECT_EQ(scene.lights[0].direction, glm::dvec3(1, 0, 0));
 }
 
@@ -62,7 +62,7 @@ TEST(SceneLoader, OverridesReachAnyKey) {
                                        {"shading.view", "normals"}});
   EXPECT_EQ(scene.render.epsilon, 1e-5);
   EXPECT_EQ(scene.camera.position, glm::dvec3(0, 0, 1e6));
-  EXPECT_EQ(std::get<Sphere>(scene.sdf.children[0].primitive).radius, 2.5);
+  EXPECT_EQ(std::get<Sphere>(scene.sdf.children[0].params).radius, 2.5);
   EXPECT_EQ(scene.shading.view, View::Normals);
 }
 
@@ -85,9 +85,9 @@ TEST(SceneLoader, OverrideErrorsNameTheOption) {
 TEST(SceneLoader, OverridesReplaceListItemsAndFillAnEmptyFile) {
   const Scene item = load_scene_text("sdf: {union: [{sphere: {}}]}\n", "s.yaml", {{"sdf.union.0", "{box: {half_size: [1, 2, 3]}}"}});
   ASSERT_EQ(item.sdf.children.size(), 1u);
-  EXPECT_EQ(std::get<Box>(item.sdf.children[0].primitive).half_size, glm::dvec3(1, 2, 3));
+  EXPECT_EQ(std::get<Box>(item.sdf.children[0].params).half_size, glm::dvec3(1, 2, 3));
   const Scene empty = load_scene_text("", "s.yaml", {{"sdf", "{torus: {major_radius: 2}}"}});
-  EXPECT_EQ(std::get<Torus>(empty.sdf.primitive).major_radius, 2.0);
+  EXPECT_EQ(std::get<Torus>(empty.sdf.params).major_radius, 2.0);
   EXPECT_EQ(error_of("sdf: {sphere: {}}\nrender: {width: 32}\n", {{"render.width.x", "1"}}),
             "--set render.width.x=1: 'width' is a value, not a map or list");
 }
@@ -153,11 +153,11 @@ TEST(SceneLoader, RejectsBadScenes) {
 TEST(SceneLoader, NumbersMayBeExpressionsOfTime) {
   const std::string yaml = "sdf: {sphere: {center: [cos(t), sin(t), 0], radius: \"1 + 0.5 * sin(pi * t)\"}}\n";
   const Scene at_zero = load_scene_text(yaml, "s.yaml", {}, 0.0);
-  EXPECT_EQ(std::get<Sphere>(at_zero.sdf.primitive).center, glm::dvec3(1, 0, 0));
-  EXPECT_DOUBLE_EQ(std::get<Sphere>(at_zero.sdf.primitive).radius, 1.0);
+  EXPECT_EQ(std::get<Sphere>(at_zero.sdf.params).center, glm::dvec3(1, 0, 0));
+  EXPECT_DOUBLE_EQ(std::get<Sphere>(at_zero.sdf.params).radius, 1.0);
   const Scene at_half = load_scene_text(yaml, "s.yaml", {}, 0.5);
-  EXPECT_NEAR(std::get<Sphere>(at_half.sdf.primitive).center.y, std::sin(0.5), 1e-15);
-  EXPECT_DOUBLE_EQ(std::get<Sphere>(at_half.sdf.primitive).radius, 1.5);
+  EXPECT_NEAR(std::get<Sphere>(at_half.sdf.params).center.y, std::sin(0.5), 1e-15);
+  EXPECT_DOUBLE_EQ(std::get<Sphere>(at_half.sdf.params).radius, 1.5);
   EXPECT_EQ(at_half.time, 0.5);
   // Ranges apply to the value at that time, which the message shows with the time, and a bad
   // expression names itself.

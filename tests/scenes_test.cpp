@@ -33,7 +33,7 @@ Scene load_small(const std::string& name) {
 
 /// Most iterations of a Mandelbulb in the tree (0 without one).
 int mandelbulb_iterations(const Node& node) {
-  int most = node.kind == NodeKind::Mandelbulb ? std::get<Mandelbulb>(node.primitive).iterations : 0;
+  int most = node.kind == NodeKind::Mandelbulb ? std::get<Mandelbulb>(node.params).iterations : 0;
   for (const Node& child : node.children) most = std::max(most, mandelbulb_iterations(child));
   return most;
 }

@@ -149,7 +149,7 @@ TEST(TerrainHeight, StepFactorFromTheSlopeBoundMakesItOneLipschitz) {
   t.octaves = 9;
   Node node;
   node.kind = NodeKind::Terrain;
-  node.primitive = t;
+  node.params = t;
   node.step_factor = 1.0 / (1.0 + t.amplitude * t.frequency * t.octaves * 1.5 * std::sqrt(2.0));
   std::mt19937 rng(6);
   std::uniform_real_distribution<double> coord(-10.0, 10.0), offset(-0.2, 0.2);
@@ -221,14 +221,14 @@ TEST(TerrainKernel, LatticeValuesAreTheReferenceHashBitForBit) {
 }
 
 TEST(TerrainKeys, DefaultsAndRanges) {
-  const Terrain t = std::get<Terrain>(scene_from_yaml("sdf: {terrain: {}}\n").sdf.primitive);
+  const Terrain t = std::get<Terrain>(scene_from_yaml("sdf: {terrain: {}}\n").sdf.params);
   EXPECT_EQ(t.height, 0.0);
   EXPECT_EQ(t.amplitude, 1.0);
   EXPECT_EQ(t.frequency, 1.0);
   EXPECT_EQ(t.octaves, 6);
   EXPECT_EQ(t.noise, TerrainNoise::Value);
   EXPECT_EQ(t.seed, 0u);
-  const Terrain d = std::get<Terrain>(scene_from_yaml("sdf: {terrain: {noise: derivative, seed: 42}}\n").sdf.primitive);
+  const Terrain d = std::get<Terrain>(scene_from_yaml("sdf: {terrain: {noise: derivative, seed: 42}}\n").sdf.params);
   EXPECT_EQ(d.noise, TerrainNoise::Derivative);
   EXPECT_EQ(d.seed, 42u);
 

@@ -41,91 +41,56 @@ Material material_of(const Node& node, const Material& inherited) {
   return m;
 }
 
-/// The call of a primitive at the point p + offset: positions are baked relative to offset, in
+/// A parameter as an argument of its sd_ function. Positions are baked relative to offset, in
 /// double, so p stays small where the camera is far from the origin (map_frame_origin).
-std::string primitive_call(const Primitive& primitive, const std::string& p, const glm::dvec3& offset, Literals& lit) {
-  struct Visitor {
-    const std::string& p;
-    const glm::dvec3& offset;
-    Literals& lit;
-    std::string operator()(const Sphere& s) const {
-      return fmt::format("sd_sphere({}, {}, {})", p, lit.f4(s.center - offset), lit.f(s.radius));
+std::string argument(const ParamSpec& spec, const glm::dvec3& value, const glm::dvec3& offset, Literals& lit) {
+  return lit.f4(spec.type == ParamType::Point ? value - offset : value);
+}
+std::string argument(const ParamSpec&, double value, const glm::dvec3&, Literals& lit) { return lit.f(value); }
+std::string argument(const ParamSpec&, int value, const glm::dvec3&, Literals&) { return std::to_string(value); }
+std::string argument(const ParamSpec&, std::uint32_t value, const glm::dvec3&, Literals&) { return fmt::format("{}u", value); }
+
+/// sd_<name>(p, parameters...) at the point p + offset, the arguments in the order of the kind's
+/// declaration (scene/node_kinds.def). A choice is not an argument: it selects the function
+/// sd_<name>_<choice>.
+template <class Params>
+std::string declared_call(std::string_view name, const Params& params, const std::string& p, const glm::dvec3& offset,
+                          Literals& lit) {
+  std::string function = fmt::format("sd_{}", name);
+  std::string arguments = p;
+  for_each_param(params, [&](const ParamSpec& spec, const auto& value) {
+    if constexpr (std::is_enum_v<std::decay_t<decltype(value)>>) {
+      function += fmt::format("_{}", spec.choices[static_cast<std::size_t>(value)]);
+    } else {
+      arguments += ", " + argument(spec, value, offset, lit);
     }
-    std::string operator()(const Box& b) const {
-      return fmt::format("sd_box({}, {}, {})", p, lit.f4(b.center - offset), lit.f4(b.half_size));
-    }
-    std::string operator()(const RoundBox& b) const {
-      return fmt::format("sd_round_box({}, {}, {}, {})", p, lit.f4(b.center - offset), lit.f4(b.half_size),
-                         lit.f(b.radius));
-    }
-    std::string operator()(const BoxFrame& b) const {
-      return fmt::format("sd_box_frame({}, {}, {}, {})", p, lit.f4(b.center - offset), lit.f4(b.half_size),
-                         lit.f(b.thickness));
-    }
-    std::string operator()(const Torus& t) const {
-      return fmt::format("sd_torus({}, {}, {}, {})", p, lit.f4(t.center - offset), lit.f(t.major_radius),
-                         lit.f(t.minor_radius));
-    }
-    std::string operator()(const Plane& s) const {
-      // dot(n, p + offset) + c = dot(n, p) + (c + dot(n, offset))
-      return fmt::format("sd_plane({}, {}, {})", p, lit.f4(s.normal), lit.f(s.offset + glm::dot(s.normal, offset)));
-    }
-    std::string operator()(const Capsule& c) const {
-      return fmt::format("sd_capsule({}, {}, {}, {})", p, lit.f4(c.a - offset), lit.f4(c.b - offset),
-                         lit.f(c.radius));
-    }
-    std::string operator()(const Cylinder& c) const {
-      return fmt::format("sd_cylinder({}, {}, {}, {})", p, lit.f4(c.center - offset), lit.f(c.radius),
-                         lit.f(c.half_height));
-    }
-    std::string operator()(const Mandelbulb& m) const {
-      // Power 8 has a form without transcendentals in the loop (kernels/fractals.cl).
-      if (m.power == 8.0) {
-        return fmt::format("sd_mandelbulb8({}, {}, {}, {})", p, lit.f4(m.center - offset), m.iterations,
-                           lit.f(m.bailout));
-      }
-      return fmt::format("sd_mandelbulb({}, {}, {}, {}, {})", p, lit.f4(m.center - offset), lit.f(m.power),
-                         m.iterations, lit.f(m.bailout));
-    }
-    std::string operator()(const Menger& m) const {
-      return fmt::format("sd_menger({}, {}, {}, {})", p, lit.f4(m.center - offset), lit.f(m.half_size),
-                         m.iterations);
-    }
-    std::string operator()(const Terrain& t) const {
-      return fmt::format("sd_terrain_{}({}, {}, {}, {}, {}, {}u)", kTerrainNoiseNames[static_cast<int>(t.noise)], p,
-                         lit.f(t.height), lit.f(t.amplitude), lit.f(t.frequency), t.octaves, t.seed);
-    }
-  };
-  return std::visit(Visitor{p, offset, lit}, primitive);
+  });
+  return fmt::format("{}({})", function, arguments);
+}
+
+/// The call of a primitive at the point p + offset: its declared call, but for the kinds whose
+/// call is written here.
+std::string primitive_call(const Node& node, const std::string& p, const glm::dvec3& offset, Literals& lit) {
+  const std::string_view name = node_kind_name(node.kind);
+  if (const Plane* plane = std::get_if<Plane>(&node.params)) {
+    // dot(n, p + offset) + c = dot(n, p) + (c + dot(n, offset))
+    return fmt::format("sd_plane({}, {}, {})", p, lit.f4(plane->normal), lit.f(plane->offset + glm::dot(plane->normal, offset)));
+  }
+  if (const Mandelbulb* bulb = std::get_if<Mandelbulb>(&node.params); bulb && bulb->power == 8.0) {
+    // Power 8 has a form without transcendentals in the loop (kernels/fractals.cl).
+    return fmt::format("sd_mandelbulb8({}, {}, {}, {})", p, lit.f4(bulb->center - offset), bulb->iterations,
+                       lit.f(bulb->bailout));
+  }
+  return std::visit([&](const auto& params) { return declared_call(name, params, p, offset, lit); }, node.params);
 }
 
 /// A rough cost of evaluating a subtree, in sphere evaluations: what decides whether a bounding
 /// sphere (about one sphere evaluation and a branch) can pay for itself.
 int subtree_cost(const Node& node) {
+  if (is_primitive(node.kind)) return evaluation_cost(node);
   int cost = 0;
   for (const Node& child : node.children) cost += subtree_cost(child);
-  switch (node.kind) {
-    case NodeKind::Sphere:
-    case NodeKind::Plane: return 1;
-    case NodeKind::Mandelbulb: return 6 * std::get<Mandelbulb>(node.primitive).iterations;
-    case NodeKind::Menger: return 3 * std::get<Menger>(node.primitive).iterations;
-    case NodeKind::Terrain: return 4 * std::get<Terrain>(node.primitive).octaves;
-    case NodeKind::Displace: return cost + 6;
-    case NodeKind::Box:
-    case NodeKind::RoundBox:
-    case NodeKind::BoxFrame:
-    case NodeKind::Torus:
-    case NodeKind::Capsule:
-    case NodeKind::Cylinder:
-    case NodeKind::Union:
-    case NodeKind::Intersection:
-    case NodeKind::Subtraction:
-    case NodeKind::SmoothUnion:
-    case NodeKind::SmoothIntersection:
-    case NodeKind::SmoothSubtraction:
-    case NodeKind::Repeat: return std::max(2, cost + 1);
-  }
-  return std::max(2, cost + 1);
+  return node.kind == NodeKind::Displace ? cost + 6 : std::max(2, cost + 1);
 }
 
 /// Subtrees from this cost on are gated behind their bounding sphere inside unions and subtractions.
@@ -196,7 +161,7 @@ class SdfEmitter {
         return fmt::format("v3_mix({}, {}, smooth_subtraction_blend({}, {}, {}))", "{0}", "{1}", a, b, k);
       case NodeKind::Repeat:
       case NodeKind::Displace:
-#define CLMARCH_PRIMITIVE(kind, name) case NodeKind::kind:
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind:
 #include "scene/node_kinds.def"
         break;
     }
@@ -214,7 +179,7 @@ class SdfEmitter {
       case NodeKind::SmoothSubtraction: return fmt::format("op_smooth_subtraction({}, {}, {})", a, b, k);
       case NodeKind::Repeat:
       case NodeKind::Displace:
-#define CLMARCH_PRIMITIVE(kind, name) case NodeKind::kind:
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind:
 #include "scene/node_kinds.def"
         break;
     }
@@ -223,6 +188,8 @@ class SdfEmitter {
 
  private:
   std::string fresh(const char* prefix) { return fmt::format("{}{}", prefix, counter_++); }
+  /// The literal of a smooth operator's blend radius; nothing for the others.
+  std::string blend_radius(const Node& node) { return is_smooth_operator(node.kind) ? lit_.f(smooth_k(node)) : std::string(); }
   void line(const std::string& text) { body_ += "  " + indent_ + text + "\n"; }
 
   /// The node's frame: the point and offset its subtree sees.
@@ -253,8 +220,8 @@ class SdfEmitter {
     Value value{fresh("d"), "", ""};
     // Terrain noise hashes absolute lattice coordinates, so it cannot fold the offset.
     const std::string call = node.kind == NodeKind::Terrain
-                                 ? primitive_call(node.primitive, absolute_point(p, offset), glm::dvec3(0.0), lit_)
-                                 : primitive_call(node.primitive, p, offset, lit_);
+                                 ? primitive_call(node, absolute_point(p, offset), glm::dvec3(0.0), lit_)
+                                 : primitive_call(node, p, offset, lit_);
     line(fmt::format("vfloat {} = {};  /* {} */", value.distance, call, node_kind_name(node.kind)));
     if (with_color_) {
       value.color = fresh("c");
@@ -285,7 +252,7 @@ class SdfEmitter {
   /// (its blend weight is 1 there), subtraction -acc, smooth subtraction k - acc (weight 0).
   /// Nothing for intersections, whose result is the largest operand.
   std::optional<std::string> sequential_skip_limit(const Node& node, const std::string& acc) {
-    const std::string k = lit_.f(node.smooth_k);
+    const std::string k = blend_radius(node);
     switch (node.kind) {
       case NodeKind::SmoothUnion: return fmt::format("{} + {}", acc, k);
       case NodeKind::Subtraction: return fmt::format("-{}", acc);
@@ -295,7 +262,7 @@ class SdfEmitter {
       case NodeKind::SmoothIntersection:
       case NodeKind::Repeat:
       case NodeKind::Displace:
-#define CLMARCH_PRIMITIVE(kind, name) case NodeKind::kind:
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind:
 #include "scene/node_kinds.def"
         return std::nullopt;
     }
@@ -364,7 +331,7 @@ class SdfEmitter {
   }
 
   Value emit_repeat(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
-    const glm::dvec3& period = node.repeat_period;
+    const glm::dvec3& period = params_of<Repeat>(node).period;
     glm::dvec3 child_offset = offset;
     const auto axis = [&](const char* c, int i) {
       if (!(period[i] > 0.0)) return fmt::format("{}.{}", p, c);
@@ -384,14 +351,14 @@ class SdfEmitter {
     const std::string at = absolute_point(p, offset);
     Value out{fresh("d"), child.color, child.surface};
     line(fmt::format("vfloat {} = ({} + displacement({}, {}, {})) * {};  /* displace */", out.distance, child.distance, at,
-                     lit_.f(node.displace_amplitude), lit_.f(node.displace_frequency),
+                     lit_.f(params_of<Displace>(node).amplitude), lit_.f(params_of<Displace>(node).frequency),
                      lit_.f(1.0 / displacement_lipschitz(node))));
     return out;
   }
 
   Value combine(const Node& node, const Value& a, const Value& b) {
     Value out{fresh("d"), "", ""};
-    const std::string k = lit_.f(node.smooth_k);
+    const std::string k = blend_radius(node);
     if (with_color_) {
       const std::string blend = blend_rule(node.kind, a.distance, b.distance, k);
       out.color = fresh("c");
@@ -519,7 +486,8 @@ void GridEmission::emit(const Node& union_node, const Material& color, const glm
   std::uint64_t key = 0xcbf29ce484222325ULL;
   key = fnv1a(key, records.data(), records.size() * sizeof(float));
   for (const std::string& shape : distance_shapes) key = fnv1a(key, shape.data(), shape.size());
-  const double numbers[] = {static_cast<double>(union_node.kind), union_node.smooth_k, offset.x, offset.y, offset.z};
+  const double k_value = is_smooth_operator(union_node.kind) ? smooth_k(union_node) : 0.0;
+  const double numbers[] = {static_cast<double>(union_node.kind), k_value, offset.x, offset.y, offset.z};
   key = fnv1a(key, numbers, sizeof(numbers));
   const std::shared_ptr<const OperandGrid> shared_grid = operand_grid_for(union_node, offset, key);
   const OperandGrid& grid = *shared_grid;
@@ -545,7 +513,7 @@ void GridEmission::emit(const Node& union_node, const Material& color, const glm
   for (std::uint32_t operand : grid.operands) data.push_back(int_word(static_cast<std::uint32_t>(records_at + record_at[operand])));
   data.insert(data.end(), records.begin(), records.end());
 
-  const std::string k = lit.f(union_node.smooth_k);
+  const std::string k = lit.f(k_value);
   functions = fmt::format(
       "/* The {} of {} operands evaluated from its operand grid ({} x {} x {} cells, {:.1f} operands a cell on\n"
       " * average; host/prune/operand_grid.hpp). Each operand's numbers are in its record, read by its\n"

@@ -24,27 +24,8 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 /// bounds it over the cell: not the escape-time Mandelbulb's estimate, the terrain (whose slopes
 /// pass 1 before its step_factor) or a repeat (whose child may not fit its cell).
 bool is_one_lipschitz(const Node& node) {
-  switch (node.kind) {
-    case NodeKind::Mandelbulb:
-    case NodeKind::Terrain:
-    case NodeKind::Repeat: return false;
-    case NodeKind::Sphere:
-    case NodeKind::Box:
-    case NodeKind::RoundBox:
-    case NodeKind::BoxFrame:
-    case NodeKind::Torus:
-    case NodeKind::Plane:
-    case NodeKind::Capsule:
-    case NodeKind::Cylinder:
-    case NodeKind::Menger:
-    case NodeKind::Union:
-    case NodeKind::Intersection:
-    case NodeKind::Subtraction:
-    case NodeKind::SmoothUnion:
-    case NodeKind::SmoothIntersection:
-    case NodeKind::SmoothSubtraction:
-    case NodeKind::Displace: break;
-  }
+  if (is_primitive(node.kind)) return field_quality(node.kind) != FieldQuality::Estimate;
+  if (node.kind == NodeKind::Repeat) return false;
   return std::all_of(node.children.begin(), node.children.end(), is_one_lipschitz);
 }
 
@@ -70,7 +51,7 @@ class CellPruner {
  public:
   CellPruner(const Node& union_node, const glm::dvec3& offset, const OperandBvh& bvh, double rounding)
       : node_(union_node), offset_(offset), bvh_(bvh), rounding_(rounding),
-        k_(union_node.kind == NodeKind::SmoothUnion ? union_node.smooth_k : 0.0) {
+        k_(union_node.kind == NodeKind::SmoothUnion ? smooth_k(union_node) : 0.0) {
     lipschitz_.reserve(union_node.children.size());
     for (const Node& child : union_node.children) {
       lipschitz_.push_back(is_one_lipschitz(child));
@@ -202,7 +183,7 @@ OperandGrid build_operand_grid(const Node& union_node, const glm::dvec3& offset)
     gain = std::max(gain, b.gain);
   }
   const std::size_t n = bounds.size();
-  const double k = union_node.kind == NodeKind::SmoothUnion ? union_node.smooth_k : 0.0;
+  const double k = union_node.kind == NodeKind::SmoothUnion ? smooth_k(union_node) : 0.0;
 
   OperandGrid grid;
   // About four cells an operand: cells near the operands' size keep each list to the few that

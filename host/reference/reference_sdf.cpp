@@ -41,8 +41,8 @@ double smooth_subtraction_weight(double a, double b, double k) {
 
 template <class T>
 const T& params(const Node& node) {
-  if (const T* p = std::get_if<T>(&node.primitive)) return *p;
-  malformed(node, "carries the parameters of another primitive");
+  if (const T* p = std::get_if<T>(&node.params)) return *p;
+  malformed(node, "carries the parameters of another kind");
 }
 
 SdfSample sample_node(const Node& node, const glm::dvec3& p_parent, const Material& parent);
@@ -56,9 +56,8 @@ SdfSample fold_children(const Node& node, const glm::dvec3& p, const Material& c
 }
 
 template <class Op>
-SdfSample fold_smooth(const Node& node, const glm::dvec3& p, const Material& color, Op op) {
-  const double k = node.smooth_k;
-  if (!(k > 0.0)) malformed(node, "needs smooth_k > 0 (got " + std::to_string(k) + ")");
+SdfSample fold_smooth(const Node& node, double k, const glm::dvec3& p, const Material& color, Op op) {
+  if (!(k > 0.0)) malformed(node, "needs k > 0 (got " + std::to_string(k) + ")");
   return fold_children(node, p, color, [&](const SdfSample& a, const SdfSample& b) { return op(a, b, k); });
 }
 
@@ -74,17 +73,9 @@ SdfSample sample_local(const Node& node, const glm::dvec3& p, const Material& ma
   const glm::dvec3& color = material.albedo;
   // One switch over every kind, without default, so -Wswitch flags a kind added to the list.
   switch (node.kind) {
-    case NodeKind::Sphere: return S{sd_sphere(p, params<Sphere>(node)), color};
-    case NodeKind::Box: return S{sd_box(p, params<Box>(node)), color};
-    case NodeKind::RoundBox: return S{sd_round_box(p, params<RoundBox>(node)), color};
-    case NodeKind::BoxFrame: return S{sd_box_frame(p, params<BoxFrame>(node)), color};
-    case NodeKind::Torus: return S{sd_torus(p, params<Torus>(node)), color};
-    case NodeKind::Plane: return S{sd_plane(p, params<Plane>(node)), color};
-    case NodeKind::Capsule: return S{sd_capsule(p, params<Capsule>(node)), color};
-    case NodeKind::Cylinder: return S{sd_cylinder(p, params<Cylinder>(node)), color};
-    case NodeKind::Mandelbulb: return S{sd_mandelbulb(p, params<Mandelbulb>(node)), color};
-    case NodeKind::Menger: return S{sd_menger(p, params<Menger>(node)), color};
-    case NodeKind::Terrain: return S{sd_terrain(p, params<Terrain>(node)), color};
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) \
+  case NodeKind::Kind: return S{sd_##name(p, params<Kind>(node)), color};
+#include "scene/node_kinds.def"
     case NodeKind::Union:
       return fold_children(node, p, material, [](const S& a, const S& b) { return op_union(a, b); });
     case NodeKind::Intersection:
@@ -92,25 +83,27 @@ SdfSample sample_local(const Node& node, const glm::dvec3& p, const Material& ma
     case NodeKind::Subtraction:
       return fold_children(node, p, material, [](const S& a, const S& b) { return op_subtraction(a, b); });
     case NodeKind::SmoothUnion:
-      return fold_smooth(node, p, material, [](const S& a, const S& b, double k) { return op_smooth_union(a, b, k); });
+      return fold_smooth(node, params<SmoothUnion>(node).k, p, material,
+                         [](const S& a, const S& b, double k) { return op_smooth_union(a, b, k); });
     case NodeKind::SmoothIntersection:
-      return fold_smooth(node, p, material,
+      return fold_smooth(node, params<SmoothIntersection>(node).k, p, material,
                          [](const S& a, const S& b, double k) { return op_smooth_intersection(a, b, k); });
     case NodeKind::SmoothSubtraction:
-      return fold_smooth(node, p, material,
+      return fold_smooth(node, params<SmoothSubtraction>(node).k, p, material,
                          [](const S& a, const S& b, double k) { return op_smooth_subtraction(a, b, k); });
     case NodeKind::Repeat: {
       glm::dvec3 q = p;
       for (int a = 0; a < 3; ++a) {
-        const double c = node.repeat_period[a];
+        const double c = params<Repeat>(node).period[a];
         if (c > 0.0) q[a] = p[a] - c * std::floor(p[a] / c + 0.5);
       }
       return only_child(node, q, material);
     }
     case NodeKind::Displace: {
       S s = only_child(node, p, material);
-      const double f = node.displace_frequency;
-      const double texture = node.displace_amplitude * std::sin(f * p.x) * std::sin(f * p.y) * std::sin(f * p.z);
+      const Displace& displace = params<Displace>(node);
+      const double f = displace.frequency;
+      const double texture = displace.amplitude * std::sin(f * p.x) * std::sin(f * p.y) * std::sin(f * p.z);
       s.distance = (s.distance + texture) / displacement_lipschitz(node);
       return s;
     }

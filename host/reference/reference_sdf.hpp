@@ -18,29 +18,15 @@ struct SdfSample {
 };
 
 /// Signed distance of the whole tree at the world point p (throws std::invalid_argument on a
-/// malformed tree: operator without children, smooth_k <= 0, parameters of the wrong kind).
+/// malformed tree: operator without children, a blend radius k <= 0, parameters of the wrong kind).
 double reference_distance(const Node& root, const glm::dvec3& p);
 /// Distance and albedo at p; colors follow the rules of op_union and friends below.
 SdfSample reference_sample(const Node& root, const glm::dvec3& p);
 
-// Primitives, p in the primitive's local frame. All are exact signed distances.
-
-/// |p - c| - r.
-double sd_sphere(const glm::dvec3& p, const Sphere& sphere);
-/// Axis-aligned box.
-double sd_box(const glm::dvec3& p, const Box& box);
-/// Box with edges rounded by radius; half_size includes the rounding.
-double sd_round_box(const glm::dvec3& p, const RoundBox& box);
-/// The twelve edges of a box as square bars 2 * thickness wide, flush with the box's faces.
-double sd_box_frame(const glm::dvec3& p, const BoxFrame& frame);
-/// Torus around the y axis (lying in the xz plane).
-double sd_torus(const glm::dvec3& p, const Torus& torus);
-/// dot(n, p) + offset, negative on the side the normal points away from.
-double sd_plane(const glm::dvec3& p, const Plane& plane);
-/// Segment a-b thickened by radius.
-double sd_capsule(const glm::dvec3& p, const Capsule& capsule);
-/// Capped cylinder along y.
-double sd_cylinder(const glm::dvec3& p, const Cylinder& cylinder);
+// Primitives, p in the primitive's local frame: sd_<name>(p, parameters) for each primitive of
+// scene/node_kinds.def, which says whether it is exact.
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) double sd_##name(const glm::dvec3& p, const Kind& params);
+#include "scene/node_kinds.def"
 
 // Operators on distances. Union of exact distances is exact outside and a bound inside;
 // intersection, subtraction and the smooth operators return bounds.

@@ -13,8 +13,8 @@ double mandelbulb_radius(double power) { return std::pow(2.0, 1.0 / (power - 1.0
 
 std::string_view node_kind_name(NodeKind kind) {
   switch (kind) {
-#define CLMARCH_PRIMITIVE(k, name) case NodeKind::k: return name;
-#define CLMARCH_OPERATOR(k, name) case NodeKind::k: return name;
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind: return #name;
+#define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) case NodeKind::Kind: return #name;
 #include "scene/node_kinds.def"
   }
   return "?";
@@ -29,8 +29,8 @@ std::optional<NodeKind> node_kind_from_name(std::string_view name) {
 
 bool is_primitive(NodeKind kind) {
   switch (kind) {
-#define CLMARCH_PRIMITIVE(k, name) case NodeKind::k: return true;
-#define CLMARCH_OPERATOR(k, name) case NodeKind::k: return false;
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind: return true;
+#define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) case NodeKind::Kind: return false;
 #include "scene/node_kinds.def"
   }
   return false;
@@ -41,8 +41,76 @@ bool is_smooth_operator(NodeKind kind) {
          kind == NodeKind::SmoothSubtraction;
 }
 
+int min_children(NodeKind kind) {
+  switch (kind) {
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind: return 0;
+#define CLMARCH_OPERATOR(Kind, name, low, high, params_list) case NodeKind::Kind: return low;
+#include "scene/node_kinds.def"
+  }
+  return 0;
+}
+
+int max_children(NodeKind kind) {
+  switch (kind) {
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind: return 0;
+#define CLMARCH_OPERATOR(Kind, name, low, high, params_list) case NodeKind::Kind: return high;
+#include "scene/node_kinds.def"
+  }
+  return 0;
+}
+
+Node node_of_kind(NodeKind kind) {
+  Node node;
+  node.kind = kind;
+  switch (kind) {
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind: node.params = Kind{}; break;
+#define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) case NodeKind::Kind: node.params = Kind{}; break;
+#include "scene/node_kinds.def"
+  }
+  return node;
+}
+
+std::vector<ParamSpec> param_table(NodeKind kind) {
+  std::vector<ParamSpec> table;
+  std::visit([&](const auto& params) { for_each_param(params, [&](const ParamSpec& spec, const auto&) { table.push_back(spec); }); },
+             node_of_kind(kind).params);
+  return table;
+}
+
+int evaluation_cost(const Node& primitive) {
+  switch (primitive.kind) {
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) \
+  case NodeKind::Kind: {                                           \
+    [[maybe_unused]] const Kind& params = params_of<Kind>(primitive); \
+    return cost;                                                   \
+  }
+#define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) case NodeKind::Kind:
+#include "scene/node_kinds.def"
+      break;
+  }
+  throw std::logic_error("evaluation_cost() of an operator");
+}
+
+FieldQuality field_quality(NodeKind primitive) {
+  switch (primitive) {
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind: return FieldQuality::quality;
+#define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) case NodeKind::Kind:
+#include "scene/node_kinds.def"
+      break;
+  }
+  throw std::logic_error("field_quality() of an operator");
+}
+
+double smooth_k(const Node& node) {
+  if (const auto* p = std::get_if<SmoothUnion>(&node.params)) return p->k;
+  if (const auto* p = std::get_if<SmoothIntersection>(&node.params)) return p->k;
+  if (const auto* p = std::get_if<SmoothSubtraction>(&node.params)) return p->k;
+  throw std::logic_error("smooth_k() of a node that is not a smooth operator");
+}
+
 double displacement_lipschitz(const Node& displace) {
-  return 1.0 + displace.displace_amplitude * displace.displace_frequency * std::sqrt(3.0);
+  const Displace& d = params_of<Displace>(displace);
+  return 1.0 + d.amplitude * d.frequency * std::sqrt(3.0);
 }
 
 double reflection_offset(const RenderSettings& render) {

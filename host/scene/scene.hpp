@@ -2,10 +2,13 @@
 // OpenCL renderer and the CPU reference; each interprets it on its own.
 #pragma once
 
+#include "scene/node_params.hpp"
+
 #include <glm/glm.hpp>
 
 #include <cstdint>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -15,15 +18,15 @@ namespace clmarch {
 
 /// Kinds of SDF nodes, from node_kinds.def.
 enum class NodeKind {
-#define CLMARCH_PRIMITIVE(kind, name) kind,
-#define CLMARCH_OPERATOR(kind, name) kind,
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) Kind,
+#define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) Kind,
 #include "scene/node_kinds.def"
 };
 
 /// Every node kind, in list order (for tests and lookups).
 inline constexpr NodeKind kAllNodeKinds[] = {
-#define CLMARCH_PRIMITIVE(kind, name) NodeKind::kind,
-#define CLMARCH_OPERATOR(kind, name) NodeKind::kind,
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) NodeKind::Kind,
+#define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) NodeKind::Kind,
 #include "scene/node_kinds.def"
 };
 
@@ -36,46 +39,13 @@ bool is_primitive(NodeKind kind);
 /// True for the smooth operators, which take a blend radius k.
 bool is_smooth_operator(NodeKind kind);
 
-// Primitive parameters, in the node's local frame (formulas: docs/scene-format.md).
-struct Sphere { glm::dvec3 center{0.0}; double radius = 1.0; };
-struct Box { glm::dvec3 center{0.0}; glm::dvec3 half_size{0.5}; };
-/// A box whose edges are rounded by radius; half_size includes the rounding.
-struct RoundBox { glm::dvec3 center{0.0}; glm::dvec3 half_size{0.5}; double radius = 0.1; };
-/// The twelve edges of a box as square bars 2 * thickness wide, flush with its faces.
-struct BoxFrame { glm::dvec3 center{0.0}; glm::dvec3 half_size{0.5}; double thickness = 0.05; };
-/// A torus in the xz plane.
-struct Torus { glm::dvec3 center{0.0}; double major_radius = 1.0; double minor_radius = 0.25; };
-/// The half-space dot(normal, p) + offset <= 0; normal is unit length after loading.
-struct Plane { glm::dvec3 normal{0.0, 1.0, 0.0}; double offset = 0.0; };
-/// A segment from a to b, thickened by radius.
-struct Capsule { glm::dvec3 a{0.0, -0.5, 0.0}; glm::dvec3 b{0.0, 0.5, 0.0}; double radius = 0.25; };
-/// A capped cylinder along y.
-struct Cylinder { glm::dvec3 center{0.0}; double radius = 0.5; double half_height = 0.5; };
-/// The power-n Mandelbulb (pole along z) by its escape-time distance estimator, a bound.
-struct Mandelbulb { glm::dvec3 center{0.0}; double power = 8.0; int iterations = 8; double bailout = 2.0; };
 /// Radius of a ball about the centre that holds the whole power-n Mandelbulb: 2^(1/(n-1)). Its
 /// estimator is never below the distance to this ball (kernels/fractals.cl, the reference).
 double mandelbulb_radius(double power);
-/// Inigo Quilez's Menger sponge: a cube of half size half_size with iterations levels of crosses cut out.
-struct Menger { glm::dvec3 center{0.0}; double half_size = 1.0; int iterations = 4; };
-/// The noise a terrain's fractal sum is built from (formulas: kernels/noise.cl, reference_noise.cpp).
-enum class TerrainNoise { Value, Perlin, Derivative };
-inline constexpr const char* kTerrainNoiseNames[] = {"value", "perlin", "derivative"};
-/// The height field y = height + amplitude * fbm(frequency * (x, z)); its distance p.y - y is a bound
-/// only with a node step_factor below 1 / sqrt(1 + slope^2).
-struct Terrain {
-  double height = 0.0;
-  double amplitude = 1.0;
-  double frequency = 1.0;
-  int octaves = 6;
-  TerrainNoise noise = TerrainNoise::Value;
-  /// Selects the hash of the lattice values, so one scene can hold different terrains.
-  std::uint32_t seed = 0;
-};
 
-/// Parameters of a primitive; the alternative matches Node::kind.
-using Primitive =
-    std::variant<Sphere, Box, RoundBox, BoxFrame, Torus, Plane, Capsule, Cylinder, Mandelbulb, Menger, Terrain>;
+/// The fewest and most children an operator takes (0: no limit), from its declaration.
+int min_children(NodeKind kind);
+int max_children(NodeKind kind);
 
 /// Placement of a node: p_world = translate + R(rotate) * (scale * p_local).
 struct Transform {
@@ -93,15 +63,8 @@ struct Transform {
 /// One node of the SDF tree.
 struct Node {
   NodeKind kind = NodeKind::Sphere;
-  /// Parameters, for primitives only.
-  Primitive primitive;
-  /// Blend radius of the smooth operators.
-  double smooth_k = 0.0;
-  /// repeat: centred domain repetition with this period per axis (0 = not repeated on that axis).
-  glm::dvec3 repeat_period{0.0};
-  /// displace: adds amplitude * sin(f x) sin(f y) sin(f z) (Crum's texture), f = frequency.
-  double displace_amplitude = 0.0;
-  double displace_frequency = 1.0;
+  /// The parameters of its kind (the alternative at the index of kind).
+  NodeParams params;
   /// Operands of an operator, folded left: union(a, b, c) = union(union(a, b), c).
   std::vector<Node> children;
   Transform transform;
@@ -117,6 +80,23 @@ struct Node {
   /// Share of the mirror bounce added to the color, in [0, 1] (inherited; default 0).
   std::optional<double> reflectivity;
 };
+
+/// The parameters of a node of kind T; throws std::logic_error if the node is of another kind.
+template <class T>
+const T& params_of(const Node& node) {
+  if (const T* p = std::get_if<T>(&node.params)) return *p;
+  throw std::logic_error("a node's parameters are not those of its kind");
+}
+/// The node of a kind with that kind's default parameters (and no children).
+Node node_of_kind(NodeKind kind);
+/// The parameter table of a kind, in the order of its declaration.
+std::vector<ParamSpec> param_table(NodeKind kind);
+/// What one evaluation of a primitive costs, in sphere evaluations (its declaration's cost).
+int evaluation_cost(const Node& primitive);
+/// How a primitive's field relates to the true distance (its declaration's quality).
+FieldQuality field_quality(NodeKind primitive);
+/// The blend radius k of a smooth operator.
+double smooth_k(const Node& node);
 
 /// Lipschitz constant of a displace node's field, 1 + amplitude * frequency * sqrt(3): its distance
 /// is divided by it so the march never steps past the displaced surface.

@@ -18,7 +18,8 @@ BoundingSphere enclosing(const BoundingSphere& a, const BoundingSphere& b) {
   return {center, radius, gain};
 }
 
-std::optional<BoundingSphere> primitive_bounds(const Primitive& primitive) {
+/// Each primitive's bounding sphere, written by hand for its kind (none: an unbounded one).
+std::optional<BoundingSphere> primitive_bounds(const NodeParams& params) {
   struct Visitor {
     std::optional<BoundingSphere> operator()(const Sphere& s) const { return BoundingSphere{s.center, s.radius}; }
     std::optional<BoundingSphere> operator()(const Box& b) const { return BoundingSphere{b.center, glm::length(b.half_size)}; }
@@ -47,8 +48,12 @@ std::optional<BoundingSphere> primitive_bounds(const Primitive& primitive) {
       return BoundingSphere{m.center, m.half_size * std::sqrt(3.0)};
     }
     std::optional<BoundingSphere> operator()(const Terrain&) const { return std::nullopt; }
+    // Operators have operator_bounds instead.
+#define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) \
+  std::optional<BoundingSphere> operator()(const Kind&) const { return std::nullopt; }
+#include "scene/node_kinds.def"
   };
-  return std::visit(Visitor{}, primitive);
+  return std::visit(Visitor{}, params);
 }
 
 std::optional<BoundingSphere> operator_bounds(const Node& node) {
@@ -59,7 +64,7 @@ std::optional<BoundingSphere> operator_bounds(const Node& node) {
       // that within radius + gain (L tau + amplitude): the amplitude counts with the child's gain.
       std::optional<BoundingSphere> child = node_bounds(node.children.front());
       if (!child) return std::nullopt;
-      child->radius += child->gain * node.displace_amplitude;
+      child->radius += child->gain * params_of<Displace>(node).amplitude;
       child->gain *= displacement_lipschitz(node);
       return child;
     }
@@ -86,7 +91,7 @@ std::optional<BoundingSphere> operator_bounds(const Node& node) {
     case NodeKind::Subtraction:
     case NodeKind::SmoothSubtraction: return node_bounds(node.children.front());
     // Primitives have primitive_bounds instead.
-#define CLMARCH_PRIMITIVE(kind, name) case NodeKind::kind:
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind:
 #include "scene/node_kinds.def"
       return std::nullopt;
   }
@@ -96,10 +101,10 @@ std::optional<BoundingSphere> operator_bounds(const Node& node) {
 }  // namespace
 
 std::optional<BoundingSphere> node_bounds(const Node& node) {
-  std::optional<BoundingSphere> b = is_primitive(node.kind) ? primitive_bounds(node.primitive) : operator_bounds(node);
+  std::optional<BoundingSphere> b = is_primitive(node.kind) ? primitive_bounds(node.params) : operator_bounds(node);
   if (!b) return std::nullopt;
   // The polynomial smooth minimum and maximum undershoot the hard ones by at most k / 4.
-  if (is_smooth_operator(node.kind)) b->radius += b->gain * node.smooth_k / 4.0;
+  if (is_smooth_operator(node.kind)) b->radius += b->gain * smooth_k(node) / 4.0;
   // p_parent = translate + R (scale p_local); the field is scale * f(p_local) * step_factor.
   b->center = node.transform.translate + node.transform.world_from_local_rotation() * (node.transform.scale * b->center);
   b->radius *= node.transform.scale;

@@ -18,7 +18,9 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <type_traits>
 #include <unordered_set>
+#include <variant>
 
 namespace clmarch {
 namespace {
@@ -318,8 +320,7 @@ class SceneReader {
       for (NodeKind k : kAllNodeKinds) names.push_back(node_kind_name(k));
       yaml_.fail(entry->first, fmt::format("{}: unknown node kind '{}' (expected one of: {})", path, name, fmt::join(names, ", ")));
     }
-    Node node;
-    node.kind = *kind;
+    Node node = node_of_kind(*kind);
     const std::string node_path = path + "." + name;
     if (is_primitive(*kind)) {
       read_primitive(node, entry->second, node_path);
@@ -343,168 +344,139 @@ class SceneReader {
     yaml_.optional_number(params, "step_factor", path + ".step_factor", node.step_factor, Range{0.0, 1.0, true, false});
   }
 
-  void read_primitive(Node& node, const YAML::Node& params, const std::string& path) {
-    const Range positive = Range::positive();
-    const auto key = [&](const char* k) { return path + "." + k; };
-    switch (node.kind) {
-      case NodeKind::Sphere: {
-        yaml_.expect_map(params, path, {"center", "radius", CLMARCH_COMMON_NODE_KEYS});
-        Sphere s;
-        yaml_.optional_vec3(params, "center", key("center"), s.center);
-        yaml_.optional_number(params, "radius", key("radius"), s.radius, positive);
-        node.primitive = s;
-        break;
-      }
-      case NodeKind::Box: {
-        yaml_.expect_map(params, path, {"center", "half_size", CLMARCH_COMMON_NODE_KEYS});
-        Box b;
-        yaml_.optional_vec3(params, "center", key("center"), b.center);
-        yaml_.optional_vec3(params, "half_size", key("half_size"), b.half_size, positive);
-        node.primitive = b;
-        break;
-      }
-      case NodeKind::RoundBox: {
-        yaml_.expect_map(params, path, {"center", "half_size", "radius", CLMARCH_COMMON_NODE_KEYS});
-        RoundBox b;
-        yaml_.optional_vec3(params, "center", key("center"), b.center);
-        yaml_.optional_vec3(params, "half_size", key("half_size"), b.half_size, positive);
-        const double smallest = std::min({b.half_size.x, b.half_size.y, b.half_size.z});
-        yaml_.optional_number(params, "radius", key("radius"), b.radius, Range::closed(0.0, smallest));
-        if (!params["radius"] && b.radius > smallest) b.radius = smallest;
-        node.primitive = b;
-        break;
-      }
-      case NodeKind::BoxFrame: {
-        yaml_.expect_map(params, path, {"center", "half_size", "thickness", CLMARCH_COMMON_NODE_KEYS});
-        BoxFrame b;
-        yaml_.optional_vec3(params, "center", key("center"), b.center);
-        yaml_.optional_vec3(params, "half_size", key("half_size"), b.half_size, positive);
-        const double smallest = std::min({b.half_size.x, b.half_size.y, b.half_size.z});
-        yaml_.optional_number(params, "thickness", key("thickness"), b.thickness, {0.0, smallest, true, false});
-        if (!params["thickness"] && b.thickness > smallest) b.thickness = smallest;
-        node.primitive = b;
-        break;
-      }
-      case NodeKind::Torus: {
-        yaml_.expect_map(params, path, {"center", "major_radius", "minor_radius", CLMARCH_COMMON_NODE_KEYS});
-        Torus t;
-        yaml_.optional_vec3(params, "center", key("center"), t.center);
-        yaml_.optional_number(params, "major_radius", key("major_radius"), t.major_radius, positive);
-        yaml_.optional_number(params, "minor_radius", key("minor_radius"), t.minor_radius, positive);
-        node.primitive = t;
-        break;
-      }
-      case NodeKind::Plane: {
-        yaml_.expect_map(params, path, {"normal", "offset", CLMARCH_COMMON_NODE_KEYS});
-        Plane p;
-        yaml_.optional_vec3(params, "normal", key("normal"), p.normal);
-        if (glm::length(p.normal) == 0.0) yaml_.fail(params["normal"], key("normal") + " must not be zero");
-        p.normal = glm::normalize(p.normal);
-        yaml_.optional_number(params, "offset", key("offset"), p.offset);
-        node.primitive = p;
-        break;
-      }
-      case NodeKind::Capsule: {
-        yaml_.expect_map(params, path, {"a", "b", "radius", CLMARCH_COMMON_NODE_KEYS});
-        Capsule c;
-        yaml_.optional_vec3(params, "a", key("a"), c.a);
-        yaml_.optional_vec3(params, "b", key("b"), c.b);
-        if (c.a == c.b) yaml_.fail(params, key("a") + " and " + key("b") + " must differ (use a sphere for a point)");
-        yaml_.optional_number(params, "radius", key("radius"), c.radius, positive);
-        node.primitive = c;
-        break;
-      }
-      case NodeKind::Cylinder: {
-        yaml_.expect_map(params, path, {"center", "radius", "half_height", CLMARCH_COMMON_NODE_KEYS});
-        Cylinder c;
-        yaml_.optional_vec3(params, "center", key("center"), c.center);
-        yaml_.optional_number(params, "radius", key("radius"), c.radius, positive);
-        yaml_.optional_number(params, "half_height", key("half_height"), c.half_height, positive);
-        node.primitive = c;
-        break;
-      }
-      case NodeKind::Mandelbulb: {
-        yaml_.expect_map(params, path, {"center", "power", "iterations", "bailout", CLMARCH_COMMON_NODE_KEYS});
-        Mandelbulb m;
-        yaml_.optional_vec3(params, "center", key("center"), m.center);
-        yaml_.optional_number(params, "power", key("power"), m.power, Range::closed(2.0, 16.0));
-        if (params["iterations"]) m.iterations = yaml_.integer(params["iterations"], key("iterations"), Range::closed(1, 64));
-        yaml_.optional_number(params, "bailout", key("bailout"), m.bailout, Range{1.0, std::numeric_limits<double>::infinity(), true, false});
-        // An escaping orbit reaches |z| ~ bailout^power; the kernel squares it in float (max ~3e38).
-        const double largest_bailout = std::pow(10.0, 18.0 / m.power);
-        if (m.bailout > largest_bailout) {
-          yaml_.fail(params["bailout"] ? params["bailout"] : params,
-                     fmt::format("{} must be at most 10^(18/power) = {:.3g} for power {} so that |z|^2 stays finite in "
-                                 "float (got {})", key("bailout"), largest_bailout, m.power, m.bailout));
+  /// The keys of a node of this kind: its parameters' (from its declaration), children for an
+  /// operator, and the common ones.
+  static std::vector<std::string_view> node_keys(const Node& node) {
+    std::vector<std::string_view> keys;
+    for (const ParamSpec& spec : param_table(node.kind)) keys.push_back(spec.key);
+    if (!is_primitive(node.kind)) keys.push_back("children");
+    for (std::string_view common : {CLMARCH_COMMON_NODE_KEYS}) keys.push_back(common);
+    return keys;
+  }
+
+  /// Reads the parameters of the node's kind from map, by its declaration's table: the keys
+  /// given are read and range-checked, the others keep their defaults (a required one fails).
+  void read_params(Node& node, const YAML::Node& map, const std::string& path) {
+    std::visit([&](auto& params) {
+      for_each_param(params, [&](const ParamSpec& spec, auto& value) {
+        const std::string what = path + "." + spec.key;
+        const YAML::Node given = map[spec.key];
+        if (!given) {
+          if (spec.required) yaml_.required(map, spec.key, what);
+          return;
         }
-        node.primitive = m;
-        break;
-      }
-      case NodeKind::Menger: {
-        yaml_.expect_map(params, path, {"center", "half_size", "iterations", CLMARCH_COMMON_NODE_KEYS});
-        Menger m;
-        yaml_.optional_vec3(params, "center", key("center"), m.center);
-        yaml_.optional_number(params, "half_size", key("half_size"), m.half_size, positive);
-        if (params["iterations"]) m.iterations = yaml_.integer(params["iterations"], key("iterations"), Range::closed(1, 8));
-        node.primitive = m;
-        break;
-      }
-      case NodeKind::Terrain: {
-        yaml_.expect_map(params, path, {"height", "amplitude", "frequency", "octaves", "noise", "seed", CLMARCH_COMMON_NODE_KEYS});
-        Terrain t;
-        yaml_.optional_number(params, "height", key("height"), t.height);
-        yaml_.optional_number(params, "amplitude", key("amplitude"), t.amplitude, Range::non_negative());
-        yaml_.optional_number(params, "frequency", key("frequency"), t.frequency, positive);
-        if (params["octaves"]) t.octaves = yaml_.integer(params["octaves"], key("octaves"), Range::closed(1, 16));
-        if (params["noise"]) t.noise = static_cast<TerrainNoise>(yaml_.choice(params["noise"], key("noise"), kTerrainNoiseNames));
-        if (params["seed"]) t.seed = static_cast<std::uint32_t>(yaml_.integer(params["seed"], key("seed"), Range::closed(0, 2147483647)));
-        node.primitive = t;
-        break;
-      }
-#define CLMARCH_OPERATOR(kind, name) case NodeKind::kind:
-#include "scene/node_kinds.def"
-        throw std::logic_error("read_primitive() called on an operator");
+        read_param(spec, given, what, value);
+      });
+      check_params(params, map, path);
+    }, node.params);
+  }
+
+  void read_param(const ParamSpec& spec, const YAML::Node& given, const std::string& what, glm::dvec3& value) {
+    value = yaml_.vec3(given, what, spec.range);
+    if (spec.type == ParamType::Direction) {
+      if (glm::length(value) == 0.0) yaml_.fail(given, what + " must not be zero");
+      value = glm::normalize(value);
     }
+  }
+  void read_param(const ParamSpec& spec, const YAML::Node& given, const std::string& what, double& value) {
+    value = yaml_.number(given, what, spec.range);
+  }
+  template <class Integer>
+    requires std::is_integral_v<Integer>
+  void read_param(const ParamSpec& spec, const YAML::Node& given, const std::string& what, Integer& value) {
+    value = static_cast<Integer>(yaml_.integer(given, what, spec.range));
+  }
+  template <class Enum>
+    requires std::is_enum_v<Enum>
+  void read_param(const ParamSpec& spec, const YAML::Node& given, const std::string& what, Enum& value) {
+    value = static_cast<Enum>(yaml_.choice(given, what, spec.choices));
+  }
+
+  // Checks across parameters, beyond each one's range; most kinds have none.
+  template <class Params>
+  void check_params(const Params&, const YAML::Node&, const std::string&) {}
+
+  void check_params(RoundBox& box, const YAML::Node& map, const std::string& path) {
+    const double smallest = std::min({box.half_size.x, box.half_size.y, box.half_size.z});
+    if (map["radius"]) {
+      box.radius = yaml_.number(map["radius"], path + ".radius", Range::closed(0.0, smallest));
+    } else {
+      box.radius = std::min(box.radius, smallest);
+    }
+  }
+
+  void check_params(BoxFrame& frame, const YAML::Node& map, const std::string& path) {
+    const double smallest = std::min({frame.half_size.x, frame.half_size.y, frame.half_size.z});
+    if (map["thickness"]) {
+      frame.thickness = yaml_.number(map["thickness"], path + ".thickness", {0.0, smallest, true, false});
+    } else {
+      frame.thickness = std::min(frame.thickness, smallest);
+    }
+  }
+
+  void check_params(Capsule& capsule, const YAML::Node& map, const std::string& path) {
+    if (capsule.a == capsule.b) yaml_.fail(map, path + ".a and " + path + ".b must differ (use a sphere for a point)");
+  }
+
+  void check_params(Mandelbulb& bulb, const YAML::Node& map, const std::string& path) {
+    // An escaping orbit reaches |z| ~ bailout^power; the kernel squares it in float (max ~3e38).
+    const double largest_bailout = std::pow(10.0, 18.0 / bulb.power);
+    if (bulb.bailout > largest_bailout) {
+      yaml_.fail(map["bailout"] ? map["bailout"] : map,
+                 fmt::format("{}.bailout must be at most 10^(18/power) = {:.3g} for power {} so that |z|^2 stays finite in "
+                             "float (got {})", path, largest_bailout, bulb.power, bulb.bailout));
+    }
+  }
+
+  void check_params(Repeat& repeat, const YAML::Node& map, const std::string& path) {
+    if (repeat.period == glm::dvec3(0.0)) {
+      yaml_.fail(map["period"], path + ".period must repeat along at least one axis (a component > 0)");
+    }
+  }
+
+  void read_primitive(Node& node, const YAML::Node& params, const std::string& path) {
+    yaml_.expect_map(params, path, node_keys(node));
+    read_params(node, params, path);
     read_common(node, params, path);
   }
 
+  /// The first parameter a scene file must give for this kind, if any (such kinds take the map form).
+  static const char* first_required_key(const Node& node) {
+    for (const ParamSpec& spec : param_table(node.kind)) {
+      if (spec.required) return spec.key;
+    }
+    return nullptr;
+  }
+
   void read_operator(Node& node, const YAML::Node& value, const std::string& path, int depth) {
-    const bool smooth = is_smooth_operator(node.kind);
-    const bool modifier = node.kind == NodeKind::Repeat || node.kind == NodeKind::Displace;
+    const char* required = first_required_key(node);
+    const std::size_t most = static_cast<std::size_t>(max_children(node.kind));
     YAML::Node children;
     if (value.IsSequence()) {
-      if (smooth) yaml_.fail(value, fmt::format("{} needs a blend radius: write {{k: 0.5, children: [...]}}", path));
-      if (modifier) yaml_.fail(value, fmt::format("{} takes parameters: write it as a map with children: [node]", path));
+      if (required) {
+        yaml_.fail(value, fmt::format("{} needs {}{}: write {{{}: ..., children: [...]}}", path, required,
+                                      is_smooth_operator(node.kind) ? " (a blend radius)" : "", required));
+      }
+      if (most == 1) yaml_.fail(value, fmt::format("{} takes parameters: write it as a map with children: [node]", path));
       children = value;
     } else if (value.IsMap()) {
-      if (smooth) {
-        yaml_.expect_map(value, path, {"children", "k", CLMARCH_COMMON_NODE_KEYS});
-        node.smooth_k = yaml_.number(yaml_.required(value, "k", path + ".k"), path + ".k", Range::positive());
-      } else if (node.kind == NodeKind::Repeat) {
-        yaml_.expect_map(value, path, {"children", "period", CLMARCH_COMMON_NODE_KEYS});
-        const YAML::Node period = yaml_.required(value, "period", path + ".period");
-        node.repeat_period = yaml_.vec3(period, path + ".period", Range::non_negative());
-        if (node.repeat_period == glm::dvec3(0.0)) yaml_.fail(period, path + ".period must repeat along at least one axis (a component > 0)");
-      } else if (node.kind == NodeKind::Displace) {
-        yaml_.expect_map(value, path, {"children", "amplitude", "frequency", CLMARCH_COMMON_NODE_KEYS});
-        yaml_.optional_number(value, "amplitude", path + ".amplitude", node.displace_amplitude, Range::non_negative());
-        yaml_.optional_number(value, "frequency", path + ".frequency", node.displace_frequency, Range::positive());
-      } else {
-        yaml_.expect_map(value, path, {"children", CLMARCH_COMMON_NODE_KEYS});
-      }
+      yaml_.expect_map(value, path, node_keys(node));
+      read_params(node, value, path);
       children = yaml_.required(value, "children", path + ".children");
       read_common(node, value, path);
     } else {
       yaml_.fail(value, fmt::format("{} must be a list of nodes or a map with children (got {})", path, describe_yaml(value)));
     }
     if (!children.IsSequence()) yaml_.fail(children, fmt::format("{} children must be a list of nodes (got {})", path, describe_yaml(children)));
-    const bool subtracts = node.kind == NodeKind::Subtraction || node.kind == NodeKind::SmoothSubtraction;
-    const std::size_t minimum = subtracts ? 2 : 1;
+    const std::size_t minimum = static_cast<std::size_t>(min_children(node.kind));
     if (children.size() < minimum) {
       yaml_.fail(children, fmt::format("{} needs at least {} child node{} (got {})", path, minimum, minimum > 1 ? "s" : "", children.size()));
     }
-    if (modifier && children.size() != 1) {
+    if (most == 1 && children.size() != 1) {
       yaml_.fail(children, fmt::format("{} takes exactly 1 child node (got {}); wrap several in a union", path, children.size()));
+    }
+    if (most > 1 && children.size() > most) {
+      yaml_.fail(children, fmt::format("{} takes at most {} child nodes (got {})", path, most, children.size()));
     }
     for (std::size_t i = 0; i < children.size(); ++i) {
       const YAML::Node child = children[i];

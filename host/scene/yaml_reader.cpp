@@ -17,32 +17,6 @@
 
 namespace clmarch {
 
-bool Range::contains(double v) const {
-  const bool above = low_open ? v > low : v >= low;
-  const bool below = high_open ? v < high : v <= high;
-  return above && below;
-}
-
-namespace {
-
-/// A bound as people write it: integers in full (2147483647), others to 6 digits (3.40282e+38).
-std::string readable_bound(double v) {
-  return v == std::floor(v) && std::abs(v) < 1e15 ? fmt::format("{:.0f}", v) : fmt::format("{:.6g}", v);
-}
-
-}  // namespace
-
-std::string Range::describe() const {
-  const bool bounded_low = std::isfinite(low);
-  const bool bounded_high = std::isfinite(high);
-  if (bounded_low && bounded_high) {
-    return fmt::format("in {}{}, {}{}", low_open ? "(" : "[", readable_bound(low), readable_bound(high), high_open ? ")" : "]");
-  }
-  if (bounded_low) return fmt::format("{} {}", low_open ? ">" : ">=", readable_bound(low));
-  if (bounded_high) return fmt::format("{} {}", high_open ? "<" : "<=", readable_bound(high));
-  return "a finite number";
-}
-
 std::string describe_yaml(const YAML::Node& node) {
   switch (node.Type()) {
     case YAML::NodeType::Scalar: return "'" + node.Scalar() + "'";
@@ -150,6 +124,11 @@ void YamlReader::fail(const YAML::Node& at, const std::string& message) const {
 
 void YamlReader::expect_map(const YAML::Node& node, const std::string& what,
                             std::initializer_list<std::string_view> allowed) const {
+  expect_map(node, what, std::vector<std::string_view>(allowed));
+}
+
+void YamlReader::expect_map(const YAML::Node& node, const std::string& what,
+                            const std::vector<std::string_view>& allowed) const {
   if (!node.IsMap()) fail(node, fmt::format("{} must be a map (got {})", what, describe_yaml(node)));
   std::set<std::string> seen;
   for (const auto& entry : node) {

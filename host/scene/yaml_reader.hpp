@@ -2,6 +2,8 @@
 // line and column of the offending value.
 #pragma once
 
+#include "scene/value_range.hpp"
+
 #include <yaml-cpp/yaml.h>
 
 #include <glm/glm.hpp>
@@ -9,30 +11,12 @@
 #include <initializer_list>
 #include <limits>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace clmarch {
-
-/// The largest magnitude of a number in a scene: the largest float, as the device computes in float.
-inline constexpr double kMaxSceneNumber = static_cast<double>(std::numeric_limits<float>::max());
-
-/// An allowed interval for a number; open or closed at each end.
-struct Range {
-  double low = -std::numeric_limits<double>::infinity();
-  double high = std::numeric_limits<double>::infinity();
-  bool low_open = false;
-  bool high_open = false;
-
-  static Range any() { return {}; }
-  static Range positive() { return {0.0, std::numeric_limits<double>::infinity(), true, false}; }
-  static Range non_negative() { return {0.0, std::numeric_limits<double>::infinity(), false, false}; }
-  static Range closed(double lo, double hi) { return {lo, hi, false, false}; }
-  static Range open(double lo, double hi) { return {lo, hi, true, true}; }
-  bool contains(double v) const;
-  /// "> 0", "in [1, 65536]"
-  std::string describe() const;
-};
 
 class YamlReader {
  public:
@@ -47,6 +31,7 @@ class YamlReader {
 
   /// Fails unless node is a map whose keys are all in allowed and none repeats.
   void expect_map(const YAML::Node& node, const std::string& what, std::initializer_list<std::string_view> allowed) const;
+  void expect_map(const YAML::Node& node, const std::string& what, const std::vector<std::string_view>& allowed) const;
 
   /// A number, or an expression of the time t such as "cos(t)" or "0.5 + 0.2 * sin(2 * pi * t)"
   /// (muparser syntax), evaluated at the scene's time.
@@ -60,6 +45,9 @@ class YamlReader {
   template <std::size_t N>
   int choice(const YAML::Node& node, const std::string& what, const char* const (&names)[N]) const {
     return choice_of(node, what, names, N);
+  }
+  int choice(const YAML::Node& node, const std::string& what, std::span<const char* const> names) const {
+    return choice_of(node, what, names.data(), names.size());
   }
 
   /// Reads map[key] into out if present (the default stays otherwise).

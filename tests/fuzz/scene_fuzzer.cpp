@@ -4,6 +4,9 @@
 // cannot parse) is a bug, and the input that found it becomes a test in tests/fuzz_regressions/.
 // With CLMARCH_FUZZ_BUILDS=N the first N accepted inputs are also built on the OpenCL device (too
 // slow while fuzzing; scripts/fuzz.sh does it for the corpus afterwards): a failed build is a bug.
+// With CLMARCH_FUZZ_PRINT_KINDS=1 it prints the dictionary words of the node kinds (their names,
+// keys and choices, from scene/node_kinds.def) and exits; scripts/fuzz.sh adds them to
+// tests/fuzz/scene.dict.
 #include "cl/device_program.hpp"
 #include "codegen/kernel_source.hpp"
 #include "common/errors.hpp"
@@ -80,6 +83,25 @@ void run_one(const std::string& text) {
 }
 
 }  // namespace
+
+/// The node kinds' words in libFuzzer's dictionary format, one a line.
+void print_kind_words() {
+  for (NodeKind kind : kAllNodeKinds) {
+    std::printf("\"%s\"\n", std::string(node_kind_name(kind)).c_str());
+    for (const ParamSpec& spec : param_table(kind)) {
+      std::printf("\"%s\"\n", spec.key);
+      for (const char* choice : spec.choices) std::printf("\"%s\"\n", choice);
+    }
+  }
+}
+
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+  if (const char* print = std::getenv("CLMARCH_FUZZ_PRINT_KINDS"); print != nullptr && std::string(print) == "1") {
+    print_kind_words();
+    std::exit(0);
+  }
+  return 0;
+}
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   try {
