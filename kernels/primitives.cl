@@ -63,3 +63,10 @@ SDF_INLINE vfloat sd_cylinder(vec3v p, float4 center, float radius, float half_h
   vfloat outside_h = fmax(dh, 0.0f);
   return fmin(fmax(dr, dh), 0.0f) + vsqrt(outside_r * outside_r + outside_h * outside_h);
 }
+
+/* Exact. Infinite cylinder along y, its axis through center. */
+SDF_INLINE vfloat sd_infinite_cylinder(vec3v p, float4 center, float radius) {
+  vfloat dx = p.x - center.x;
+  vfloat dz = p.z - center.z;
+  return vsqrt(dx * dx + dz * dz) - radius;
+}

@@ -53,6 +53,9 @@ const std::vector<SdfCase>& sdf_cases() {
        {{{1, 1, 0}, 0.5}, {{0, -1, 0}, 0.5}, {{0, 4, 0}, 1.5}, {{0, 1, 0}, -0.5}}},
       {"cylinder", "cylinder: {radius: 1, half_height: 2}",
        {{{3, 0, 0}, 2.0}, {{0, 5, 0}, 3.0}, {{0, -5, 0}, 3.0}, {{2, 3, 0}, kSqrt2}, {{-2, -3, 0}, kSqrt2}, {{0, 0, 0}, -1.0}}},
+      // Probed on both sides of the axis, and far along it (no caps).
+      {"infinite_cylinder", "infinite_cylinder: {center: [1, 0, 2], radius: 0.5}",
+       {{{1, 7, 2}, -0.5}, {{4, -3, 2}, 2.5}, {{-2, 5, 2}, 2.5}, {{1, 15, 5}, 2.5}, {{1, -15, -1}, 2.5}}},
       {"union", "union: [{sphere: {radius: 1}}, {sphere: {center: [1.5, 0, 0], radius: 1}}]",
        {{{0, 0, 0}, -1.0}, {{3, 0, 0}, 0.5}}},
       {"intersection", "intersection: [{sphere: {radius: 1}}, {sphere: {center: [1.5, 0, 0], radius: 1}}]",

@@ -111,6 +111,14 @@ TEST(ReferenceSdf, Plane) {
   EXPECT_NEAR(sd_plane({1.0, 1.0, 7.0}, tilted), std::sqrt(2.0) + 0.5, kExact);
 }
 
+TEST(ReferenceSdf, InfiniteCylinder) {
+  const InfiniteCylinder c{{1.0, 0.0, 2.0}, 0.5};
+  EXPECT_NEAR(sd_infinite_cylinder({1.0, 7.0, 2.0}, c), -0.5, kExact);    // on the axis, any height
+  EXPECT_NEAR(sd_infinite_cylinder({4.0, -3.0, 2.0}, c), 2.5, kExact);    // beside it along x
+  EXPECT_NEAR(sd_infinite_cylinder({-2.0, 1e6, 2.0}, c), 2.5, kExact);    // no caps
+  EXPECT_NEAR(sd_infinite_cylinder({4.0, 0.0, 6.0}, c), 4.5, kExact);     // 3-4-5 off the axis
+}
+
 TEST(ReferenceSdf, Capsule) {
   const Capsule c{{0.0, -0.5, 0.0}, {0.0, 0.5, 0.0}, 0.25};
   EXPECT_NEAR(sd_capsule({0.0, 1.5, 0.0}, c), 0.75, kExact);   // beyond b

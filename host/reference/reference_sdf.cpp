@@ -178,6 +178,10 @@ double sd_cylinder(const glm::dvec3& p, const Cylinder& cylinder) {
   return std::min(std::max(d.x, d.y), 0.0) + glm::length(glm::max(d, 0.0));
 }
 
+double sd_infinite_cylinder(const glm::dvec3& p, const InfiniteCylinder& cylinder) {
+  return glm::length(glm::dvec2(p.x - cylinder.center.x, p.z - cylinder.center.z)) - cylinder.radius;
+}
+
 double op_union(double a, double b) { return std::min(a, b); }
 double op_intersection(double a, double b) { return std::max(a, b); }
 double op_subtraction(double a, double b) { return std::max(a, -b); }

@@ -33,6 +33,7 @@ std::optional<BoundingSphere> primitive_bounds(const NodeParams& params) {
       return BoundingSphere{t.center, t.major_radius + t.minor_radius};
     }
     std::optional<BoundingSphere> operator()(const Plane&) const { return std::nullopt; }
+    std::optional<BoundingSphere> operator()(const InfiniteCylinder&) const { return std::nullopt; }
     std::optional<BoundingSphere> operator()(const Capsule& c) const {
       return BoundingSphere{0.5 * (c.a + c.b), 0.5 * glm::length(c.b - c.a) + c.radius};
     }
