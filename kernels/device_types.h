@@ -28,7 +28,7 @@ typedef cl_float4 float4;
 #define CLMARCH_CHANNEL_COUNT 9
 
 /* Columns of the tile a packet of `lanes` pixels covers (its rows: lanes / columns): 1x1, 2x2,
- * 4x2, 4x4. The host plans its dispatch of tiles by it (host/render/march_dispatch.hpp). */
+ * 4x2, 4x4. The host plans its dispatch of tiles by it (host/render/dispatch_plan.hpp). */
 #define CLMARCH_PACKET_WIDTH(lanes) ((lanes) == 1 ? 1 : (lanes) == 4 ? 2 : 4)
 
 /* Pixels per side of a block of the coarse cone pass (kernels/coarse.cl), and the blocks that
@@ -81,7 +81,7 @@ typedef struct MarchParams {
   CLMARCH_FLOAT hit_cone_slope;  /* camera rays hit below max(epsilon, hit_cone_slope * t); 0 = fixed */
   /* With bounds: the image's tiles in columns live_columns[0] .. live_columns[1] and rows
      live_rows[0] .. live_rows[1] (both included) hold every tile whose rays may meet the sphere
-     (host/render/march_dispatch.cpp, live_tiles); the others miss it. */
+     (host/render/live_tiles.cpp); the others miss it. */
   CLMARCH_INT live_columns[2];
   CLMARCH_INT live_rows[2];
 } MarchParams;

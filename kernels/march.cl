@@ -125,7 +125,7 @@ typedef struct {
 /* Whether no ray through the tile whose top-left pixel is (x0, y0) can meet the bounding sphere.
  * Tiles outside the host's range of live tiles (MarchParams live_columns, live_rows) are told by
  * integer comparisons; inside it, one scalar test without a square root decides: the host's
- * tile_reach.x is reach^2 (host/render/march_dispatch.cpp: the sphere's radius plus how far the
+ * tile_reach.x is reach^2 (host/render/device_inputs.cpp: the sphere's radius plus how far the
  * tile's rays spread from its centre ray, times |c|), and the centre ray q passes the sphere's
  * centre c at |c x q| / |q|. */
 SDF_INLINE int tile_misses_bounds(const MarchParams* params, int x0, int y0) {
