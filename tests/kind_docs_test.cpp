@@ -16,14 +16,16 @@ namespace {
 using testing::read_text;
 using testing::source_path;
 
-/// The table row of docs/scene-format.md that starts with the kind's name, or "".
+/// The table rows of docs/scene-format.md that start with the kind's name (its parameter row,
+/// and others such as the step-factor table's), joined; "" if none.
 std::string docs_row(const std::string& page, std::string_view kind) {
   std::istringstream lines(page);
   const std::string start = fmt::format("| `{}` |", kind);
+  std::string rows;
   for (std::string line; std::getline(lines, line);) {
-    if (line.starts_with(start)) return line;
+    if (line.starts_with(start)) rows += line + "\n";
   }
-  return "";
+  return rows;
 }
 
 TEST(KindDocs, EveryKindHasARowNamingItsParameters) {
