@@ -6,6 +6,18 @@
  * grid_operand_color (each operand's code by its shape, reading its numbers from its record).
  * The header's layout is in device_types.h. */
 
+/* The grid's entry points are called, not inlined, where a work-item marches a packet: the program
+ * calls the field from the march, the normals, shadows and occlusion, and inlining the lookup and
+ * fold at every call made the first render of a 1,000-atom molecule 5.5 s with an empty PoCL cache,
+ * against 3.7 s called, nearly all of it in PoCL's compiles (the kernel's time unchanged: a call
+ * per step is nothing beside a fold over a cell's list; docs/performance.md). One pixel per
+ * work-item relies on PoCL's vectoriser across work-items, which a call stops. */
+#if LANES > 1
+#define GRID_ENTRY static __attribute__((noinline))
+#else
+#define GRID_ENTRY SDF_INLINE
+#endif
+
 #define GRID_WORD(i) SCENE_DATA[i]
 #define GRID_INT(i) as_int(SCENE_DATA[i])
 
@@ -61,7 +73,7 @@ SDF_INLINE vfloat grid_cell_color(SceneValues values, int cell, vec3v p, vec3v* 
 
 /* The lanes of a packet mostly share a cell: each distinct cell among them is folded once for the
  * whole packet (one list, coherent vector code), its result kept for the lanes inside it. */
-SDF_INLINE vfloat grid_distance(SceneValues values, vec3v p) {
+GRID_ENTRY vfloat grid_distance(SceneValues values, vec3v p) {
   const vfloat cell = grid_cell_index(values, p);
   vfloat d = grid_outside_bound(values, p);
   real cells[LANES];
@@ -75,7 +87,7 @@ SDF_INLINE vfloat grid_distance(SceneValues values, vec3v p) {
   return d;
 }
 
-SDF_INLINE vfloat grid_distance_color(SceneValues values, vec3v p, vec3v* albedo, vec3v* surface) {
+GRID_ENTRY vfloat grid_distance_color(SceneValues values, vec3v p, vec3v* albedo, vec3v* surface) {
   const vfloat cell = grid_cell_index(values, p);
   vfloat d = grid_outside_bound(values, p);
   *albedo = v3_splat(0.0f);
