@@ -41,3 +41,19 @@ SDF_INLINE vfloat op_repeat_axis(vfloat x, float period) { return x - period * f
 SDF_INLINE vfloat displacement(vec3v p, float amplitude, float frequency) {
   return amplitude * vsin(frequency * p.x) * vsin(frequency * p.y) * vsin(frequency * p.z);
 }
+
+/* Polar repetition about the y axis (Inigo Quilez's and Mercury's pModPolar): p turned by the
+ * multiple of sector nearest to its own angle, so that every copy k (at angle k * sector) is
+ * measured as the child itself, k = 0. A bound only while the child fits inside its sector. */
+SDF_INLINE vec3v op_repeat_polar(vec3v p, float sector) {
+  vfloat turn = sector * round(atan2(p.z, p.x) / sector);
+  vfloat c = vcos(turn);
+  vfloat s = vsin(turn);
+  return v3(c * p.x + s * p.z, p.y, c * p.z - s * p.x);
+}
+
+/* Limited repetition along one axis (Inigo Quilez's opLimitedRepetition): the copy at
+ * period * i for the integer i in [first, last] nearest to x. */
+SDF_INLINE vfloat op_repeat_limited_axis(vfloat x, float period, float first, float last) {
+  return x - period * clamp(round(x / period), first, last);
+}

@@ -70,3 +70,72 @@ SDF_INLINE vfloat sd_infinite_cylinder(vec3v p, float4 center, float radius) {
   vfloat dz = p.z - center.z;
   return vsqrt(dx * dx + dz * dz) - radius;
 }
+
+/* Exact (Inigo Quilez): the solid |x| + |y| + |z| <= size. Where 3 q.x < m for the first
+ * coordinate of the folded point that allows it, the nearest point is on an edge region of the
+ * face, found in that coordinate's frame q; elsewhere it is the face plane, at m / sqrt(3). */
+SDF_INLINE vfloat sd_octahedron(vec3v p, float4 center, float size) {
+  vec3v a = v3_abs(v3_sub(p, v3_from(center)));
+  vfloat m = a.x + a.y + a.z - size;
+  vint use_x = MASK(3.0f * a.x < m);
+  vint use_y = MASK(3.0f * a.y < m) & ~use_x;
+  vint use_any = use_x | use_y | MASK(3.0f * a.z < m);
+  /* q = a.xyz, a.yzx or a.zxy. */
+  vfloat qx = select(select(a.z, a.y, use_y), a.x, use_x);
+  vfloat qy = select(select(a.x, a.z, use_y), a.y, use_x);
+  vfloat qz = select(select(a.y, a.x, use_y), a.z, use_x);
+  vfloat k = clamp(0.5f * (qz - qy + size), 0.0f, size);
+  vfloat dy = qy - size + k;
+  vfloat dz = qz - k;
+  vfloat edge = vsqrt(qx * qx + dy * dy + dz * dz);
+  return select(m * 0.57735027f, edge, use_any);
+}
+
+/* Exact (Inigo Quilez's hexagonal prism, its axis turned to y): radius is the distance from the
+ * axis to each flat side, one of which faces +z. */
+SDF_INLINE vfloat sd_hex_prism(vec3v p, float4 center, float radius, float half_height) {
+  vec3v a = v3_abs(v3_sub(p, v3_from(center)));
+  /* Fold the xz quarter across the side at 60 degrees: k = (-cos 30, sin 30). */
+  vfloat fold = 2.0f * fmin(-0.8660254f * a.x + 0.5f * a.z, 0.0f);
+  vfloat x = a.x + 0.8660254f * fold;
+  vfloat z = a.z - 0.5f * fold;
+  vfloat edge = 0.57735027f * radius;
+  vfloat cx = x - clamp(x, -edge, edge);
+  vfloat cz = z - radius;
+  vfloat side = vsqrt(cx * cx + cz * cz) * sign(cz);
+  vfloat cap = a.y - half_height;
+  vfloat outside_side = fmax(side, 0.0f);
+  vfloat outside_cap = fmax(cap, 0.0f);
+  return fmin(fmax(side, cap), 0.0f) + vsqrt(outside_side * outside_side + outside_cap * outside_cap);
+}
+
+/* Exact (Inigo Quilez's capped cone): radius bottom_radius at y = -half_height, top_radius at
+ * +half_height. In the half plane (r, y): ca is the offset to the nearer cap disc, cb to the
+ * slanted side segment; inside is where both say so. */
+SDF_INLINE vfloat sd_capped_cone(vec3v p, float4 center, float half_height, float bottom_radius, float top_radius) {
+  vec3v l = v3_sub(p, v3_from(center));
+  vfloat r = vsqrt(l.x * l.x + l.z * l.z);
+  vfloat y = l.y;
+  vfloat cap_radius = select((vfloat)(top_radius), (vfloat)(bottom_radius), MASK(y < 0.0f));
+  vfloat ca_x = r - fmin(r, cap_radius);
+  vfloat ca_y = fabs(y) - half_height;
+  float k2x = top_radius - bottom_radius;
+  float k2y = 2.0f * half_height;
+  vfloat t = clamp(((top_radius - r) * k2x + (half_height - y) * k2y) / (k2x * k2x + k2y * k2y), 0.0f, 1.0f);
+  vfloat cb_x = r - top_radius + k2x * t;
+  vfloat cb_y = y - half_height + k2y * t;
+  vfloat s = select((vfloat)(1.0f), (vfloat)(-1.0f), MASK(cb_x < 0.0f) & MASK(ca_y < 0.0f));
+  return s * vsqrt(fmin(ca_x * ca_x + ca_y * ca_y, cb_x * cb_x + cb_y * cb_y));
+}
+
+/* A bound (Inigo Quilez's ellipsoid, k0 (k0 - 1) / k1): exact on the surface and on the axes'
+ * spheres, below the true distance elsewhere. At the centre (k1 = 0) it is -min(radii). */
+SDF_INLINE vfloat sd_ellipsoid(vec3v p, float4 center, float4 radii) {
+  vec3v l = v3_sub(p, v3_from(center));
+  vec3v q0 = v3(l.x / radii.x, l.y / radii.y, l.z / radii.z);
+  vec3v q1 = v3(q0.x / radii.x, q0.y / radii.y, q0.z / radii.z);
+  vfloat k0 = v3_length(q0);
+  vfloat k1 = v3_length(q1);
+  vfloat inner = (vfloat)(-fmin(radii.x, fmin(radii.y, radii.z)));
+  return select(inner, k0 * (k0 - 1.0f) / k1, MASK(k1 > 0.0f));
+}

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 #include <set>
 
 namespace clmarch {
@@ -56,6 +57,43 @@ const std::vector<SdfCase>& sdf_cases() {
       // Probed on both sides of the axis, and far along it (no caps).
       {"infinite_cylinder", "infinite_cylinder: {center: [1, 0, 2], radius: 0.5}",
        {{{1, 7, 2}, -0.5}, {{4, -3, 2}, 2.5}, {{-2, 5, 2}, 2.5}, {{1, 15, 5}, 2.5}, {{1, -15, -1}, 2.5}}},
+      // A vertex, a face's inside (its plane), an edge, the centre; both sides of each plane.
+      {"octahedron", "octahedron: {center: [1, 2, 3], size: 1}",
+       {{{3, 2, 3}, 1.0}, {{-1, 2, 3}, 1.0}, {{1, 4, 3}, 1.0}, {{1, 2, 1}, 1.0}, {{2, 3, 4}, 2.0 / kSqrt3},
+        {{0, 1, 2}, 2.0 / kSqrt3}, {{2, 3, 3}, std::sqrt(0.5)}, {{0, 1, 3}, std::sqrt(0.5)}, {{1, 2, 3}, -1.0 / kSqrt3}}},
+      // Flat sides face +-z, corners +-x at radius / cos 30; the caps at y = +-half_height.
+      {"hex_prism", "hex_prism: {center: [0, 1, 0], radius: 1, half_height: 2}",
+       {{{0, 1, 3}, 2.0}, {{0, 1, -3}, 2.0}, {{3, 1, 0}, 3.0 - 2.0 / kSqrt3}, {{-3, 1, 0}, 3.0 - 2.0 / kSqrt3},
+        {{0, 6, 0}, 3.0}, {{0, -4, 0}, 3.0}, {{0, 1, 0}, -1.0}, {{0, 1, 1.5}, 0.5}}},
+      // A cone of apex (0, 1, 0) over the unit disc at y = -1: in the (r, y) half plane the slant
+      // is 2 r + y = 1.
+      {"capped_cone", "capped_cone: {half_height: 1, bottom_radius: 1, top_radius: 0}",
+       {{{0, 3, 0}, 2.0}, {{0, -3, 0}, 2.0}, {{2, -1, 0}, 1.0}, {{0, -1, -2}, 1.0}, {{1, 1, 0}, 2.0 / std::sqrt(5.0)},
+        {{-1, 1, 0}, 2.0 / std::sqrt(5.0)}, {{0, 0, 0}, -1.0 / std::sqrt(5.0)}, {{0.5, -0.5, 0}, -0.5 / std::sqrt(5.0)}}},
+      {"capped_cone_frustum", "capped_cone: {center: [0, 2, 0], half_height: 1, bottom_radius: 2, top_radius: 1}",
+       {{{0, 5, 0}, 2.0}, {{0, -1, 0}, 2.0}, {{4, 1, 0}, 2.0}, {{0, 2, 0}, -1.0}}},
+      // Quilez's bound is exact on the axes outside.
+      {"ellipsoid", "ellipsoid: {center: [1, 0, 0], radii: [1, 0.5, 0.75]}",
+       {{{3, 0, 0}, 1.0}, {{-1, 0, 0}, 1.0}, {{1, 1.5, 0}, 1.0}, {{1, -1.5, 0}, 1.0}, {{1, 0, 1.75}, 1.0}, {{1, 0, -1.75}, 1.0}}},
+      // The unit sphere stretched along x into a capsule of half length 1.
+      {"elongate", "elongate: {h: [1, 0, 0], children: [{sphere: {radius: 1}}]}",
+       {{{3, 0, 0}, 1.0}, {{-2.5, 0, 0}, 0.5}, {{0.5, 2, 0}, 1.0}, {{0.5, 0, 0}, -1.0}, {{-0.5, 0, -3}, 2.0}}},
+      {"onion", "onion: {thickness: 0.1, children: [{sphere: {radius: 1}}]}",
+       {{{0, 0, 0}, 0.9}, {{1, 0, 0}, -0.1}, {{0, -2, 0}, 0.9}, {{0, 0, 1.05}, -0.05}}},
+      {"round", "round: {radius: 0.5, children: [{box: {half_size: [1, 1, 1]}}]}",
+       {{{3, 0, 0}, 1.5}, {{0, -3, 0}, 1.5}, {{2, 2, 2}, kSqrt3 - 0.5}, {{0, 0, 0}, -1.5}}},
+      {"mirror", "mirror: {axes: [x, z], children: [{sphere: {center: [2, 1, 2], radius: 1}}]}",
+       {{{2, 1, 2}, -1.0}, {{-2, 1, 2}, -1.0}, {{2, 1, -2}, -1.0}, {{-2, 1, -2}, -1.0}, {{-2, -1, -2}, 1.0},
+        {{0, 1, 2}, 1.0}}},
+      // Four copies at 0, 90, 180 and 270 degrees about y.
+      {"repeat_polar", "repeat_polar: {count: 4, children: [{sphere: {center: [2, 0, 0], radius: 0.5}}]}",
+       {{{2, 0, 0}, -0.5}, {{0, 0, 2}, -0.5}, {{-2, 0, 0}, -0.5}, {{0, 0, -2}, -0.5}, {{3, 0, 0}, 0.5},
+        {{0, 1, -2}, 0.5}}},
+      // Copies at x = -2, 0, 2 only.
+      {"repeat_limited",
+       "repeat_limited: {period: [2, 0, 0], min: [-1, 0, 0], max: [1, 0, 0], children: [{sphere: {radius: 0.5}}]}",
+       {{{2, 0, 0}, -0.5}, {{-2, 0, 0}, -0.5}, {{0, 0, 0}, -0.5}, {{4, 0, 0}, 1.5}, {{-6, 0, 0}, 3.5},
+        {{0, 3, 0}, 2.5}}},
       {"union", "union: [{sphere: {radius: 1}}, {sphere: {center: [1.5, 0, 0], radius: 1}}]",
        {{{0, 0, 0}, -1.0}, {{3, 0, 0}, 0.5}}},
       {"intersection", "intersection: [{sphere: {radius: 1}}, {sphere: {center: [1.5, 0, 0], radius: 1}}]",
@@ -157,6 +195,30 @@ TEST_P(SdfClosedForm, KernelMatchesWithOneAndSixteenLanes) {
 
 INSTANTIATE_TEST_SUITE_P(AllKinds, SdfClosedForm, ::testing::ValuesIn(sdf_cases()),
                          [](const auto& info) { return info.param.name; });
+
+// The catalogue's shapes are written twice, independently: Quilez's closed forms in the kernel, and
+// geometric constructions in the reference (the distance to the octahedron's face triangle, to the
+// hexagon's and the trapezoid's edges). They must agree everywhere, not only at the probes above.
+TEST(SdfClosedForm, CatalogueKernelMatchesTheReferenceEverywhere) {
+  const std::set<std::string> catalogue = {"octahedron", "hex_prism", "capped_cone", "capped_cone_frustum", "ellipsoid",
+                                           "elongate", "onion", "round", "mirror", "repeat_polar", "repeat_limited"};
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> coord(-4.0, 4.0);
+  std::vector<glm::dvec3> points(400);
+  for (glm::dvec3& p : points) p = {coord(rng), coord(rng), coord(rng)};
+  std::size_t checked = 0;
+  for (const SdfCase& c : sdf_cases()) {
+    if (!catalogue.count(c.name)) continue;
+    ++checked;
+    const Scene scene = scene_for(c);
+    const PointSamples samples = eval_points_opencl(scene, points, OpenClOptions{});
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      EXPECT_NEAR(samples.distance[i], reference_distance(scene.sdf, points[i]), kKernelTolerance)
+          << c.name << " at (" << points[i].x << ", " << points[i].y << ", " << points[i].z << ")";
+    }
+  }
+  EXPECT_EQ(checked, catalogue.size());
+}
 
 TEST(SdfClosedForm, CoversEveryNodeKind) {
   std::set<NodeKind> covered;

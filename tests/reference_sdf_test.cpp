@@ -339,6 +339,24 @@ Node default_node(NodeKind kind) {
     node.params = Displace{0.1, 2.0};
     return node;
   }
+  // The operators of one child, each with parameters that keep the field continuous: the copies
+  // of the repetitions fit their sectors and cells.
+  const auto unary = [&](NodeParams params, Node child) {
+    Node node = op_node(kind, {std::move(child)});
+    node.params = std::move(params);
+    return node;
+  };
+  const Node box_child = leaf(Box{{0.2, 0.1, 0.0}, {0.5, 0.3, 0.4}}, NodeKind::Box);
+  switch (kind) {
+    case NodeKind::Elongate: return unary(Elongate{{0.3, 0.0, 0.2}}, box_child);
+    case NodeKind::Onion: return unary(Onion{0.1}, box_child);
+    case NodeKind::Round: return unary(Round{0.2}, box_child);
+    case NodeKind::Mirror: return unary(Mirror{{true, false, true}}, sphere_node({0.7, 0.2, 0.5}, 0.4));
+    case NodeKind::RepeatPolar: return unary(RepeatPolar{6}, sphere_node({1.0, 0.1, 0.0}, 0.3));
+    case NodeKind::RepeatLimited:
+      return unary(RepeatLimited{{1.5, 0.0, 1.5}, {-1, 0, -1}, {1, 0, 1}}, sphere_node({0.0, 0.0, 0.0}, 0.5));
+    default: break;
+  }
   Node other = sphere_node({0.3, 0.2, 0.0}, 0.6, kRed);
   return op_node(kind, {sphere_node({0.0, 0.0, 0.0}, 0.5), other}, is_smooth_operator(kind) ? 0.25 : 0.0);
 }
@@ -361,7 +379,11 @@ TEST(ReferenceSdf, EveryNodeKindIsEvaluated) {
       ASSERT_NO_THROW(s = reference_sample(node, p));
       ASSERT_TRUE(std::isfinite(s.distance));
       ASSERT_TRUE(std::isfinite(s.color.r) && std::isfinite(s.color.g) && std::isfinite(s.color.b));
-      EXPECT_LE(std::abs(reference_distance(node, q) - s.distance), glm::length(q - p) + kLipschitzSlack);
+      const double at_q = reference_distance(node, q);
+      // Quilez's ellipsoid is a bound only outside (slope measured at most 0.99984 there over 1e7
+      // pairs); inside, its value jumps with the direction at the centre.
+      if (kind == NodeKind::Ellipsoid && (s.distance < 0.0 || at_q < 0.0)) continue;
+      EXPECT_LE(std::abs(at_q - s.distance), glm::length(q - p) + kLipschitzSlack);
     }
   }
 }

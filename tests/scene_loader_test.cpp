@@ -104,6 +104,35 @@ TEST(SceneLoader, RejectsBadOperatorShapesAndVectors) {
             "s.yaml:1:24: sdf.sphere.center must be a list of 3 numbers [x, y, z] (got 2 items)");
 }
 
+// The catalogue's kinds (issue 25): each bad value is named with its place in the file.
+TEST(SceneLoader, RejectsBadCatalogueValues) {
+  const auto expect_error = [](const std::string& yaml, const std::string& location, const std::string& says) {
+    const std::string error = error_of(yaml);
+    EXPECT_EQ(error.rfind(location, 0), 0u) << error;
+    EXPECT_NE(error.find(says), std::string::npos) << error;
+  };
+  expect_error("sdf: {octahedron: {size: 0}}\n", "s.yaml:1:26: ", "sdf.octahedron.size");
+  expect_error("sdf: {hex_prism: {radius: -1}}\n", "s.yaml:1:27: ", "sdf.hex_prism.radius");
+  expect_error("sdf: {capped_cone: {bottom_radius: 0, top_radius: 0}}\n", "s.yaml:1:20: ", "must not both be 0");
+  expect_error("sdf: {ellipsoid: {radii: [1, 0, 1]}}\n", "s.yaml:1:", "sdf.ellipsoid.radii");
+  expect_error("sdf: {ellipsoid: {radii: [1, .nan, 1]}}\n", "s.yaml:1:", "sdf.ellipsoid.radii");
+  expect_error("sdf: {elongate: {h: [1, -1, 0], children: [{sphere: {}}]}}\n", "s.yaml:1:", "sdf.elongate.h");
+  expect_error("sdf: {elongate: {children: [{sphere: {}}]}}\n", "s.yaml:1:", "h");
+  expect_error("sdf: {onion: {thickness: 0, children: [{sphere: {}}]}}\n", "s.yaml:1:26: ", "sdf.onion.thickness");
+  expect_error("sdf: {round: {radius: 0.1, children: []}}\n", "s.yaml:1:", "needs at least 1 child");
+  expect_error("sdf: {mirror: {axes: [w], children: [{sphere: {}}]}}\n", "s.yaml:1:23: ", "unknown axis 'w'");
+  expect_error("sdf: {mirror: {axes: [x, x], children: [{sphere: {}}]}}\n", "s.yaml:1:26: ", "axis x is listed twice");
+  expect_error("sdf: {mirror: {axes: [], children: [{sphere: {}}]}}\n", "s.yaml:1:22: ", "non-empty list");
+  expect_error("sdf: {repeat_polar: {count: 0, children: [{sphere: {}}]}}\n", "s.yaml:1:29: ", "sdf.repeat_polar.count");
+  expect_error("sdf: {repeat_polar: {count: 2.5, children: [{sphere: {}}]}}\n", "s.yaml:1:29: ", "sdf.repeat_polar.count");
+  expect_error("sdf: {repeat_limited: {period: [1, 0, 0], min: [1, 0, 0], max: [0, 0, 0], children: [{sphere: {}}]}}\n",
+               "s.yaml:1:", "sdf.repeat_limited.min[0] must be at most sdf.repeat_limited.max[0] (got 1 > 0)");
+  expect_error("sdf: {repeat_limited: {period: [1, 0, 0], min: [0, 0], max: [0, 0, 0], children: [{sphere: {}}]}}\n",
+               "s.yaml:1:", "list of 3 integers");
+  expect_error("sdf: {repeat_limited: {period: [0, 0, 0], min: [0, 0, 0], max: [0, 0, 0], children: [{sphere: {}}]}}\n",
+               "s.yaml:1:", "must repeat along at least one axis");
+}
+
 // Integers are decimal, as YAML 1.2 reads them: yaml-cpp alone took 0640 for octal 416 and 0x40
 // for 64, silently.
 TEST(SceneLoader, IntegersAreDecimal) {

@@ -16,6 +16,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <functional>
 #include <iostream>
 
 namespace clmarch {
@@ -182,11 +183,11 @@ TEST(FarCamera, PlainMarchKeepsTheOriginsAccuracyOnEveryAxis) {
   }
 }
 
-// Every node kind folds the map frame origin its own way (centres, segment ends, the first
-// translate on a path, plane offsets, repeat remainders; terrain and displacement add it back in
-// float): a scene of all of them 10^3 + 500 away (frame origin 1472 on x) passes the cross-check
-// against the double reference, as it does at the origin.
-TEST(FarCamera, EveryNodeKindRendersInTheMapFrame) {
+/// Renders the scene whose sdf (a YAML block under "sdf:", indented by two) sdf_at writes for a
+/// function placing points relative to an offset, at the origin and 10^3 + 500 away (frame origin
+/// 1472 on x), and expects the cross-check against the double reference to pass at both.
+void expect_checks_near_and_far(const std::function<std::string(const std::function<std::string(double, double, double)>&,
+                                                                const glm::dvec3&)>& sdf_at) {
   for (const glm::dvec3 offset : {glm::dvec3(0.0), glm::dvec3(1500.0, -1200.0, 900.0)}) {
     SCOPED_TRACE(fmt::format("offset ({}, {}, {})", offset.x, offset.y, offset.z));
     const auto at = [&](double x, double y, double z) {
@@ -195,7 +196,26 @@ TEST(FarCamera, EveryNodeKindRendersInTheMapFrame) {
     const std::string yaml = fmt::format(
         "camera: {{position: {}, look_at: {}, fov: 50}}\n"
         "render: {{width: 64, height: 36, epsilon: 1.0e-4, max_steps: 400, max_distance: 40}}\n"
-        "sdf:\n  union:\n"
+        "sdf:\n{}"
+        "lights: [{{directional: {{direction: [1, 2, 1.5]}}}}]\n",
+        at(4, 3, 6), at(0, 0.3, 0), sdf_at(at, offset));
+    const Scene scene = testing::scene_from_yaml(yaml);
+    EXPECT_EQ(map_frame_origin(scene), glm::round(scene.camera.position / kMapFrameGrid) * kMapFrameGrid);
+    const FrameBuffers opencl = render_checked(scene, KernelPurpose::Shaded);
+    const CheckReport report = cross_check(scene, opencl, render_reference(scene), reshade_hits(scene, opencl));
+    EXPECT_TRUE(report.passed()) << report.to_text();
+    EXPECT_GT(report.both_hit, 64 * 36 / 2);
+  }
+}
+
+// Every node kind folds the map frame origin its own way (centres, segment ends, the first
+// translate on a path, plane offsets, repeat remainders, mirror planes and the polar axis; terrain
+// and displacement add it back in float): scenes of all of them far away pass the cross-check
+// against the double reference, as they do at the origin.
+TEST(FarCamera, EveryNodeKindRendersInTheMapFrame) {
+  expect_checks_near_and_far([](const auto& at, const glm::dvec3& offset) {
+    return fmt::format(
+        "  union:\n"
         "    - plane: {{normal: [0, 1, 0], offset: {}}}\n"
         "    - box: {{center: {}, half_size: [0.4, 0.4, 0.4], rotate: [20, 30, 0]}}\n"
         "    - capsule: {{a: {}, b: {}, radius: 0.2}}\n"
@@ -206,18 +226,30 @@ TEST(FarCamera, EveryNodeKindRendersInTheMapFrame) {
         "    - displace: {{amplitude: 0.05, frequency: 6, children: [{{sphere: {{center: {}, radius: 0.4}}}}]}}\n"
         "    - intersection:\n"
         "        - repeat: {{period: [1.5, 0, 1.5], children: [{{sphere: {{center: {}, radius: 0.4}}}}]}}\n"
-        "        - box: {{center: {}, half_size: [3, 0.5, 0.8]}}\n"
-        "lights: [{{directional: {{direction: [1, 2, 1.5]}}}}]\n",
-        at(4, 3, 6), at(0, 0.3, 0), 1.0 - offset.y, at(-1.5, 0, 0), at(-0.5, -0.5, 1), at(0.5, 0.2, 1.2), at(1.5, 0, 0),
-        at(0, -0.4, 0), at(0, 0.8, -1.5), at(1.5, 0.6, -1.2), at(-1.5, 0.6, -1.2),
-        fmt::format("[0, {}, 0]", offset.y - 0.6), at(0, -0.6, 2.5));
-    const Scene scene = testing::scene_from_yaml(yaml);
-    EXPECT_EQ(map_frame_origin(scene), glm::round(scene.camera.position / kMapFrameGrid) * kMapFrameGrid);
-    const FrameBuffers opencl = render_checked(scene, KernelPurpose::Shaded);
-    const CheckReport report = cross_check(scene, opencl, render_reference(scene), reshade_hits(scene, opencl));
-    EXPECT_TRUE(report.passed()) << report.to_text();
-    EXPECT_GT(report.both_hit, 64 * 36 / 2);
-  }
+        "        - box: {{center: {}, half_size: [3, 0.5, 0.8]}}\n",
+        1.0 - offset.y, at(-1.5, 0, 0), at(-0.5, -0.5, 1), at(0.5, 0.2, 1.2), at(1.5, 0, 0), at(0, -0.4, 0),
+        at(0, 0.8, -1.5), at(1.5, 0.6, -1.2), at(-1.5, 0.6, -1.2), fmt::format("[0, {}, 0]", offset.y - 0.6),
+        at(0, -0.6, 2.5));
+  });
+  // The catalogue's kinds (issue 25): the operators placed by translate, their children in their frames.
+  expect_checks_near_and_far([](const auto& at, const glm::dvec3& offset) {
+    return fmt::format(
+        "  union:\n"
+        "    - plane: {{normal: [0, 1, 0], offset: {}}}\n"
+        "    - octahedron: {{center: {}, size: 0.45}}\n"
+        "    - hex_prism: {{center: {}, radius: 0.3, half_height: 0.4, rotate: [0, 20, 0]}}\n"
+        "    - capped_cone: {{center: {}, half_height: 0.4, bottom_radius: 0.4, top_radius: 0.1}}\n"
+        "    - ellipsoid: {{center: {}, radii: [0.5, 0.3, 0.4]}}\n"
+        "    - elongate: {{h: [0.3, 0, 0], translate: {}, children: [{{box: {{half_size: [0.2, 0.2, 0.2]}}}}]}}\n"
+        "    - onion: {{thickness: 0.05, translate: {}, children: [{{sphere: {{radius: 0.35}}}}]}}\n"
+        "    - round: {{radius: 0.1, translate: {}, children: [{{box: {{half_size: [0.25, 0.25, 0.25]}}}}]}}\n"
+        "    - mirror: {{axes: [x, z], translate: {}, children: [{{sphere: {{center: [0.3, 0, 0.3], radius: 0.2}}}}]}}\n"
+        "    - repeat_polar: {{count: 6, translate: {}, children: [{{sphere: {{center: [0.6, 0, 0], radius: 0.2}}}}]}}\n"
+        "    - repeat_limited: {{period: [0.6, 0, 0], min: [-2, 0, 0], max: [2, 0, 0], translate: {},\n"
+        "                       children: [{{box: {{half_size: [0.15, 0.15, 0.15]}}}}]}}\n",
+        1.0 - offset.y, at(-1.5, 0, 0), at(-0.5, -0.5, 1), at(0.5, 0.2, 1.2), at(1.5, 0, 0), at(0, -0.4, 0),
+        at(0, 0.8, -1.5), at(1.5, 0.6, -1.2), at(-1.5, 0.6, -1.2), at(0, -0.2, 2.2), at(0, -0.6, -2.5));
+  });
 }
 
 // The displacement texture is a function of the absolute point, which the kernel gets back from its

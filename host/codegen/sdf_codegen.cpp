@@ -21,6 +21,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <numbers>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -81,7 +82,13 @@ std::string primitive_call(const Node& node, const std::string& p, const glm::dv
     return fmt::format("sd_mandelbulb8({}, {}, {}, {})", p, lit.f4(bulb->center - offset), bulb->iterations,
                        lit.f(bulb->bailout));
   }
-  return std::visit([&](const auto& params) { return declared_call(name, params, p, offset, lit); }, node.params);
+  return std::visit([&](const auto& params) -> std::string {
+    if constexpr (kIsPrimitiveParams<std::decay_t<decltype(params)>>) {
+      return declared_call(name, params, p, offset, lit);
+    } else {
+      throw std::logic_error("primitive_call() of an operator");
+    }
+  }, node.params);
 }
 
 /// A rough cost of evaluating a subtree, in sphere evaluations: what decides whether a bounding
@@ -159,9 +166,8 @@ class SdfEmitter {
         return fmt::format("v3_mix({}, {}, smooth_intersection_blend({}, {}, {}))", "{1}", "{0}", a, b, k);
       case NodeKind::SmoothSubtraction:
         return fmt::format("v3_mix({}, {}, smooth_subtraction_blend({}, {}, {}))", "{0}", "{1}", a, b, k);
-      case NodeKind::Repeat:
-      case NodeKind::Displace:
 #define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind:
+#define CLMARCH_MODIFIER(Kind, name, params_list) case NodeKind::Kind:
 #include "scene/node_kinds.def"
         break;
     }
@@ -177,9 +183,8 @@ class SdfEmitter {
       case NodeKind::SmoothUnion: return fmt::format("op_smooth_union({}, {}, {})", a, b, k);
       case NodeKind::SmoothIntersection: return fmt::format("op_smooth_intersection({}, {}, {})", a, b, k);
       case NodeKind::SmoothSubtraction: return fmt::format("op_smooth_subtraction({}, {}, {})", a, b, k);
-      case NodeKind::Repeat:
-      case NodeKind::Displace:
 #define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind:
+#define CLMARCH_MODIFIER(Kind, name, params_list) case NodeKind::Kind:
 #include "scene/node_kinds.def"
         break;
     }
@@ -237,6 +242,12 @@ class SdfEmitter {
     if (grid_ && &node == grid_->node) return emit_grid(node, p, color, offset);
     if (node.kind == NodeKind::Repeat) return emit_repeat(node, p, color, offset);
     if (node.kind == NodeKind::Displace) return emit_displace(node, p, color, offset);
+    if (node.kind == NodeKind::Elongate) return emit_elongate(node, p, color, offset);
+    if (node.kind == NodeKind::Onion) return emit_onion(node, p, color, offset);
+    if (node.kind == NodeKind::Round) return emit_round(node, p, color, offset);
+    if (node.kind == NodeKind::Mirror) return emit_mirror(node, p, color, offset);
+    if (node.kind == NodeKind::RepeatPolar) return emit_repeat_polar(node, p, color, offset);
+    if (node.kind == NodeKind::RepeatLimited) return emit_repeat_limited(node, p, color, offset);
     if (node.kind == NodeKind::Union) return emit_union(node, p, color, offset);
     Value acc = emit(node.children.front(), p, color, offset);
     for (std::size_t i = 1; i < node.children.size(); ++i) {
@@ -260,9 +271,8 @@ class SdfEmitter {
       case NodeKind::Union:
       case NodeKind::Intersection:
       case NodeKind::SmoothIntersection:
-      case NodeKind::Repeat:
-      case NodeKind::Displace:
 #define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind:
+#define CLMARCH_MODIFIER(Kind, name, params_list) case NodeKind::Kind:
 #include "scene/node_kinds.def"
         return std::nullopt;
     }
@@ -354,6 +364,78 @@ class SdfEmitter {
                      lit_.f(params_of<Displace>(node).amplitude), lit_.f(params_of<Displace>(node).frequency),
                      lit_.f(1.0 / displacement_lipschitz(node))));
     return out;
+  }
+
+  /// The child at q = p_local - clamp(p_local, -h, h) with p_local = p + offset, written as
+  /// p - clamp(p, -h - offset, h - offset) so that the bounds carry the offset in double and q
+  /// (small near the shape) is the child's local point: its offset ends here.
+  Value emit_elongate(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
+    const glm::dvec3& h = params_of<Elongate>(node).h;
+    const glm::dvec3 low = -h - offset, high = h - offset;
+    const std::string q = fresh("p");
+    const auto axis = [&](const char* c, int i) {
+      return fmt::format("{0}.{1} - clamp({0}.{1}, {2}, {3})", p, c, lit_.f(low[i]), lit_.f(high[i]));
+    };
+    line(fmt::format("vec3v {} = v3({}, {}, {});  /* elongate */", q, axis("x", 0), axis("y", 1), axis("z", 2)));
+    return emit(node.children.front(), q, color, glm::dvec3(0.0));
+  }
+
+  /// The child's distance d made d' by a formula of d (onion, round); material unchanged.
+  Value emit_distance_map(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset,
+                          const char* format, double amount) {
+    const Value child = emit(node.children.front(), p, color, offset);
+    Value out{fresh("d"), child.color, child.surface};
+    line(fmt::format("vfloat {} = {};  /* {} */", out.distance, fmt::format(fmt::runtime(format), child.distance, lit_.f(amount)),
+                     node_kind_name(node.kind)));
+    return out;
+  }
+
+  Value emit_onion(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
+    return emit_distance_map(node, p, color, offset, "fabs({}) - {}", params_of<Onion>(node).thickness);
+  }
+
+  Value emit_round(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
+    return emit_distance_map(node, p, color, offset, "{} - {}", params_of<Round>(node).radius);
+  }
+
+  /// |p_local| on the mirrored axes, which leave the offset there.
+  Value emit_mirror(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
+    const glm::bvec3& axes = params_of<Mirror>(node).axes;
+    glm::dvec3 child_offset = offset;
+    const auto axis = [&](const char* c, int i) {
+      if (!axes[i]) return fmt::format("{}.{}", p, c);
+      child_offset[i] = 0.0;
+      return offset[i] == 0.0 ? fmt::format("fabs({}.{})", p, c) : fmt::format("fabs({}.{} + {})", p, c, lit_.f(offset[i]));
+    };
+    const std::string q = fresh("p");
+    line(fmt::format("vec3v {} = v3({}, {}, {});  /* mirror */", q, axis("x", 0), axis("y", 1), axis("z", 2)));
+    return emit(node.children.front(), q, color, child_offset);
+  }
+
+  /// The point turned back into the sector of the copy k = 0, about the local y axis (whose x and
+  /// z need the absolute point).
+  Value emit_repeat_polar(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
+    const int count = params_of<RepeatPolar>(node).count;
+    const std::string at = absolute_point(p, glm::dvec3(offset.x, 0.0, offset.z));
+    const std::string q = fresh("p");
+    line(fmt::format("vec3v {} = op_repeat_polar({}, {});  /* repeat_polar of {} */", q, at,
+                     lit_.f(2.0 * std::numbers::pi / count), count));
+    return emit(node.children.front(), q, color, glm::dvec3(0.0, offset.y, 0.0));
+  }
+
+  /// Limited repetition per repeated axis, on the absolute coordinate there.
+  Value emit_repeat_limited(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
+    const RepeatLimited& repeat = params_of<RepeatLimited>(node);
+    glm::dvec3 child_offset = offset;
+    const auto axis = [&](const char* c, int i) {
+      if (!(repeat.period[i] > 0.0)) return fmt::format("{}.{}", p, c);
+      child_offset[i] = 0.0;
+      const std::string x = offset[i] == 0.0 ? fmt::format("{}.{}", p, c) : fmt::format("{}.{} + {}", p, c, lit_.f(offset[i]));
+      return fmt::format("op_repeat_limited_axis({}, {}, {}.0f, {}.0f)", x, lit_.f(repeat.period[i]), repeat.min[i], repeat.max[i]);
+    };
+    const std::string q = fresh("p");
+    line(fmt::format("vec3v {} = v3({}, {}, {});  /* repeat_limited */", q, axis("x", 0), axis("y", 1), axis("z", 2)));
+    return emit(node.children.front(), q, color, child_offset);
   }
 
   Value combine(const Node& node, const Value& a, const Value& b) {

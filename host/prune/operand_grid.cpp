@@ -22,10 +22,10 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 /// Whether node's field changes by at most the distance moved, so that its value at a cell's centre
 /// bounds it over the cell: not the escape-time Mandelbulb's estimate, the terrain (whose slopes
-/// pass 1 before its step_factor) or a repeat (whose child may not fit its cell).
+/// pass 1 before its step_factor) or a repetition (whose child may not fit its cell).
 bool is_one_lipschitz(const Node& node) {
   if (is_primitive(node.kind)) return field_quality(node.kind) != FieldQuality::Estimate;
-  if (node.kind == NodeKind::Repeat) return false;
+  if (node.kind == NodeKind::Repeat || node.kind == NodeKind::RepeatPolar || node.kind == NodeKind::RepeatLimited) return false;
   return std::all_of(node.children.begin(), node.children.end(), is_one_lipschitz);
 }
 

@@ -7,8 +7,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numbers>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace clmarch {
 namespace {
@@ -46,6 +49,46 @@ const T& params(const Node& node) {
 }
 
 SdfSample sample_node(const Node& node, const glm::dvec3& p_parent, const Material& parent);
+
+/// The distance from p to the segment a-b (in the plane or in space).
+template <class Vec>
+double distance_to_segment(const Vec& p, const Vec& a, const Vec& b) {
+  const Vec ab = b - a;
+  const double t = std::clamp(glm::dot(p - a, ab) / glm::dot(ab, ab), 0.0, 1.0);
+  return glm::length(p - (a + t * ab));
+}
+
+/// The distance from p to the triangle abc: to its plane where p projects inside it, else to the
+/// nearest edge.
+double distance_to_triangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+  const glm::dvec3 n = glm::cross(b - a, c - a);
+  const bool inside = glm::dot(glm::cross(b - a, p - a), n) >= 0.0 && glm::dot(glm::cross(c - b, p - b), n) >= 0.0 &&
+                      glm::dot(glm::cross(a - c, p - c), n) >= 0.0;
+  if (inside) return std::abs(glm::dot(p - a, n)) / glm::length(n);
+  return std::min({distance_to_segment(p, a, b), distance_to_segment(p, b, c), distance_to_segment(p, c, a)});
+}
+
+/// The signed distance to a convex polygon given by its vertices in order, in the plane: the
+/// nearest edge's distance, negative inside.
+double convex_polygon_distance(const glm::dvec2& p, const std::vector<glm::dvec2>& corners) {
+  double nearest = std::numeric_limits<double>::infinity();
+  bool inside = true;
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    const glm::dvec2& a = corners[i];
+    const glm::dvec2& b = corners[(i + 1) % corners.size()];
+    nearest = std::min(nearest, distance_to_segment(p, a, b));
+    const glm::dvec2 edge = b - a;
+    // Counter-clockwise corners: inside is left of every edge.
+    if (edge.x * (p.y - a.y) - edge.y * (p.x - a.x) < 0.0) inside = false;
+  }
+  return inside ? -nearest : nearest;
+}
+
+/// A 2D signed distance d turned into a prism of half height h along the third axis y.
+double extrude(double d, double y, double h) {
+  const glm::dvec2 w(d, std::abs(y) - h);
+  return std::min(std::max(w.x, w.y), 0.0) + glm::length(glm::max(w, 0.0));
+}
 
 template <class Op>
 SdfSample fold_children(const Node& node, const glm::dvec3& p, const Material& color, Op op) {
@@ -106,6 +149,45 @@ SdfSample sample_local(const Node& node, const glm::dvec3& p, const Material& ma
       const double texture = displace.amplitude * std::sin(f * p.x) * std::sin(f * p.y) * std::sin(f * p.z);
       s.distance = (s.distance + texture) / displacement_lipschitz(node);
       return s;
+    }
+    case NodeKind::Elongate: {
+      const glm::dvec3& h = params<Elongate>(node).h;
+      return only_child(node, p - glm::clamp(p, -h, h), material);
+    }
+    case NodeKind::Onion: {
+      S s = only_child(node, p, material);
+      s.distance = std::abs(s.distance) - params<Onion>(node).thickness;
+      return s;
+    }
+    case NodeKind::Round: {
+      S s = only_child(node, p, material);
+      s.distance -= params<Round>(node).radius;
+      return s;
+    }
+    case NodeKind::Mirror: {
+      const glm::bvec3& axes = params<Mirror>(node).axes;
+      glm::dvec3 q = p;
+      for (int a = 0; a < 3; ++a) {
+        if (axes[a]) q[a] = std::abs(p[a]);
+      }
+      return only_child(node, q, material);
+    }
+    case NodeKind::RepeatPolar: {
+      // The nearest copy's angle, and p in that copy's frame: the rotation by minus that angle.
+      const double sector = 2.0 * std::numbers::pi / params<RepeatPolar>(node).count;
+      const double turn = sector * std::round(std::atan2(p.z, p.x) / sector);
+      const double radius = std::hypot(p.x, p.z);
+      const double angle = std::atan2(p.z, p.x) - turn;
+      return only_child(node, {radius * std::cos(angle), p.y, radius * std::sin(angle)}, material);
+    }
+    case NodeKind::RepeatLimited: {
+      const RepeatLimited& repeat = params<RepeatLimited>(node);
+      glm::dvec3 q = p;
+      for (int a = 0; a < 3; ++a) {
+        const double c = repeat.period[a];
+        if (c > 0.0) q[a] = p[a] - c * std::clamp(std::round(p[a] / c), double(repeat.min[a]), double(repeat.max[a]));
+      }
+      return only_child(node, q, material);
     }
   }
   malformed(node, "has an unknown kind");
@@ -180,6 +262,50 @@ double sd_cylinder(const glm::dvec3& p, const Cylinder& cylinder) {
 
 double sd_infinite_cylinder(const glm::dvec3& p, const InfiniteCylinder& cylinder) {
   return glm::length(glm::dvec2(p.x - cylinder.center.x, p.z - cylinder.center.z)) - cylinder.radius;
+}
+
+double sd_octahedron(const glm::dvec3& p, const Octahedron& octahedron) {
+  // By symmetry the nearest face lies in p's octant: the triangle of the three vertices there.
+  const glm::dvec3 a = glm::abs(p - octahedron.center);
+  const double s = octahedron.size;
+  const double plane = (a.x + a.y + a.z - s) / std::sqrt(3.0);
+  if (plane <= 0.0) return plane;
+  return distance_to_triangle(a, {s, 0.0, 0.0}, {0.0, s, 0.0}, {0.0, 0.0, s});
+}
+
+double sd_hex_prism(const glm::dvec3& p, const HexPrism& prism) {
+  const glm::dvec3 l = p - prism.center;
+  // The hexagon in the xz plane (x right, z up in the plane): corners at 0, 60, ... degrees on
+  // the circle through them, radius / cos 30 from the centre, so that one side is at z = radius.
+  std::vector<glm::dvec2> corners;
+  const double corner_radius = prism.radius / std::cos(std::numbers::pi / 6.0);
+  for (int i = 0; i < 6; ++i) {
+    const double angle = i * std::numbers::pi / 3.0;
+    corners.emplace_back(corner_radius * std::cos(angle), corner_radius * std::sin(angle));
+  }
+  return extrude(convex_polygon_distance({l.x, l.z}, corners), l.y, prism.half_height);
+}
+
+double sd_capped_cone(const glm::dvec3& p, const CappedCone& cone) {
+  // The solid of revolution of the trapezoid (0, -h), (r1, -h), (r2, h), (0, h) in the (r, y)
+  // half plane; its edge on the axis is no boundary of the solid.
+  const glm::dvec3 l = p - cone.center;
+  const glm::dvec2 q(glm::length(glm::dvec2(l.x, l.z)), l.y);
+  const double h = cone.half_height;
+  const glm::dvec2 bottom_axis(0.0, -h), bottom_rim(cone.bottom_radius, -h), top_rim(cone.top_radius, h), top_axis(0.0, h);
+  const double nearest = std::min({distance_to_segment(q, bottom_axis, bottom_rim), distance_to_segment(q, bottom_rim, top_rim),
+                                   distance_to_segment(q, top_rim, top_axis)});
+  const double radius_at_y = cone.bottom_radius + (cone.top_radius - cone.bottom_radius) * (q.y + h) / (2.0 * h);
+  const bool inside = std::abs(q.y) <= h && q.x <= radius_at_y;
+  return inside ? -nearest : nearest;
+}
+
+double sd_ellipsoid(const glm::dvec3& p, const Ellipsoid& ellipsoid) {
+  const glm::dvec3 l = p - ellipsoid.center;
+  const double k0 = glm::length(l / ellipsoid.radii);
+  const double k1 = glm::length(l / (ellipsoid.radii * ellipsoid.radii));
+  if (k1 == 0.0) return -std::min({ellipsoid.radii.x, ellipsoid.radii.y, ellipsoid.radii.z});
+  return k0 * (k0 - 1.0) / k1;
 }
 
 double op_union(double a, double b) { return std::min(a, b); }

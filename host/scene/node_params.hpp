@@ -44,6 +44,10 @@ enum class ParamType {
   Integer,
   /// One of a list of names; like an integer, part of the generated code.
   Choice,
+  /// A non-empty set of the axes x, y, z, written as a list of their names.
+  Axes,
+  /// Three integers.
+  IntegerVector,
 };
 
 /// One row of a kind's parameter table.
@@ -65,6 +69,9 @@ struct ParamSpec {
 #define CLMARCH_CHOICE(member, Enum, value, names) Enum member = Enum::value;
 #define CLMARCH_REQUIRED_SCALAR(member, range) double member = 0.0;
 #define CLMARCH_REQUIRED_VECTOR(member, range) glm::dvec3 member{0.0};
+#define CLMARCH_REQUIRED_INTEGER(member, low, high) int member = 0;
+#define CLMARCH_REQUIRED_INTEGERS(member, low, high) glm::ivec3 member{0};
+#define CLMARCH_REQUIRED_AXES(member) glm::bvec3 member{false};
 #define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params) \
   struct Kind {                                               \
     params                                                    \
@@ -82,6 +89,9 @@ struct ParamSpec {
 #undef CLMARCH_CHOICE
 #undef CLMARCH_REQUIRED_SCALAR
 #undef CLMARCH_REQUIRED_VECTOR
+#undef CLMARCH_REQUIRED_INTEGER
+#undef CLMARCH_REQUIRED_INTEGERS
+#undef CLMARCH_REQUIRED_AXES
 
 /// Drops the void that closes a list generated with a comma after every entry.
 template <class... Types>
@@ -113,6 +123,11 @@ using NodeParams = VariantBeforeVoid<TypeList<
   visit(ParamSpec{#member, ParamType::Choice, Range::any(), false, names}, params.member);
 #define CLMARCH_REQUIRED_SCALAR(member, range) visit(ParamSpec{#member, ParamType::Scalar, range, true}, params.member);
 #define CLMARCH_REQUIRED_VECTOR(member, range) visit(ParamSpec{#member, ParamType::Vector, range, true}, params.member);
+#define CLMARCH_REQUIRED_INTEGER(member, low, high) \
+  visit(ParamSpec{#member, ParamType::Integer, Range::closed(low, high), true}, params.member);
+#define CLMARCH_REQUIRED_INTEGERS(member, low, high) \
+  visit(ParamSpec{#member, ParamType::IntegerVector, Range::closed(low, high), true}, params.member);
+#define CLMARCH_REQUIRED_AXES(member) visit(ParamSpec{#member, ParamType::Axes, Range::any(), true}, params.member);
 #define CLMARCH_KIND_PARAMS(Kind, params_list)                                                   \
   template <class Visit>                                                                         \
   void for_each_param([[maybe_unused]] Kind& params, [[maybe_unused]] Visit&& visit) {           \
@@ -135,5 +150,16 @@ using NodeParams = VariantBeforeVoid<TypeList<
 #undef CLMARCH_CHOICE
 #undef CLMARCH_REQUIRED_SCALAR
 #undef CLMARCH_REQUIRED_VECTOR
+#undef CLMARCH_REQUIRED_INTEGER
+#undef CLMARCH_REQUIRED_INTEGERS
+#undef CLMARCH_REQUIRED_AXES
+
+/// Whether a parameter struct is a primitive's.
+template <class Params>
+inline constexpr bool kIsPrimitiveParams = false;
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) \
+  template <>                                                      \
+  inline constexpr bool kIsPrimitiveParams<Kind> = true;
+#include "scene/node_kinds.def"
 
 }  // namespace clmarch

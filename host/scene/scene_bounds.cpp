@@ -34,6 +34,24 @@ std::optional<BoundingSphere> primitive_bounds(const NodeParams& params) {
     }
     std::optional<BoundingSphere> operator()(const Plane&) const { return std::nullopt; }
     std::optional<BoundingSphere> operator()(const InfiniteCylinder&) const { return std::nullopt; }
+    // Its vertices are the farthest points, size from the centre.
+    std::optional<BoundingSphere> operator()(const Octahedron& o) const { return BoundingSphere{o.center, o.size}; }
+    // Its corners are radius / cos 30 from the axis.
+    std::optional<BoundingSphere> operator()(const HexPrism& h) const {
+      return BoundingSphere{h.center, std::hypot(h.radius * 2.0 / std::sqrt(3.0), h.half_height)};
+    }
+    std::optional<BoundingSphere> operator()(const CappedCone& c) const {
+      return BoundingSphere{c.center, std::hypot(std::max(c.bottom_radius, c.top_radius), c.half_height)};
+    }
+    // Quilez's bound falls short of the distance far away: with a_i = l_i / r_i, k0^2 / k1 =
+    // sum a^2 / sqrt(sum a^2 / r^2) >= |l| / G by Kantorovich's inequality, G = (M^2 + m^2) / (2 M m)
+    // for the largest and smallest semi-axes M, m; and k0 (k0 - 1) / k1 >= (|l| - M) / G as |l| / k0
+    // <= M. So the field is below tau only within M + G tau of the centre.
+    std::optional<BoundingSphere> operator()(const Ellipsoid& e) const {
+      const double most = std::max({e.radii.x, e.radii.y, e.radii.z});
+      const double least = std::min({e.radii.x, e.radii.y, e.radii.z});
+      return BoundingSphere{e.center, most, (most * most + least * least) / (2.0 * most * least)};
+    }
     std::optional<BoundingSphere> operator()(const Capsule& c) const {
       return BoundingSphere{0.5 * (c.a + c.b), 0.5 * glm::length(c.b - c.a) + c.radius};
     }
@@ -91,6 +109,55 @@ std::optional<BoundingSphere> operator_bounds(const Node& node) {
     }
     case NodeKind::Subtraction:
     case NodeKind::SmoothSubtraction: return node_bounds(node.children.front());
+    case NodeKind::Elongate: {
+      // p = q + clamp(p, -h, h) with q in the child's sphere: within |h| more of its centre.
+      std::optional<BoundingSphere> child = node_bounds(node.children.front());
+      if (child) child->radius += glm::length(params_of<Elongate>(node).h);
+      return child;
+    }
+    case NodeKind::Onion:
+    case NodeKind::Round: {
+      // d' < tau needs d < tau + amount: the child's sphere grown by its gain times amount.
+      std::optional<BoundingSphere> child = node_bounds(node.children.front());
+      const double amount = node.kind == NodeKind::Onion ? params_of<Onion>(node).thickness : params_of<Round>(node).radius;
+      if (child) child->radius += child->gain * amount;
+      return child;
+    }
+    case NodeKind::Mirror: {
+      // The child's sphere and its mirror images: about the centre moved onto the mirror planes.
+      std::optional<BoundingSphere> child = node_bounds(node.children.front());
+      if (!child) return std::nullopt;
+      const glm::bvec3& axes = params_of<Mirror>(node).axes;
+      glm::dvec3 center = child->center;
+      for (int a = 0; a < 3; ++a) {
+        if (axes[a]) center[a] = 0.0;
+      }
+      child->radius += glm::length(child->center - center);
+      child->center = center;
+      return child;
+    }
+    case NodeKind::RepeatPolar: {
+      // Every copy's sphere is as far from the y axis as the child's, at the child's height.
+      std::optional<BoundingSphere> child = node_bounds(node.children.front());
+      if (!child) return std::nullopt;
+      child->radius += std::hypot(child->center.x, child->center.z);
+      child->center = {0.0, child->center.y, 0.0};
+      return child;
+    }
+    case NodeKind::RepeatLimited: {
+      // The copies' centres span period * [min, max] on each repeated axis.
+      std::optional<BoundingSphere> child = node_bounds(node.children.front());
+      if (!child) return std::nullopt;
+      const RepeatLimited& repeat = params_of<RepeatLimited>(node);
+      glm::dvec3 half_span(0.0);
+      for (int a = 0; a < 3; ++a) {
+        if (!(repeat.period[a] > 0.0)) continue;
+        child->center[a] += repeat.period[a] * 0.5 * (repeat.min[a] + repeat.max[a]);
+        half_span[a] = repeat.period[a] * 0.5 * (repeat.max[a] - repeat.min[a]);
+      }
+      child->radius += glm::length(half_span);
+      return child;
+    }
     // Primitives have primitive_bounds instead.
 #define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind:
 #include "scene/node_kinds.def"

@@ -392,6 +392,25 @@ class SceneReader {
     value = static_cast<Enum>(yaml_.choice(given, what, spec.choices));
   }
 
+  void read_param(const ParamSpec& spec, const YAML::Node& given, const std::string& what, glm::ivec3& value) {
+    if (!given.IsSequence() || given.size() != 3) {
+      yaml_.fail(given, fmt::format("{} must be a list of 3 integers (got {})", what, describe_yaml(given)));
+    }
+    for (int i = 0; i < 3; ++i) value[i] = yaml_.integer(given[i], fmt::format("{}[{}]", what, i), spec.range);
+  }
+  void read_param(const ParamSpec&, const YAML::Node& given, const std::string& what, glm::bvec3& value) {
+    if (!given.IsSequence() || given.size() == 0) {
+      yaml_.fail(given, fmt::format("{} must be a non-empty list of the axes x, y, z (got {})", what, describe_yaml(given)));
+    }
+    for (std::size_t i = 0; i < given.size(); ++i) {
+      const std::string axis = yaml_.text(given[i], fmt::format("{}[{}]", what, i));
+      const int index = axis == "x" ? 0 : axis == "y" ? 1 : axis == "z" ? 2 : -1;
+      if (index < 0) yaml_.fail(given[i], fmt::format("{}[{}]: unknown axis '{}' (expected x, y or z)", what, i, axis));
+      if (value[index]) yaml_.fail(given[i], fmt::format("{}[{}]: axis {} is listed twice", what, i, axis));
+      value[index] = true;
+    }
+  }
+
   // Checks across parameters, beyond each one's range; most kinds have none.
   template <class Params>
   void check_params(const Params&, const YAML::Node&, const std::string&) {}
@@ -418,6 +437,12 @@ class SceneReader {
     if (capsule.a == capsule.b) yaml_.fail(map, path + ".a and " + path + ".b must differ (use a sphere for a point)");
   }
 
+  void check_params(CappedCone& cone, const YAML::Node& map, const std::string& path) {
+    if (cone.bottom_radius == 0.0 && cone.top_radius == 0.0) {
+      yaml_.fail(map, path + ".bottom_radius and " + path + ".top_radius must not both be 0 (that is a segment)");
+    }
+  }
+
   void check_params(Mandelbulb& bulb, const YAML::Node& map, const std::string& path) {
     // An escaping orbit reaches |z| ~ bailout^power; the kernel squares it in float (max ~3e38).
     const double largest_bailout = std::pow(10.0, 18.0 / bulb.power);
@@ -431,6 +456,18 @@ class SceneReader {
   void check_params(Repeat& repeat, const YAML::Node& map, const std::string& path) {
     if (repeat.period == glm::dvec3(0.0)) {
       yaml_.fail(map["period"], path + ".period must repeat along at least one axis (a component > 0)");
+    }
+  }
+
+  void check_params(RepeatLimited& repeat, const YAML::Node& map, const std::string& path) {
+    if (repeat.period == glm::dvec3(0.0)) {
+      yaml_.fail(map["period"], path + ".period must repeat along at least one axis (a component > 0)");
+    }
+    for (int axis = 0; axis < 3; ++axis) {
+      if (repeat.min[axis] > repeat.max[axis]) {
+        yaml_.fail(map["min"], fmt::format("{}.min[{}] must be at most {}.max[{}] (got {} > {})", path, axis, path, axis,
+                                           repeat.min[axis], repeat.max[axis]));
+      }
     }
   }
 
