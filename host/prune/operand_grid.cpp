@@ -231,8 +231,13 @@ OperandGrid build_operand_grid(const Node& union_node, const glm::dvec3& offset)
   grid.cell_start.resize(static_cast<std::size_t>(cells) + 1);
   grid.cell_start[0] = 0;
   for (long long c = 0; c < cells; ++c) grid.cell_start[c + 1] = grid.cell_start[c] + cell_counts[c];
+  // Each chunk's lists are freed as they are copied: at a million operands the lists take hundreds
+  // of megabytes, and two whole copies of them set the process's peak memory.
   grid.operands.reserve(grid.cell_start.back());
-  for (const auto& out : chunk_operands) grid.operands.insert(grid.operands.end(), out.begin(), out.end());
+  for (auto& out : chunk_operands) {
+    grid.operands.insert(grid.operands.end(), out.begin(), out.end());
+    std::vector<std::uint32_t>().swap(out);
+  }
   return grid;
 }
 
