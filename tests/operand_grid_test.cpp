@@ -22,8 +22,8 @@ using testing::scene_from_yaml;
 
 std::string vec(const glm::dvec3& v) { return fmt::format("[{:.6g}, {:.6g}, {:.6g}]", v.x, v.y, v.z); }
 
-/// A random operand: a primitive, or a small subtree of every operator kind, some transformed or
-/// coloured; all bounded, as the grid requires.
+/// A random operand: a primitive, or a small subtree of every operator kind and of the modifiers
+/// that keep a bounding sphere, some transformed or coloured; all bounded, as the grid requires.
 std::string random_operand(std::mt19937& rng) {
   std::uniform_real_distribution<double> unit(-1.0, 1.0), size(0.05, 0.2);
   const auto point = [&] { return glm::dvec3(unit(rng), unit(rng), unit(rng)); };
@@ -38,7 +38,7 @@ std::string random_operand(std::mt19937& rng) {
         return fmt::format("round_box: {{center: {}, half_size: [0.1, 0.15, 0.2], radius: 0.03}}", vec(c));
     }
   };
-  std::uniform_int_distribution<int> kind(0, 9);
+  std::uniform_int_distribution<int> kind(0, 14);
   const int k = kind(rng);
   std::string extra;
   if (k % 3 == 0) extra += fmt::format(", color: {}", vec(0.5 * point() + 0.5));
@@ -49,7 +49,13 @@ std::string random_operand(std::mt19937& rng) {
   if (k == 6) return fmt::format("{{intersection: [{{{}}}, {{sphere: {{radius: 2}}}}]}}", a);
   if (k == 7) return fmt::format("{{smooth_union: {{k: 0.1, children: [{{{}}}, {{{}}}]{}}}}}", a, b, extra);
   if (k == 8) return fmt::format("{{smooth_subtraction: {{k: 0.05, children: [{{{}}}, {{{}}}]}}}}", a, b);
-  return fmt::format("{{smooth_intersection: {{k: 0.05, children: [{{{}}}, {{sphere: {{radius: 2}}}}]}}}}", a);
+  if (k == 9) return fmt::format("{{smooth_intersection: {{k: 0.05, children: [{{{}}}, {{sphere: {{radius: 2}}}}]}}}}", a);
+  // The modifiers of issue 25: 1-Lipschitz maps of one child, and a polar repetition, which is not.
+  if (k == 10) return fmt::format("{{elongate: {{h: [0.1, 0, 0.05], children: [{{{}}}]}}}}", a);
+  if (k == 11) return fmt::format("{{onion: {{thickness: 0.02, children: [{{{}}}]{}}}}}", a, extra);
+  if (k == 12) return fmt::format("{{round: {{radius: 0.03, children: [{{{}}}]}}}}", a);
+  if (k == 13) return fmt::format("{{mirror: {{axes: [x, z], children: [{{{}}}]}}}}", a);
+  return fmt::format("{{repeat_polar: {{count: 5, children: [{{{}}}]}}}}", a);
 }
 
 /// n random operands as the items of a YAML block list, each line starting with indent.

@@ -67,7 +67,7 @@ TEST(SdfCode, EverySlotReadsTheLiteralItReplaces) {
   EXPECT_FALSE(std::regex_search(spelled, std::regex(R"(values\[\d)")));
   const std::string with_slots = spell_sdf_code(code, slots);
   std::string body = with_slots.substr(with_slots.find("*/\n") + 3);  // past the values[0 .. n] comment
-  EXPECT_EQ(with_values_spelled(body, slot_values(code, slots)), spelled);
+  EXPECT_EQ(with_values_spelled(body, slot_values(code, slots).joined()), spelled);
   // Numbered as the source reads them.
   EXPECT_NE(body.find("values[0]"), std::string::npos);
   EXPECT_LT(body.find("values[0]"), body.find("values[1]"));
@@ -82,7 +82,7 @@ TEST(VaryingLiterals, OnlyWhatTheTimeChangesVaries) {
   VaryingLiterals varying;
   for (double t : {0.2, 0.7, 1.1}) varying.add(frame_at(t));
   const Scene frame = frame_at(0.2);
-  const std::vector<float> values = slot_values(march_scene_code(frame), varying.slots_for(frame));
+  const std::vector<float> values = slot_values(march_scene_code(frame), varying.slots_for(frame)).joined();
   const auto count = [&](double v) {
     return std::count(values.begin(), values.end(), static_cast<float>(v));
   };

@@ -215,7 +215,7 @@ SdfCode march_scene_code(const Scene& scene, bool with_shading) {
   return code;
 }
 
-std::vector<float> scene_values(const Scene& scene, const KernelOptions& options) {
+ProgramValues scene_values(const Scene& scene, const KernelOptions& options) {
   return slot_values(program_scene_code(scene, options), options.value_slots);
 }
 

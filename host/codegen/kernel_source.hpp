@@ -96,7 +96,7 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
 SdfCode march_scene_code(const Scene& scene, bool with_shading = true);
 
 /// What the values buffer of the scene's march program built with options holds.
-std::vector<float> scene_values(const Scene& scene, const KernelOptions& options);
+ProgramValues scene_values(const Scene& scene, const KernelOptions& options);
 
 /// The output floor's program (kernels/output_floor.cl): fill_planes, which only stores.
 std::string output_floor_source();

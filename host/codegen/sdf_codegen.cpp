@@ -111,7 +111,7 @@ struct GridEmission {
   const Node* node = nullptr;
   bool emitted = false;
   std::string functions;
-  std::vector<float> data;
+  std::shared_ptr<const std::vector<float>> data;
 
   void emit(const Node& union_node, const Material& color, const glm::dvec3& offset, bool gate_subtrees, Literals& lit);
 };
@@ -515,22 +515,59 @@ std::uint64_t fnv1a(std::uint64_t hash, const void* bytes, std::size_t size) {
   return hash;
 }
 
-/// The grid of union_node, built once for the operands it was built for: a program's source and
-/// its values are generated apart (generate_kernel_source, scene_values) from the same scene, and
-/// a large union's grid takes seconds. key identifies the operands by their code and numbers.
-std::shared_ptr<const OperandGrid> operand_grid_for(const Node& union_node, const glm::dvec3& offset, std::uint64_t key) {
+/// An operand grid packed into the words kernels/operand_grid.cl reads (header, cell starts, lists
+/// of record offsets, records), and the figures the generated code's comment gives.
+struct PackedGrid {
+  std::shared_ptr<const std::vector<float>> data;
+  glm::ivec3 dims{1};
+  long long cells = 1;
+  std::size_t listed = 0;
+};
+
+PackedGrid pack_grid(const OperandGrid& grid, const std::vector<float>& records, const std::vector<std::uint32_t>& record_at) {
+  const long long cells = grid.cell_count();
+  const std::size_t cells_at = CLMARCH_GRID_HEADER_WORDS;
+  const std::size_t list_at = cells_at + static_cast<std::size_t>(cells) + 1;
+  const std::size_t records_at = list_at + grid.operands.size();
+  auto data = std::make_shared<std::vector<float>>(CLMARCH_GRID_HEADER_WORDS, 0.0f);
+  std::vector<float>& words = *data;
+  for (int axis = 0; axis < 3; ++axis) {
+    words[CLMARCH_GRID_ORIGIN + axis] = static_cast<float>(grid.lower[axis]);
+    words[CLMARCH_GRID_DIMS + axis] = static_cast<float>(grid.dims[axis]);
+    words[CLMARCH_GRID_UPPER + axis] = static_cast<float>(grid.upper[axis]);
+  }
+  words[CLMARCH_GRID_INVERSE_CELL] = static_cast<float>(1.0 / grid.cell_size);
+  words[CLMARCH_GRID_OUTSIDE + 0] = static_cast<float>(grid.outside_margin);
+  words[CLMARCH_GRID_OUTSIDE + 1] = static_cast<float>(grid.outside_inverse_gain);
+  words[CLMARCH_GRID_OUTSIDE + 2] = static_cast<float>(grid.outside_undershoot);
+  words[CLMARCH_GRID_CELLS_AT] = int_word(static_cast<std::uint32_t>(cells_at));
+  words[CLMARCH_GRID_LIST_AT] = int_word(static_cast<std::uint32_t>(list_at));
+  words.reserve(records_at + records.size());
+  for (std::uint32_t start : grid.cell_start) words.push_back(int_word(start));
+  for (std::uint32_t operand : grid.operands) words.push_back(int_word(static_cast<std::uint32_t>(records_at + record_at[operand])));
+  words.insert(words.end(), records.begin(), records.end());
+  return {std::move(data), grid.dims, cells, grid.operands.size()};
+}
+
+/// The packed grid of union_node, built once for the operands it was built for: a program's
+/// source and its values are generated apart (generate_kernel_source, scene_values) from the same
+/// scene, and a large union's grid takes seconds. key identifies the operands by their code and
+/// numbers, records included. Only the packed words are kept, the grid itself freed once packed,
+/// so that a large grid is held once in host memory besides the device's copy.
+PackedGrid packed_grid_for(const Node& union_node, const glm::dvec3& offset, std::uint64_t key,
+                           const std::vector<float>& records, const std::vector<std::uint32_t>& record_at) {
   static std::mutex mutex;
   static std::uint64_t last_key = 0;
-  static std::shared_ptr<const OperandGrid> last;
+  static PackedGrid last;
   {
     const std::lock_guard<std::mutex> lock(mutex);
-    if (last && last_key == key) return last;
+    if (last.data && last_key == key) return last;
   }
-  auto grid = std::make_shared<const OperandGrid>(build_operand_grid(union_node, offset));
+  PackedGrid packed = pack_grid(build_operand_grid(union_node, offset), records, record_at);
   const std::lock_guard<std::mutex> lock(mutex);
   last_key = key;
-  last = grid;
-  return grid;
+  last = packed;
+  return packed;
 }
 
 void GridEmission::emit(const Node& union_node, const Material& color, const glm::dvec3& offset, bool gate_subtrees,
@@ -571,29 +608,8 @@ void GridEmission::emit(const Node& union_node, const Material& color, const glm
   const double k_value = is_smooth_operator(union_node.kind) ? smooth_k(union_node) : 0.0;
   const double numbers[] = {static_cast<double>(union_node.kind), k_value, offset.x, offset.y, offset.z};
   key = fnv1a(key, numbers, sizeof(numbers));
-  const std::shared_ptr<const OperandGrid> shared_grid = operand_grid_for(union_node, offset, key);
-  const OperandGrid& grid = *shared_grid;
-
-  const long long cells = grid.cell_count();
-  const std::size_t cells_at = CLMARCH_GRID_HEADER_WORDS;
-  const std::size_t list_at = cells_at + static_cast<std::size_t>(cells) + 1;
-  const std::size_t records_at = list_at + grid.operands.size();
-  data.assign(CLMARCH_GRID_HEADER_WORDS, 0.0f);
-  for (int axis = 0; axis < 3; ++axis) {
-    data[CLMARCH_GRID_ORIGIN + axis] = static_cast<float>(grid.lower[axis]);
-    data[CLMARCH_GRID_DIMS + axis] = static_cast<float>(grid.dims[axis]);
-    data[CLMARCH_GRID_UPPER + axis] = static_cast<float>(grid.upper[axis]);
-  }
-  data[CLMARCH_GRID_INVERSE_CELL] = static_cast<float>(1.0 / grid.cell_size);
-  data[CLMARCH_GRID_OUTSIDE + 0] = static_cast<float>(grid.outside_margin);
-  data[CLMARCH_GRID_OUTSIDE + 1] = static_cast<float>(grid.outside_inverse_gain);
-  data[CLMARCH_GRID_OUTSIDE + 2] = static_cast<float>(grid.outside_undershoot);
-  data[CLMARCH_GRID_CELLS_AT] = int_word(static_cast<std::uint32_t>(cells_at));
-  data[CLMARCH_GRID_LIST_AT] = int_word(static_cast<std::uint32_t>(list_at));
-  data.reserve(records_at + records.size());
-  for (std::uint32_t start : grid.cell_start) data.push_back(int_word(start));
-  for (std::uint32_t operand : grid.operands) data.push_back(int_word(static_cast<std::uint32_t>(records_at + record_at[operand])));
-  data.insert(data.end(), records.begin(), records.end());
+  const PackedGrid grid = packed_grid_for(union_node, offset, key, records, record_at);
+  data = grid.data;
 
   const std::string k = lit.f(k_value);
   functions = fmt::format(
@@ -601,7 +617,7 @@ void GridEmission::emit(const Node& union_node, const Material& color, const glm
       " * average; host/prune/operand_grid.hpp). Each operand's numbers are in its record, read by its\n"
       " * shape's code ({} shapes). */\n",
       node_kind_name(union_node.kind), union_node.children.size(), grid.dims.x, grid.dims.y, grid.dims.z,
-      static_cast<double>(grid.operands.size()) / static_cast<double>(cells), distance_shapes.size());
+      static_cast<double>(grid.listed) / static_cast<double>(grid.cells), distance_shapes.size());
   functions += fmt::format("#define GRID_COMBINE(a, b) {}\n", SdfEmitter::combine_rule(union_node.kind, "(a)", "(b)", k));
   functions += fmt::format("#define GRID_BLEND(first, second, a, b) {}\n",
                            fmt::format(fmt::runtime(SdfEmitter::blend_rule(union_node.kind, "(a)", "(b)", k)), "(first)", "(second)"));
@@ -636,7 +652,7 @@ std::string Literals::f4(const glm::dvec3& v) {
 }
 
 std::string sdf_functions(const Node& root, const glm::dvec3& frame_origin, bool gate_subtrees, Literals& literals,
-                          const Node* grid_node, std::vector<float>& data) {
+                          const Node* grid_node, std::shared_ptr<const std::vector<float>>& data) {
   GridEmission grid;
   grid.node = grid_node;
   SdfEmitter distance_only(false, gate_subtrees, literals, &grid);
@@ -719,7 +735,7 @@ std::string spell_sdf_code(const SdfCode& code, const ValueSlots& slots) {
   if (!order.empty()) {
     out += fmt::format("/* values[0 .. {}]: the literals that change from frame to frame. */\n", order.size() - 1);
   }
-  if (!code.data.empty()) out += fmt::format("#define SCENE_DATA (values + {})\n", order.size());
+  if (code.data) out += fmt::format("#define SCENE_DATA (values + {})\n", order.size());
   for_each_mark(code.source, [&](std::string_view text, std::size_t k) {
     out += text;
     if (k == std::string::npos) return;
@@ -728,10 +744,16 @@ std::string spell_sdf_code(const SdfCode& code, const ValueSlots& slots) {
   return out;
 }
 
-std::vector<float> slot_values(const SdfCode& code, const ValueSlots& slots) {
-  std::vector<float> values;
-  for (std::size_t k : slots_in_reading_order(code, slots)) values.push_back(code.literals[k]);
-  values.insert(values.end(), code.data.begin(), code.data.end());
+std::vector<float> ProgramValues::joined() const {
+  std::vector<float> values = slots;
+  if (data) values.insert(values.end(), data->begin(), data->end());
+  return values;
+}
+
+ProgramValues slot_values(const SdfCode& code, const ValueSlots& slots) {
+  ProgramValues values;
+  for (std::size_t k : slots_in_reading_order(code, slots)) values.slots.push_back(code.literals[k]);
+  values.data = code.data;
   return values;
 }
 

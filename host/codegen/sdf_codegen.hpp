@@ -7,6 +7,8 @@
 
 #include <glm/glm.hpp>
 
+#include <cstddef>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -22,8 +24,9 @@ struct SdfCode {
   /// Every float literal of the code, rounded to float, by index.
   std::vector<float> literals;
   /// The operand grid's data, which the code reads after the values of its slots (SCENE_DATA);
-  /// empty without a grid.
-  std::vector<float> data;
+  /// null without a grid. Shared with the grid's cache, not copied: a million operands' grid is
+  /// half a gigabyte.
+  std::shared_ptr<const std::vector<float>> data;
 };
 
 /// Writes float literals as their marks "@k@" and keeps their values, for SdfCode.
@@ -43,7 +46,7 @@ class Literals {
 /// map and map_color for this tree, their literals written to literals and the operand grid's data
 /// to data (see generate_sdf_code).
 std::string sdf_functions(const Node& root, const glm::dvec3& frame_origin, bool gate_subtrees, Literals& literals,
-                          const Node* grid_node, std::vector<float>& data);
+                          const Node* grid_node, std::shared_ptr<const std::vector<float>>& data);
 
 /// The code of map and map_color for this tree, taking points relative to the world point
 /// frame_origin (its positions are baked relative to it, in double). With gate_subtrees, unions
@@ -61,8 +64,19 @@ using ValueSlots = std::vector<int>;
 /// Throws std::invalid_argument for a slot that is no literal of the code.
 std::string spell_sdf_code(const SdfCode& code, const ValueSlots& slots = {});
 
-/// What values[j] holds for this code: its literals at slots, in the order the source reads them,
-/// then its data.
-std::vector<float> slot_values(const SdfCode& code, const ValueSlots& slots);
+/// What a program's values buffer holds: values[j] is its literals at slots, in the order the
+/// source reads them, then the operand grid's data, kept apart so that it is never copied on the
+/// host (written to the device from the grid's cache).
+struct ProgramValues {
+  std::vector<float> slots;
+  std::shared_ptr<const std::vector<float>> data;
+
+  std::size_t size() const { return slots.size() + (data ? data->size() : 0); }
+  /// The slots then the data, as one vector.
+  std::vector<float> joined() const;
+};
+
+/// The values of this code's program with these slots.
+ProgramValues slot_values(const SdfCode& code, const ValueSlots& slots);
 
 }  // namespace clmarch

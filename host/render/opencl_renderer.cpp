@@ -30,7 +30,9 @@ std::uint64_t plane_total(const std::vector<float>& plane) {
 }  // namespace
 
 struct OpenClRenderer::State {
-  Scene scene;
+  /// The scene's settings; not its tree, which the program holds (a million primitives' tree is
+  /// hundreds of megabytes, and a copy of it set the process's peak memory).
+  RenderSettings render;
   OpenClOptions options;
   bool rendered = false;
   PreparedProgram prepared;
@@ -47,7 +49,7 @@ struct OpenClRenderer::State {
 
 OpenClRenderer::OpenClRenderer(const Scene& scene, const OpenClOptions& options) : state_(std::make_unique<State>()) {
   State& s = *state_;
-  s.scene = scene;
+  s.render = scene.render;
   s.options = options;
   s.prepared = prepare_program(scene, options, options.purpose);
   DeviceProgram& dp = s.prepared.program;
@@ -71,7 +73,7 @@ OpenClRenderer::~OpenClRenderer() = default;
 bool OpenClRenderer::can_render(const Scene& scene, const OpenClOptions& options) const {
   const State& s = *state_;
   const OpenClOptions& mine = s.options;
-  if (scene.render.width != s.scene.render.width || scene.render.height != s.scene.render.height) return false;
+  if (scene.render.width != s.render.width || scene.render.height != s.render.height) return false;
   if (options.device != mine.device || options.lanes != mine.lanes || options.purpose != mine.purpose ||
       !(options.variant == mine.variant) || options.max_chunk_pixels != mine.max_chunk_pixels ||
       options.value_slots != mine.value_slots) {
@@ -82,7 +84,7 @@ bool OpenClRenderer::can_render(const Scene& scene, const OpenClOptions& options
 
 void OpenClRenderer::set_scene(const Scene& scene) {
   State& s = *state_;
-  s.scene = scene;
+  s.render = scene.render;
   s.cones_run = false;
   s.params = march_params(scene, s.dispatch);
   // The same source has the same LIGHT_COUNT, so the buffer keeps its size.
@@ -97,26 +99,26 @@ const std::string& OpenClRenderer::source() const { return state_->prepared.sour
 
 RenderResult OpenClRenderer::render() {
   state_->cones_run = false;
-  return render_rows(0, state_->scene.render.height);
+  return render_rows(0, state_->render.height);
 }
 
 RenderResult OpenClRenderer::render_rows(int band_first_row, int band_rows) {
   State& s = *state_;
   DeviceProgram& dp = s.prepared.program;
-  const int width = s.scene.render.width;
+  const int width = s.render.width;
   const int end_row = band_first_row + band_rows;
   const std::size_t pixels = static_cast<std::size_t>(width) * band_rows;
   static_assert(kBandRowAlignment % CLMARCH_COARSE_BLOCK == 0, "a band starts at a row of coarse blocks");
-  if (band_first_row < 0 || band_rows <= 0 || end_row > s.scene.render.height ||
+  if (band_first_row < 0 || band_rows <= 0 || end_row > s.render.height ||
       band_first_row % kBandRowAlignment != 0) {
     throw std::logic_error(fmt::format("render_rows: rows {} .. {} of an image of {} rows, not starting at a multiple of {}",
-                                       band_first_row, end_row - 1, s.scene.render.height, kBandRowAlignment));
+                                       band_first_row, end_row - 1, s.render.height, kBandRowAlignment));
   }
   // A band smaller than the whole image gets a dispatch of its own size (the output buffer, made
   // for the whole image's chunks, holds it); the parameters keep the whole image's camera and tiles.
   Dispatch dispatch = s.dispatch;
   MarchParams params = s.params;
-  if (band_rows < s.scene.render.height) {
+  if (band_rows < s.render.height) {
     dispatch = plan_tile_dispatch(s.prepared, width, band_rows, s.dispatch.plane_stride);
     params.chunk_rows = dispatch.chunk_rows;
     params.plane_stride = static_cast<cl_int>(dispatch.plane_stride);
