@@ -5,6 +5,7 @@
 #include "cl/cl_errors.hpp"
 #include "common/cancellation.hpp"
 #include "common/progress.hpp"
+#include "frame/antialias.hpp"
 #include "render/cone_pass.hpp"
 #include "render/device_inputs.hpp"
 #include "render/dispatch_plan.hpp"
@@ -13,6 +14,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <stdexcept>
 
@@ -38,6 +40,8 @@ struct OpenClRenderer::State {
   std::optional<cl::Buffer> values;
   cl::Kernel kernel;
   std::optional<ConePass> cones;
+  /// ANTIALIAS programs: which pixels of the image a refining pass marches (one byte each).
+  std::optional<cl::Buffer> sample_mask;
   /// Whether the coarse pass ran for the current scene (render_rows runs it at the first band).
   bool cones_run = false;
 };
@@ -59,7 +63,12 @@ OpenClRenderer::OpenClRenderer(const Scene& scene, const OpenClOptions& options)
     s.values = make_scene_values(s.prepared, scene);
     s.kernel = cl::Kernel(dp.program, "march");
     s.cones = make_cone_pass(s.prepared, scene, s.values);
-    bind_march_inputs(s.kernel, s.out, s.lights, s.values, s.cones);
+    const int next_arg = bind_march_inputs(s.kernel, s.out, s.lights, s.values, s.cones);
+    if (uses_antialiasing(scene, options.purpose)) {
+      const std::size_t pixels = static_cast<std::size_t>(scene.render.width) * scene.render.height;
+      s.sample_mask = cl::Buffer(dp.context, CL_MEM_READ_ONLY, pixels);
+      s.kernel.setArg(next_arg, *s.sample_mask);
+    }
   });
 }
 
@@ -91,6 +100,61 @@ void OpenClRenderer::set_scene(const Scene& scene) {
 }
 
 const std::string& OpenClRenderer::source() const { return state_->prepared.source; }
+
+namespace {
+
+/// The refining passes of an anti-aliased render of rows band_first_row .. end_row - 1, whose
+/// centre rays are in buffers: samples 1 .. N - 1 of the pixels pixels_to_refine flags, one
+/// dispatch of the march kernel per sample and chunk, their means written into buffers. Returns
+/// the passes' kernel time.
+double refine_samples(const Scene& scene, PreparedProgram& prepared, cl::Kernel& kernel, const cl::Buffer& out,
+                      const cl::Buffer& sample_mask, MarchParams params, const Dispatch& dispatch, int band_first_row,
+                      int end_row, FrameBuffers& buffers) {
+  const int count = scene.render.samples;
+  SampleSums sums(buffers, pixels_to_refine(buffers, scene.render.adaptive));
+  const std::vector<std::uint8_t>& refine = sums.refine();
+  double kernel_ms = 0.0;
+  if (std::find(refine.begin(), refine.end(), 1) != refine.end()) {
+    DeviceProgram& dp = prepared.program;
+    const int width = buffers.width;
+    const bool color = std::find(prepared.planes.begin(), prepared.planes.end(), CLMARCH_CHANNEL_R) != prepared.planes.end();
+    const std::size_t band_offset = static_cast<std::size_t>(band_first_row) * width;
+    dp.queue.enqueueWriteBuffer(sample_mask, CL_TRUE, band_offset, refine.size(), refine.data());
+    std::vector<float> depth(dispatch.plane_stride), r(dispatch.plane_stride), g(dispatch.plane_stride), b(dispatch.plane_stride);
+    const auto read_plane = [&](int channel, std::size_t floats, std::vector<float>& into) {
+      dp.queue.enqueueReadBuffer(out, CL_FALSE, channel * dispatch.plane_stride * sizeof(float), floats * sizeof(float), into.data());
+    };
+    for (int k = 1; k < count; ++k) {
+      const glm::dvec2 point = sample_point(k, count);
+      params.subpixel.s[0] = static_cast<float>(point.x);
+      params.subpixel.s[1] = static_cast<float>(point.y);
+      params.subpixel.s[2] = 1.0f;
+      for_each_chunk(dp.queue, kernel, params, dispatch, band_first_row, end_row, [&](int first_row, int rows, const cl::Event& done) {
+        const std::size_t floats = static_cast<std::size_t>(rows) * width;
+        read_plane(CLMARCH_CHANNEL_DEPTH, floats, depth);
+        if (color) {
+          read_plane(CLMARCH_CHANNEL_R, floats, r);
+          read_plane(CLMARCH_CHANNEL_G, floats, g);
+          read_plane(CLMARCH_CHANNEL_B, floats, b);
+        }
+        {
+          const BlockingCall uninterruptible_wait;
+          dp.queue.finish();
+        }
+        kernel_ms += event_milliseconds(done);
+        const std::size_t first = static_cast<std::size_t>(first_row - band_first_row) * width;
+        for (std::size_t i = 0; i < floats; ++i) {
+          if (!refine[first + i]) continue;  // not marched: the plane holds another pass's value
+          sums.add(first + i, color ? glm::vec3(r[i], g[i], b[i]) : glm::vec3(0.0f), std::isfinite(depth[i]));
+        }
+      });
+    }
+  }
+  sums.finish(buffers, count);
+  return kernel_ms;
+}
+
+}  // namespace
 
 RenderResult OpenClRenderer::render() {
   state_->cones_run = false;
@@ -150,6 +214,12 @@ RenderResult OpenClRenderer::render_rows(int band_first_row, int band_rows) {
     if (cones_done) {
       for (float steps : read_cone_plane(dp.queue, *s.cones, s.cones->steps)) coarse_steps += static_cast<std::uint64_t>(steps);
       kernel_ms += event_milliseconds(*cones_done);
+    }
+    if (s.sample_mask) {
+      kernel_ms += refine_samples(s.scene, s.prepared, s.kernel, s.out, *s.sample_mask, params, dispatch, band_first_row,
+                                  end_row, result.buffers);
+    } else {
+      set_single_sample_coverage(result.buffers);
     }
   });
 
