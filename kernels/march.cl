@@ -283,7 +283,7 @@ __kernel void march(const MarchParams params, __global float* out, __constant fl
                     , __global const float* coarse_starts
 #endif
 #if defined(ANTIALIAS)
-                    , __global const uchar* sample_mask
+                    , __global const uchar* sample_mask, __global const int* refine_packets
 #endif
 #if defined(RECORD_SAMPLES)
                     , __global const int* sample_base, __global float* samples, const int sample_stride
@@ -302,7 +302,15 @@ __kernel void march(const MarchParams params, __global float* out, __constant fl
 #if !defined(COARSE_PASS)
   __global const float* coarse_starts = 0;
 #endif
-  const int first = (int)get_global_id(0) * PACKETS_PER_ITEM;
+  const int item = (int)get_global_id(0) * PACKETS_PER_ITEM;
+#if defined(ANTIALIAS)
+  /* A refining pass runs over the host's list of the chunk's packets that hold a flagged pixel
+   * (padded with packets past the chunk), not over the whole chunk. */
+  const int refining = params.subpixel.z != 0.0f;
+  const int first = refining ? refine_packets[item] : item;
+#else
+  const int first = item;
+#endif
   Packet a = packet_at(&params, first, coarse_starts);
   if (a.rows <= 0) return; /* padding of the dispatch to whole work-groups */
 #if defined(ANTIALIAS)
@@ -311,7 +319,11 @@ __kernel void march(const MarchParams params, __global float* out, __constant fl
   const int a_wanted = 1;
 #endif
 #if PACKETS_PER_ITEM == 2
+#if defined(ANTIALIAS)
+  Packet b = packet_at(&params, refining ? refine_packets[item + 1] : item + 1, coarse_starts);
+#else
   Packet b = packet_at(&params, first + 1, coarse_starts);
+#endif
 #if defined(ANTIALIAS)
   const int b_wanted = b.rows > 0 && refine_packet(&params, &b, sample_mask);
 #else

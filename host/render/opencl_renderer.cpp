@@ -40,8 +40,10 @@ struct OpenClRenderer::State {
   std::optional<cl::Buffer> values;
   cl::Kernel kernel;
   std::optional<ConePass> cones;
-  /// ANTIALIAS programs: which pixels of the image a refining pass marches (one byte each).
+  /// ANTIALIAS programs: which pixels of the image a refining pass marches (one byte each), and
+  /// the packets of a chunk it runs over.
   std::optional<cl::Buffer> sample_mask;
+  std::optional<cl::Buffer> refine_packets;
   /// Whether the coarse pass ran for the current scene (render_rows runs it at the first band).
   bool cones_run = false;
 };
@@ -67,7 +69,10 @@ OpenClRenderer::OpenClRenderer(const Scene& scene, const OpenClOptions& options)
     if (uses_antialiasing(scene, options.purpose)) {
       const std::size_t pixels = static_cast<std::size_t>(scene.render.width) * scene.render.height;
       s.sample_mask = cl::Buffer(dp.context, CL_MEM_READ_ONLY, pixels);
+      s.refine_packets = cl::Buffer(dp.context, CL_MEM_READ_ONLY,
+                                    s.dispatch.global_items * s.prepared.packets_per_item * sizeof(cl_int));
       s.kernel.setArg(next_arg, *s.sample_mask);
+      s.kernel.setArg(next_arg + 1, *s.refine_packets);
     }
   });
 }
@@ -103,13 +108,36 @@ const std::string& OpenClRenderer::source() const { return state_->prepared.sour
 
 namespace {
 
+/// The packets (row-major tiles of the chunk of rows first_row .. first_row + rows - 1, as the
+/// march kernel numbers them) that hold a pixel refine flags, padded for the dispatch of dispatch's
+/// work-group size with a packet past the chunk.
+std::vector<cl_int> packets_to_refine(const std::vector<std::uint8_t>& refine, int width, int band_first_row, int first_row,
+                                      int rows, const Dispatch& dispatch, int packets_per_item) {
+  const int tiles_per_row = (width + dispatch.tile_width - 1) / dispatch.tile_width;
+  std::vector<cl_int> packets;
+  for (int row = 0; row < rows; ++row) {
+    const std::size_t at = static_cast<std::size_t>(first_row - band_first_row + row) * width;
+    for (int x = 0; x < width; ++x) {
+      if (!refine[at + x]) continue;
+      packets.push_back((row / dispatch.tile_height) * tiles_per_row + x / dispatch.tile_width);
+    }
+  }
+  std::sort(packets.begin(), packets.end());
+  packets.erase(std::unique(packets.begin(), packets.end()), packets.end());
+  if (packets.empty()) return packets;
+  const std::size_t group = dispatch.local_items * packets_per_item;
+  const cl_int past_the_chunk = (dispatch.chunk_rows / dispatch.tile_height + 1) * tiles_per_row;
+  packets.resize((packets.size() + group - 1) / group * group, past_the_chunk);
+  return packets;
+}
+
 /// The refining passes of an anti-aliased render of rows band_first_row .. end_row - 1, whose
 /// centre rays are in buffers: samples 1 .. N - 1 of the pixels pixels_to_refine flags, one
-/// dispatch of the march kernel per sample and chunk, their means written into buffers. Returns
-/// the passes' kernel time.
+/// dispatch of the march kernel per sample and chunk over the packets that hold such pixels, their
+/// means written into buffers. Returns the passes' kernel time.
 double refine_samples(const Scene& scene, PreparedProgram& prepared, cl::Kernel& kernel, const cl::Buffer& out,
-                      const cl::Buffer& sample_mask, MarchParams params, const Dispatch& dispatch, int band_first_row,
-                      int end_row, FrameBuffers& buffers) {
+                      const cl::Buffer& sample_mask, const cl::Buffer& refine_packets, MarchParams params,
+                      const Dispatch& dispatch, int band_first_row, int end_row, FrameBuffers& buffers) {
   const int count = scene.render.samples;
   SampleSums sums(buffers, pixels_to_refine(buffers, scene.render.adaptive));
   const std::vector<std::uint8_t>& refine = sums.refine();
@@ -129,7 +157,18 @@ double refine_samples(const Scene& scene, PreparedProgram& prepared, cl::Kernel&
       params.subpixel.s[0] = static_cast<float>(point.x);
       params.subpixel.s[1] = static_cast<float>(point.y);
       params.subpixel.s[2] = 1.0f;
-      for_each_chunk(dp.queue, kernel, params, dispatch, band_first_row, end_row, [&](int first_row, int rows, const cl::Event& done) {
+      for (int first_row = band_first_row; first_row < end_row; first_row += dispatch.chunk_rows) {
+        throw_if_cancelled();
+        const int rows = std::min(dispatch.chunk_rows, end_row - first_row);
+        const std::vector<cl_int> packets =
+            packets_to_refine(refine, width, band_first_row, first_row, rows, dispatch, prepared.packets_per_item);
+        if (packets.empty()) continue;
+        dp.queue.enqueueWriteBuffer(refine_packets, CL_TRUE, 0, packets.size() * sizeof(cl_int), packets.data());
+        params.first_row = first_row;
+        kernel.setArg(0, sizeof(MarchParams), &params);
+        cl::Event done;
+        dp.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(packets.size() / prepared.packets_per_item),
+                                      cl::NDRange(dispatch.local_items), nullptr, &done);
         const std::size_t floats = static_cast<std::size_t>(rows) * width;
         read_plane(CLMARCH_CHANNEL_DEPTH, floats, depth);
         if (color) {
@@ -147,7 +186,7 @@ double refine_samples(const Scene& scene, PreparedProgram& prepared, cl::Kernel&
           if (!refine[first + i]) continue;  // not marched: the plane holds another pass's value
           sums.add(first + i, color ? glm::vec3(r[i], g[i], b[i]) : glm::vec3(0.0f), std::isfinite(depth[i]));
         }
-      });
+      }
     }
   }
   sums.finish(buffers, count);
@@ -216,8 +255,8 @@ RenderResult OpenClRenderer::render_rows(int band_first_row, int band_rows) {
       kernel_ms += event_milliseconds(*cones_done);
     }
     if (s.sample_mask) {
-      kernel_ms += refine_samples(s.scene, s.prepared, s.kernel, s.out, *s.sample_mask, params, dispatch, band_first_row,
-                                  end_row, result.buffers);
+      kernel_ms += refine_samples(s.scene, s.prepared, s.kernel, s.out, *s.sample_mask, *s.refine_packets, params, dispatch,
+                                  band_first_row, end_row, result.buffers);
     } else {
       set_single_sample_coverage(result.buffers);
     }
