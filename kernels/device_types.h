@@ -67,6 +67,10 @@ typedef struct MarchParams {
                             w = its radius; w = 0: rays are not clipped */
   float4 tile_reach;     /* x = reach^2: a tile whose centre ray q (unnormalised) has
                             |c x q|^2 > reach^2 |q|^2 misses the bounds (kernels/march.cl); y, z, w = 0 */
+  float4 subpixel;       /* ANTIALIAS programs: xy = where the rays cross their pixel, from its top-left
+                            corner in pixel units ((0.5, 0.5): the centre); z = 1 on a refining pass,
+                            whose rays march only for pixels flagged in sample_mask, without the
+                            coarse pass's starts (made for the centre rays); w = 0 */
   CLMARCH_INT width;
   CLMARCH_INT height;
   CLMARCH_INT first_row;    /* first image row of this dispatch (images render in chunks of rows) */
@@ -87,7 +91,7 @@ typedef struct MarchParams {
 } MarchParams;
 
 #ifndef __OPENCL_VERSION__
-static_assert(sizeof(MarchParams) == 7 * 16 + 16 * 4, "MarchParams layout must match OpenCL C");
+static_assert(sizeof(MarchParams) == 8 * 16 + 16 * 4, "MarchParams layout must match OpenCL C");
 #endif
 
 #endif

@@ -156,8 +156,14 @@ SDF_INLINE Packet packet_at(const MarchParams* params, int index, __global const
   k.columns = min(PACKET_WIDTH, params->width - k.x0);
   k.t_start = (vfloat)(0.0f);
   k.t_end = (vfloat)(params->max_distance);
+#if defined(ANTIALIAS)
+  const int refining = params->subpixel.z != 0.0f;
+#else
+  const int refining = 0;
+#endif
 #if !defined(NEED_SHADING)
-  if (params->bounds.w > 0.0f && tile_misses_bounds(params, k.x0, y0)) {
+  /* The tile test and the cones are made for the centre rays; a refining pass's rays are off them. */
+  if (!refining && params->bounds.w > 0.0f && tile_misses_bounds(params, k.x0, y0)) {
     k.dir = v3_splat(0.0f);
     k.marching = (vint)(0);
     return k;
@@ -167,15 +173,41 @@ SDF_INLINE Packet packet_at(const MarchParams* params, int index, __global const
   k.marching = MASK(LANE_X < k.columns) & MASK(LANE_Y < k.rows);
   if (params->bounds.w > 0.0f) clip_to_bounds(params->bounds, k.dir, &k.marching, &k.t_start, &k.t_end);
 #if defined(COARSE_PASS)
-  const int blocks_x = CLMARCH_COARSE_BLOCKS(params->width);
-  const real cone_start = coarse_starts[(y0 / CLMARCH_COARSE_BLOCK) * blocks_x + k.x0 / CLMARCH_COARSE_BLOCK];
-  k.t_start = fmax(k.t_start, cone_start);
-  k.marching &= MASK(k.t_start < k.t_end);
+  if (!refining) {
+    const int blocks_x = CLMARCH_COARSE_BLOCKS(params->width);
+    const real cone_start = coarse_starts[(y0 / CLMARCH_COARSE_BLOCK) * blocks_x + k.x0 / CLMARCH_COARSE_BLOCK];
+    k.t_start = fmax(k.t_start, cone_start);
+    k.marching &= MASK(k.t_start < k.t_end);
+  }
 #else
   (void)coarse_starts;
+  (void)refining;
 #endif
   return k;
 }
+
+#if defined(ANTIALIAS)
+/* On a refining pass (params->subpixel.z = 1), only the lanes of pixels flagged in sample_mask (one
+ * byte per image pixel, row-major) march; returns whether the packet has any, for a packet without
+ * is not written at all (the host reads only flagged pixels). Other passes: every lane, 1. */
+SDF_INLINE int refine_packet(const MarchParams* params, Packet* k, __global const uchar* sample_mask) {
+  if (params->subpixel.z == 0.0f || k->rows <= 0) return 1;
+  const int at = (params->first_row + k->row0) * params->width + k->x0;
+  mask1 flags[LANES];
+  int any = 0;
+  for (int lane = 0; lane < LANES; ++lane) {
+    const int x = lane % PACKET_WIDTH, y = lane / PACKET_WIDTH;
+    flags[lane] = x < k->columns && y < k->rows && sample_mask[at + y * params->width + x] ? -1 : 0;
+    any |= flags[lane] != 0;
+  }
+#if LANES == 1
+  k->marching &= flags[0];
+#else
+  k->marching &= VLOAD_LANES(0, flags);
+#endif
+  return any;
+}
+#endif
 
 /* The march limits of camera rays; with RECORD_SAMPLES, where the packet's points go. */
 SDF_INLINE MarchLimits camera_limits(SceneValues values, const MarchParams* params, const Packet* k, const MarchRecord* record) {
@@ -250,6 +282,9 @@ __kernel void march(const MarchParams params, __global float* out, __constant fl
 #if defined(COARSE_PASS)
                     , __global const float* coarse_starts
 #endif
+#if defined(ANTIALIAS)
+                    , __global const uchar* sample_mask, __global const int* refine_packets
+#endif
 #if defined(RECORD_SAMPLES)
                     , __global const int* sample_base, __global float* samples, const int sample_stride
 #endif
@@ -267,22 +302,47 @@ __kernel void march(const MarchParams params, __global float* out, __constant fl
 #if !defined(COARSE_PASS)
   __global const float* coarse_starts = 0;
 #endif
-  const int first = (int)get_global_id(0) * PACKETS_PER_ITEM;
-  const Packet a = packet_at(&params, first, coarse_starts);
+  const int item = (int)get_global_id(0) * PACKETS_PER_ITEM;
+#if defined(ANTIALIAS)
+  /* A refining pass runs over the host's list of the chunk's packets that hold a flagged pixel
+   * (padded with packets past the chunk), not over the whole chunk. */
+  const int refining = params.subpixel.z != 0.0f;
+  const int first = refining ? refine_packets[item] : item;
+#else
+  const int first = item;
+#endif
+  Packet a = packet_at(&params, first, coarse_starts);
   if (a.rows <= 0) return; /* padding of the dispatch to whole work-groups */
+#if defined(ANTIALIAS)
+  const int a_wanted = refine_packet(&params, &a, sample_mask);
+#else
+  const int a_wanted = 1;
+#endif
 #if PACKETS_PER_ITEM == 2
-  const Packet b = packet_at(&params, first + 1, coarse_starts);
+#if defined(ANTIALIAS)
+  Packet b = packet_at(&params, refining ? refine_packets[item + 1] : item + 1, coarse_starts);
+#else
+  Packet b = packet_at(&params, first + 1, coarse_starts);
+#endif
+#if defined(ANTIALIAS)
+  const int b_wanted = b.rows > 0 && refine_packet(&params, &b, sample_mask);
+#else
+  const int b_wanted = b.rows > 0;
+#endif
   PlainMarch march_a = plain_march_begin(origin, a.dir, a.marching, a.t_start, a.t_end, camera_limits(values, &params, &a, &record));
   /* Past the chunk b has no lane marching, and its loop never runs. */
   PlainMarch march_b = plain_march_begin(origin, b.dir, b.marching, b.t_start, b.t_end, camera_limits(values, &params, &b, &record));
   march_plain_pair(&march_a, &march_b);
-  const MarchResult ma = plain_march_end(&march_a);
-  finish_packet(values, &a, &ma, &params, out, lights);
-  if (b.rows > 0) {
+  if (a_wanted) {
+    const MarchResult ma = plain_march_end(&march_a);
+    finish_packet(values, &a, &ma, &params, out, lights);
+  }
+  if (b_wanted) {
     const MarchResult mb = plain_march_end(&march_b);
     finish_packet(values, &b, &mb, &params, out, lights);
   }
 #else
+  if (!a_wanted) return;
   const MarchResult m = MARCH(origin, a.dir, a.marching, a.t_start, a.t_end, camera_limits(values, &params, &a, &record));
   finish_packet(values, &a, &m, &params, out, lights);
 #endif

@@ -1,5 +1,6 @@
-// The --buffers EXR: its channel names are a contract (R, G, B, depth, steps, N.x, N.y, N.z) and
-// its values follow the documented rules (linear color, +inf depth on a miss, unit normals).
+// The --buffers EXR: its channel names are a contract (R, G, B, depth, steps, N.x, N.y, N.z, then
+// A, Z, samples, P.x, P.y, P.z) and its values follow the documented rules (linear color, +inf
+// depth on a miss, unit normals, coverage, the camera in the header).
 #include "support/test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -25,7 +26,8 @@ TEST(BuffersExr, ChannelsAndValuesFollowTheContract) {
     EXPECT_EQ(spec.format, OIIO::TypeDesc::FLOAT);
     std::vector<std::string> names(spec.channelnames.begin(), spec.channelnames.end());
     std::sort(names.begin(), names.end());
-    EXPECT_EQ(names, (std::vector<std::string>{"B", "G", "N.x", "N.y", "N.z", "R", "depth", "steps"}));
+    EXPECT_EQ(names, (std::vector<std::string>{"A", "B", "G", "N.x", "N.y", "N.z", "P.x", "P.y", "P.z", "R", "Z", "depth",
+                                               "samples", "steps"}));
     const auto channel = [&](const char* name) { return spec.channelindex(name); };
     const testing::Image image = testing::read_image(dir / "b.exr");
     // The corner misses the sphere, the centre hits it head-on at distance 4. The corner's ray
@@ -38,6 +40,33 @@ TEST(BuffersExr, ChannelsAndValuesFollowTheContract) {
     EXPECT_NEAR(image.at(16, 12, channel("N.z")), 1.0, 1e-2);
     const float nx = image.at(14, 11, channel("N.x")), ny = image.at(14, 11, channel("N.y")), nz = image.at(14, 11, channel("N.z"));
     EXPECT_NEAR(std::sqrt(nx * nx + ny * ny + nz * nz), 1.0, 1e-4) << backend;
+    // A is the coverage of the one ray per pixel; Z is depth; P the hit in the world; the camera
+    // in the header: worldToCamera takes P to (0, 0, -4)-ish in front of the camera.
+    EXPECT_EQ(image.at(16, 12, channel("A")), 1.0f);
+    EXPECT_EQ(image.at(0, 0, channel("A")), 0.0f);
+    EXPECT_EQ(image.at(16, 12, channel("Z")), image.at(16, 12, channel("depth")));
+    EXPECT_TRUE(std::isinf(image.at(0, 0, channel("Z"))));
+    EXPECT_EQ(image.at(16, 12, channel("samples")), 1.0f);
+    // P lies on the unit sphere, depth away from the camera at (0, 0, 5).
+    const double px = image.at(16, 12, channel("P.x")), py = image.at(16, 12, channel("P.y")), pz = image.at(16, 12, channel("P.z"));
+    EXPECT_NEAR(std::sqrt(px * px + py * py + pz * pz), 1.0, 1e-3);
+    EXPECT_NEAR(std::sqrt(px * px + py * py + (pz - 5.0) * (pz - 5.0)), image.at(16, 12, channel("depth")), 1e-5);
+    EXPECT_EQ(image.at(0, 0, channel("P.y")), 0.0f);
+    const OIIO::ParamValue* to_camera = spec.find_attribute("worldToCamera", OIIO::TypeMatrix44);
+    const OIIO::ParamValue* to_ndc = spec.find_attribute("worldToNDC", OIIO::TypeMatrix44);
+    ASSERT_TRUE(to_camera) << backend;
+    ASSERT_TRUE(to_ndc) << backend;
+    const float* m = static_cast<const float*>(to_camera->data());
+    // The world point (0, 0, 1) in camera space, p M with p = (0, 0, 1, 1): camera at z = 5 looking
+    // down -z, so 4 in front of it, z = -4.
+    EXPECT_NEAR(m[2 * 4 + 2] + m[3 * 4 + 2], -4.0, 1e-5);
+    const float* n = static_cast<const float*>(to_ndc->data());
+    // The point (1, 0, 1) projects to x = (1 / 4) / tan(fov / 2) / aspect, w = 4.
+    const double w = n[2 * 4 + 3] + n[3 * 4 + 3] + n[0 * 4 + 3];
+    const double x = n[0 * 4 + 0] + n[2 * 4 + 0] + n[3 * 4 + 0];
+    EXPECT_NEAR(w, 4.0, 1e-5);
+    EXPECT_NEAR(x / w, 0.25 / std::tan(std::acos(-1.0) / 8.0) / (32.0 / 24.0), 1e-5);
+    EXPECT_EQ(spec.get_string_attribute("clmarch:camera.position"), "[0, 0, 5]");
     // The color EXR is linear: the same values as the buffers' R, G, B.
     const testing::Image color = testing::read_image(dir / "c.exr");
     EXPECT_EQ(color.at(16, 12, 0), image.at(16, 12, channel("R")));

@@ -298,7 +298,8 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
   std::vector<double> diffs, ratios;
   for (int j = 0; j < opencl.height; ++j) {
     for (int i = 0; i < opencl.width; ++i) {
-      if (!is_hit(opencl, i, j)) continue;
+      // An anti-aliased pixel's color is the mean of its rays, not its centre hit's shading.
+      if (!is_hit(opencl, i, j) || opencl.at(Channel::Samples, i, j) > 1.0f) continue;
       double size = 1.0;
       for (Channel c : {Channel::R, Channel::G, Channel::B}) size = std::max(size, std::abs(static_cast<double>(reshaded.at(c, i, j))));
       const double diff = max_color_difference(opencl, reshaded, i, j);

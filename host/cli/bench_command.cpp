@@ -25,6 +25,7 @@ CLI::App* add_bench_command(CLI::App& app, BenchCommandOptions& options) {
       "  clmarch bench scenes/torus.yaml --set render.over_relaxation=1.2 --repeat 9 --json\n"
       "  clmarch bench scenes/mandelbulb.yaml --no-reference --device 0 --lanes 8\n"
       "  clmarch bench scenes/moving_shapes.yaml --time 1.5\n"
+      "  clmarch bench scenes/torus.yaml --size 1280x720 --samples 16   # every anti-aliasing pass timed\n"
       "  clmarch bench scenes/torus.yaml --size 320x180 --sweep render.epsilon=1e-2,1e-3,1e-4 --sweep lanes=1,16 --csv t.csv\n"
       "  clmarch bench scenes/menger.yaml --one-at-a-time --sweep render.max_steps=64,128 --sweep precision=double --csv m.csv\n"
       "  clmarch bench scenes/torus.yaml --set render.hit_threshold=pixel_cone --sweep render.cone_factor=0.5,1,2 --append --csv t.csv");

@@ -23,7 +23,8 @@ CLI::App* add_check_command(CLI::App& app, CheckCommandOptions& options) {
       "  clmarch check scenes/torus.yaml --size 160x90\n"
       "  mkdir -p /tmp/torus-check && clmarch check scenes/torus.yaml --json --out-dir /tmp/torus-check\n"
       "  clmarch check scenes/two_spheres.yaml --set render.epsilon=1e-5 --lanes 1 --device 0\n"
-      "  clmarch check scenes/moving_shapes.yaml --time 0.5");
+      "  clmarch check scenes/moving_shapes.yaml --time 0.5\n"
+      "  clmarch check scenes/torus.yaml --samples 16 --size 160x90   # anti-aliased on both");
   add_scene_options(*check, options.scene);
   check->add_flag("--json", options.json, "Print the report as one JSON object on stdout (e.g. --json)");
   check->add_option("--out-dir", options.out_dir,

@@ -46,6 +46,7 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& options) {
       "  clmarch render scenes/torus.yaml --device 0 --lanes 1     # one pixel per work-item\n"
       "  clmarch render scenes/torus.yaml --dump-kernel torus.cl   # the OpenCL C that is built\n"
       "  clmarch render scenes/moving_shapes.yaml --time 1.5       # t = 1.5 in the scene's expressions\n"
+      "  clmarch render scenes/torus.yaml --samples 16 --buffers torus.exr   # anti-aliased, coverage in A\n"
       "  clmarch render scenes/moving_shapes.yaml --frames 0:47 --fps 24 -o frames/shot_####.png\n"
       "  mpirun -n 4 clmarch render scenes/moving_shapes.yaml --frames 0:47 -o frames/shot_####.png   # over 4 MPI ranks\n"
       "  clmarch render scenes/torus.yaml --quiet                  # nothing on stderr unless it fails\n"

@@ -16,6 +16,8 @@ namespace clmarch {
 KernelPurpose purpose_for(const Scene& scene, bool want_buffers) {
   switch (scene.shading.view) {
     case View::Shaded: return want_buffers ? KernelPurpose::Shaded : KernelPurpose::Color;
+    // The samples a pixel gets follow its color's edges: the shaded program decides them.
+    case View::Samples: return want_buffers ? KernelPurpose::Shaded : KernelPurpose::Color;
     case View::Normals: return KernelPurpose::Normals;
     case View::Depth:
     case View::Steps: return want_buffers ? KernelPurpose::Normals : KernelPurpose::DepthSteps;
@@ -30,7 +32,7 @@ void write_outputs(const FrameFiles& files, const Scene& scene, FrameBuffers& bu
   // Both files are written before either replaces its target: a failure leaves both as they were.
   StagedFiles written;
   write_color_image(written, files.output, buffers);
-  if (!files.buffers.empty()) write_buffers_exr(written, files.buffers, buffers);
+  if (!files.buffers.empty()) write_buffers_exr(written, files.buffers, buffers, scene);
   written.commit();
   log_info(fmt::format("wrote {}{}", files.output, files.buffers.empty() ? "" : " and " + files.buffers));
 }

@@ -33,6 +33,15 @@ void add_scene_options(CLI::App& command, SceneOptions& options) {
           "1|4|8|16", "LANES"));
   command.add_option("--time", options.time, "Time t in seconds for expressions in the scene, e.g. center: [cos(t), sin(t), 0]")
       ->check(finite_number([](double) { return true; }, "a finite number of seconds"));
+  command.add_option("--samples", options.samples,
+                     "Rays per pixel, anti-aliasing the image (render.samples, 1..1024; e.g. --samples 16)")
+      ->check(CLI::Validator(
+          [](std::string& value) {
+            const bool digits = !value.empty() && value.size() <= 4 && value.find_first_not_of("0123456789") == std::string::npos;
+            const int n = digits ? std::stoi(value) : 0;
+            return n >= 1 && n <= kMaxSamples ? std::string() : "must be an integer in [1, 1024] (got '" + value + "')";
+          },
+          "1..1024", "N"));
 }
 
 CLI::Validator finite_number(const std::function<bool(double)>& accept, const std::string& expected) {
@@ -52,7 +61,7 @@ CLI::Validator finite_number(const std::function<bool(double)>& accept, const st
 void check_host_memory(const Scene& scene, const std::string& size_option) {
   const std::optional<AvailableMemory> available = available_host_memory();
   if (!available) return;
-  const std::string shortfall = host_memory_shortfall(scene.render.width, scene.render.height, *available);
+  const std::string shortfall = host_memory_shortfall(scene.render.width, scene.render.height, *available, scene.render.samples);
   if (shortfall.empty()) return;
   if (!size_option.empty()) throw InputError(fmt::format("{}: {}", size_option, shortfall));
   const std::string where = scene.size_origin.empty() ? scene.source_name : scene.size_origin;
@@ -91,6 +100,7 @@ Scene load_scene_with_options(const SceneOptions& options, std::optional<double>
     scene.render.width = size->first;
     scene.render.height = size->second;
   }
+  if (options.samples) scene.render.samples = *options.samples;
   check_host_memory(scene, size ? "--size " + options.size : "");
   return scene;
 }

@@ -1,5 +1,5 @@
 // Options every command that renders a scene shares: the scene file, --size, --set, --device,
-// --lanes; and loading the scene they describe.
+// --lanes, --time, --samples; and loading the scene they describe.
 #pragma once
 
 #include "render/opencl_renderer.hpp"
@@ -22,6 +22,8 @@ struct SceneOptions {
   std::optional<int> lanes;
   /// The time t of expressions in the scene, in seconds (--time); absent: 0.
   std::optional<double> time;
+  /// render.samples, overriding the scene's (--samples).
+  std::optional<int> samples;
 };
 
 /// Checks an option's text is a finite decimal number that accept takes, else says

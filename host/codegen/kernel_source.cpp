@@ -80,6 +80,7 @@ std::string feature_defines(const Scene& scene, const KernelOptions& options) {
   if (options.purpose != KernelPurpose::EvalPoints) {
     out += fmt::format("#define PACKETS_PER_ITEM {}\n", packets_per_item(scene, options.lanes));
   }
+  if (uses_antialiasing(scene, options.purpose)) out += "#define ANTIALIAS\n";
   if (options.variant.precision == Precision::Double) out += "#define DOUBLE_PRECISION\n";
   if (options.variant.native_math) out += "#define NATIVE_MATH\n";
   if (!options.fp_contraction) out += "#define NO_FP_CONTRACT\n";
@@ -132,6 +133,10 @@ bool uses_kind(const Node& node, std::initializer_list<NodeKind> kinds) {
 }
 
 }  // namespace
+
+bool uses_antialiasing(const Scene& scene, KernelPurpose purpose) {
+  return scene.render.samples > 1 && purpose != KernelPurpose::EvalPoints && purpose != KernelPurpose::Ceiling;
+}
 
 std::string kernel_file(std::string_view name) {
   for (const EmbeddedFile& file : embedded_kernel_files()) {

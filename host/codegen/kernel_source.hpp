@@ -72,6 +72,11 @@ struct MarchOutputs {
 };
 MarchOutputs march_outputs(const Scene& scene, KernelPurpose purpose);
 
+/// Whether the march program of purpose anti-aliases (ANTIALIAS: render.samples > 1; not the
+/// benchmark's ceiling): its camera rays cross their pixels at MarchParams::sample, and it takes
+/// the sample_mask argument of refining passes (kernels/march.cl).
+bool uses_antialiasing(const Scene& scene, KernelPurpose purpose);
+
 /// Packets each work-item of the march kernel marches (PACKETS_PER_ITEM): two, interleaved, with
 /// vector lanes (CPUs), except under the cells tiling, whose traversal marches one; one with a
 /// single lane (GPUs, where work-items already run in lock-step and registers are scarce).

@@ -49,6 +49,11 @@ void apply_view(FrameBuffers& buffers, View view, const RenderSettings& settings
         set_gray(buffers, i, buffers.plane(Channel::Steps)[i] / static_cast<float>(settings.max_steps));
       }
       return;
+    case View::Samples:
+      for (std::size_t i = 0; i < pixels; ++i) {
+        set_gray(buffers, i, buffers.plane(Channel::Samples)[i] / static_cast<float>(settings.samples));
+      }
+      return;
   }
 }
 

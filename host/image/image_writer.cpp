@@ -3,12 +3,14 @@
 
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
+#include "scene/camera_model.hpp"
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace clmarch {
@@ -40,14 +42,33 @@ void expect_reads_back(const std::filesystem::path& file, const OIIO::ImageSpec&
   }
 }
 
+/// A plane of an output file and its channel name there.
+struct NamedPlane {
+  const std::vector<float>* plane;
+  std::string name;
+};
+
+/// Header attributes of an output file (the EXR's camera).
+struct HeaderAttributes {
+  std::vector<std::pair<std::string, std::array<float, 16>>> matrices;
+  std::vector<std::pair<std::string, std::string>> strings;
+};
+
+std::vector<NamedPlane> named(const FrameBuffers& buffers, const std::vector<Channel>& channels) {
+  std::vector<NamedPlane> out;
+  for (Channel c : channels) out.push_back({&buffers.plane(c), kChannelNames[static_cast<int>(c)]});
+  return out;
+}
+
 /// Interleaves the given planes and writes them with OpenImageIO as format.
 void write_interleaved(StagedFiles& files, const std::filesystem::path& path, const FrameBuffers& buffers,
-                       const std::vector<Channel>& channels, OIIO::TypeDesc format, bool srgb) {
+                       const std::vector<NamedPlane>& channels, OIIO::TypeDesc format, bool srgb,
+                       const HeaderAttributes& header = {}) {
   const std::size_t pixels = static_cast<std::size_t>(buffers.width) * buffers.height;
   const std::size_t nc = channels.size();
   std::vector<float> interleaved(pixels * nc);
   for (std::size_t c = 0; c < nc; ++c) {
-    const std::vector<float>& plane = buffers.plane(channels[c]);
+    const std::vector<float>& plane = *channels[c].plane;
     for (std::size_t i = 0; i < pixels; ++i) interleaved[i * nc + c] = srgb ? linear_to_srgb(plane[i]) : plane[i];
   }
   files.stage(path, [&](const std::filesystem::path& temp) {
@@ -55,8 +76,10 @@ void write_interleaved(StagedFiles& files, const std::filesystem::path& path, co
     if (!out) throw OutputError(fmt::format("{}: cannot write: {}", path.string(), joined_lines(OIIO::geterror())));
     OIIO::ImageSpec spec(buffers.width, buffers.height, static_cast<int>(nc), format);
     spec.channelnames.clear();
-    for (Channel c : channels) spec.channelnames.emplace_back(kChannelNames[static_cast<int>(c)]);
+    for (const NamedPlane& c : channels) spec.channelnames.push_back(c.name);
     if (srgb) spec.attribute("oiio:ColorSpace", "sRGB");
+    for (const auto& [name, m] : header.matrices) spec.attribute(name, OIIO::TypeMatrix44, m.data());
+    for (const auto& [name, text] : header.strings) spec.attribute(name, text);
     // The file is encoded in memory and written by write_bytes, which sees every write's error;
     // OpenImageIO's own file output ignores a failed flush at close (a full disk, a size limit).
     // The few formats that cannot encode to memory are read back instead. The buffer is reserved
@@ -97,7 +120,7 @@ void check_image_path(const std::filesystem::path& path, const std::string& opti
 }
 
 void write_color_image(StagedFiles& files, const std::filesystem::path& path, const FrameBuffers& buffers) {
-  const std::vector<Channel> rgb = {Channel::R, Channel::G, Channel::B};
+  const std::vector<NamedPlane> rgb = named(buffers, {Channel::R, Channel::G, Channel::B});
   if (is_float_format(path)) {
     write_interleaved(files, path, buffers, rgb, OIIO::TypeDesc::FLOAT, false);
   } else {
@@ -105,10 +128,73 @@ void write_color_image(StagedFiles& files, const std::filesystem::path& path, co
   }
 }
 
+namespace {
+
+/// The EXR's channels of every render: the contract's eight, then A, Z (depth, by the name
+/// compositors look for) and samples.
+std::vector<NamedPlane> buffer_planes(const FrameBuffers& buffers) {
+  std::vector<NamedPlane> planes = named(buffers, {Channel::R, Channel::G, Channel::B, Channel::Depth, Channel::Steps,
+                                                   Channel::NX, Channel::NY, Channel::NZ, Channel::A});
+  planes.push_back({&buffers.plane(Channel::Depth), "Z"});
+  planes.push_back({&buffers.plane(Channel::Samples), "samples"});
+  return planes;
+}
+
+std::string vec3_text(const glm::dvec3& v) { return fmt::format("[{}, {}, {}]", v.x, v.y, v.z); }
+
+/// A row-vector matrix (Imath's p' = p M) whose columns are the given rows of a 4 x 4 transform.
+std::array<float, 16> imath_matrix(const glm::dvec4 (&rows)[4]) {
+  std::array<float, 16> m{};
+  for (int column = 0; column < 4; ++column) {
+    for (int row = 0; row < 4; ++row) m[static_cast<std::size_t>(row * 4 + column)] = static_cast<float>(rows[column][row]);
+  }
+  return m;
+}
+
+/// worldToCamera (OpenEXR's camera looks down -z, x right, y up) and worldToNDC (after the divide
+/// by w, x and y run from -1 to 1 across the image, right and up; w is the depth along the view
+/// axis and z = 1 / w).
+HeaderAttributes camera_attributes(const Scene& scene, const CameraBasis& basis) {
+  const glm::dvec3 o = basis.origin, f = basis.forward;
+  const glm::dvec3 r = glm::normalize(basis.right_extent), u = glm::normalize(basis.up_extent);
+  const glm::dvec3 sx = basis.right_extent / glm::dot(basis.right_extent, basis.right_extent);
+  const glm::dvec3 sy = basis.up_extent / glm::dot(basis.up_extent, basis.up_extent);
+  const glm::dvec4 camera[4] = {{r, -glm::dot(r, o)}, {u, -glm::dot(u, o)}, {-f, glm::dot(f, o)}, {0.0, 0.0, 0.0, 1.0}};
+  const glm::dvec4 ndc[4] = {{sx, -glm::dot(sx, o)}, {sy, -glm::dot(sy, o)}, {0.0, 0.0, 0.0, 1.0}, {f, -glm::dot(f, o)}};
+  HeaderAttributes header;
+  header.matrices = {{"worldToCamera", imath_matrix(camera)}, {"worldToNDC", imath_matrix(ndc)}};
+  header.strings = {{"clmarch:camera.position", vec3_text(scene.camera.position)},
+                    {"clmarch:camera.look_at", vec3_text(scene.camera.look_at)},
+                    {"clmarch:camera.up", vec3_text(scene.camera.up)},
+                    {"clmarch:camera.fov", fmt::format("{}", scene.camera.fov_degrees)}};
+  return header;
+}
+
+}  // namespace
+
 void write_buffers_exr(StagedFiles& files, const std::filesystem::path& path, const FrameBuffers& buffers) {
-  const std::vector<Channel> all = {Channel::R,     Channel::G,  Channel::B,  Channel::Depth,
-                                    Channel::Steps, Channel::NX, Channel::NY, Channel::NZ};
-  write_interleaved(files, path, buffers, all, OIIO::TypeDesc::FLOAT, false);
+  write_interleaved(files, path, buffers, buffer_planes(buffers), OIIO::TypeDesc::FLOAT, false);
+}
+
+void write_buffers_exr(StagedFiles& files, const std::filesystem::path& path, const FrameBuffers& buffers, const Scene& scene) {
+  const CameraBasis basis = camera_basis(scene.camera, buffers.width, buffers.height);
+  const std::size_t pixels = static_cast<std::size_t>(buffers.width) * buffers.height;
+  std::array<std::vector<float>, 3> position;
+  for (std::vector<float>& axis : position) axis.assign(pixels, 0.0f);
+  const std::vector<float>& depth = buffers.plane(Channel::Depth);
+  for (int j = 0; j < buffers.height; ++j) {
+    for (int i = 0; i < buffers.width; ++i) {
+      const std::size_t at = static_cast<std::size_t>(j) * buffers.width + i;
+      if (!std::isfinite(depth[at])) continue;
+      const glm::dvec3 p = basis.origin + static_cast<double>(depth[at]) * pixel_ray_direction(basis, i, j);
+      for (int axis = 0; axis < 3; ++axis) position[axis][at] = static_cast<float>(p[axis]);
+    }
+  }
+  std::vector<NamedPlane> planes = buffer_planes(buffers);
+  planes.push_back({&position[0], "P.x"});
+  planes.push_back({&position[1], "P.y"});
+  planes.push_back({&position[2], "P.z"});
+  write_interleaved(files, path, buffers, planes, OIIO::TypeDesc::FLOAT, false, camera_attributes(scene, basis));
 }
 
 }  // namespace clmarch

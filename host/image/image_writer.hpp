@@ -4,6 +4,7 @@
 
 #include "common/atomic_file.hpp"
 #include "frame/frame_buffers.hpp"
+#include "scene/scene.hpp"
 
 #include <filesystem>
 #include <string>
@@ -18,8 +19,13 @@ void check_image_path(const std::filesystem::path& path, const std::string& opti
 /// Staged into files: in place when they are committed.
 void write_color_image(StagedFiles& files, const std::filesystem::path& path, const FrameBuffers& buffers);
 
-/// Writes every channel (R, G, B, depth, steps, N.x, N.y, N.z) as one float EXR, staged into files.
+/// Writes every channel (R, G, B, depth, steps, N.x, N.y, N.z, A, Z, samples) as one float EXR,
+/// staged into files.
 void write_buffers_exr(StagedFiles& files, const std::filesystem::path& path, const FrameBuffers& buffers);
+/// The same with what the scene's camera adds (docs/scene-format.md, "Buffers"): the channels
+/// P.x, P.y, P.z (world position of the centre ray's hit, 0 on a miss) and the header attributes
+/// worldToCamera and worldToNDC (OpenEXR's standard M44f) and clmarch:camera.* (the camera keys).
+void write_buffers_exr(StagedFiles& files, const std::filesystem::path& path, const FrameBuffers& buffers, const Scene& scene);
 
 /// The sRGB transfer function of a linear value, clamped to [0, 1].
 float linear_to_srgb(float linear);

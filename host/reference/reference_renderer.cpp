@@ -4,6 +4,7 @@
 
 #include "common/cancellation.hpp"
 #include "common/progress.hpp"
+#include "frame/antialias.hpp"
 #include "reference/reference_cones.hpp"
 #include "reference/reference_march.hpp"
 #include "reference/reference_sdf.hpp"
@@ -186,6 +187,29 @@ FrameBuffers render_reference(const Scene& scene, const std::optional<ConeStarts
       progress.advance();
     }
   });
+  if (scene.render.samples == 1) {
+    set_single_sample_coverage(fb);
+    return fb;
+  }
+  // Anti-aliasing: the pixels the centre rays show edges at get the other samples, marched like
+  // the device's refining passes without the cones' starts (made for the centre rays).
+  const int count = scene.render.samples;
+  SampleSums sums(fb, pixels_to_refine(fb, scene.render.adaptive));
+  tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
+    for (int j = rows.begin(); j != rows.end(); ++j) {
+      throw_if_cancelled();
+      for (int i = 0; i < width; ++i) {
+        const std::size_t at = static_cast<std::size_t>(j) * width + i;
+        if (!sums.refine()[at]) continue;
+        for (int k = 1; k < count; ++k) {
+          const glm::dvec2 point = sample_point(k, count);
+          const RayResult r = trace_within(scene, bounds, basis.origin, camera_ray_direction(basis, i + point.x, j + point.y));
+          sums.add(at, glm::vec3(r.color), r.hit);
+        }
+      }
+    }
+  });
+  sums.finish(fb, count);
   return fb;
 }
 

@@ -15,8 +15,8 @@
 namespace clmarch {
 namespace {
 
-/// Channels of the --buffers EXR, which the writer interleaves into one copy.
-constexpr std::uint64_t kWrittenChannels = 8;
+/// Channels of the --buffers EXR (image_writer.cpp), which the writer interleaves into one copy.
+constexpr std::uint64_t kWrittenChannels = 14;
 
 /// "MemAvailable:  22800696 kB" from /proc/meminfo, in bytes.
 std::optional<std::uint64_t> meminfo_available() {
@@ -91,12 +91,15 @@ std::string gibibytes(std::uint64_t bytes) { return fmt::format("{:.1f} GiB", st
 
 }  // namespace
 
-std::uint64_t host_bytes_per_pixel() {
-  return 2 * kChannelCount * sizeof(float) + 3 * kWrittenChannels * sizeof(float);
+std::uint64_t host_bytes_per_pixel(int samples) {
+  const std::uint64_t frame = 2 * kChannelCount * sizeof(float) + 3 * kWrittenChannels * sizeof(float);
+  // SampleSums' four doubles, its flags and the device's copy of them, four read-back planes.
+  const std::uint64_t antialiasing = 4 * sizeof(double) + 2 + 4 * sizeof(float);
+  return samples > 1 ? frame + antialiasing : frame;
 }
 
-std::uint64_t render_host_bytes(int width, int height) {
-  return static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) * host_bytes_per_pixel();
+std::uint64_t render_host_bytes(int width, int height, int samples) {
+  return static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) * host_bytes_per_pixel(samples);
 }
 
 std::optional<AvailableMemory> available_host_memory() {
@@ -118,12 +121,12 @@ std::optional<AvailableMemory> available_host_memory() {
   return best;
 }
 
-std::string host_memory_shortfall(int width, int height, const AvailableMemory& available) {
-  const std::uint64_t needed = render_host_bytes(width, height);
+std::string host_memory_shortfall(int width, int height, const AvailableMemory& available, int samples) {
+  const std::uint64_t needed = render_host_bytes(width, height, samples);
   if (needed <= available.bytes) return {};
   return fmt::format("{} x {} pixels need {} bytes ({}) of host memory ({} bytes per pixel), but only {} bytes ({}) "
                      "are available ({})",
-                     width, height, needed, gibibytes(needed), host_bytes_per_pixel(), available.bytes,
+                     width, height, needed, gibibytes(needed), host_bytes_per_pixel(samples), available.bytes,
                      gibibytes(available.bytes), available.source);
 }
 

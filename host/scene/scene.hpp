@@ -137,6 +137,9 @@ inline constexpr const char* kCoarsePassNames[] = {"none", "cone", "auto"};
 enum class Pruning { Auto, None, Grid };
 inline constexpr const char* kPruningNames[] = {"auto", "none", "grid"};
 
+/// The most samples per pixel render.samples allows.
+inline constexpr int kMaxSamples = 1024;
+
 /// Settings of the march itself.
 struct RenderSettings {
   int width = 640;
@@ -163,6 +166,11 @@ struct RenderSettings {
   /// (the default): the cone for scenes without a bounding sphere or step-count occlusion.
   CoarsePass coarse_pass = CoarsePass::Auto;
   Pruning pruning = Pruning::Auto;
+  /// Anti-aliasing: a pixel's color is the mean of up to samples rays at stratified points of its
+  /// area (a box filter; host/frame/antialias.hpp); 1 = the centre ray alone.
+  int samples = 1;
+  /// With samples > 1: only pixels whose neighbourhood shows an edge get more than the centre ray.
+  bool adaptive = true;
 
   bool operator==(const RenderSettings&) const = default;
 };
@@ -247,8 +255,8 @@ enum class ToneMap { None, Reinhard };
 inline constexpr const char* kToneMapNames[] = {"none", "reinhard"};
 
 /// What the color image shows: the lit scene or one of the debug views.
-enum class View { Shaded, Normals, Depth, Steps };
-inline constexpr const char* kViewNames[] = {"shaded", "normals", "depth", "steps"};
+enum class View { Shaded, Normals, Depth, Steps, Samples };
+inline constexpr const char* kViewNames[] = {"shaded", "normals", "depth", "steps", "samples"};
 
 /// Beer-Lambert fog on hits: color = mix(fog color, color, exp(-density * depth)).
 struct Fog {

@@ -199,6 +199,12 @@ std::string YamlReader::text(const YAML::Node& node, const std::string& what) co
   return node.Scalar();
 }
 
+bool YamlReader::boolean(const YAML::Node& node, const std::string& what) const {
+  if (node.IsScalar() && node.Scalar() == "true") return true;
+  if (node.IsScalar() && node.Scalar() == "false") return false;
+  fail(node, fmt::format("{} must be true or false (got {})", what, describe_yaml(node)));
+}
+
 glm::dvec3 YamlReader::vec3(const YAML::Node& node, const std::string& what, Range range) const {
   if (!node.IsSequence() || node.size() != 3) {
     fail(node, fmt::format("{} must be a list of 3 numbers [x, y, z] (got {})", what,

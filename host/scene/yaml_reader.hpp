@@ -38,6 +38,8 @@ class YamlReader {
   double number(const YAML::Node& node, const std::string& what, Range range = Range::any()) const;
   int integer(const YAML::Node& node, const std::string& what, Range range) const;
   std::string text(const YAML::Node& node, const std::string& what) const;
+  /// true or false, spelt so (not yes/no/on/off, which YAML 1.1 also reads as booleans).
+  bool boolean(const YAML::Node& node, const std::string& what) const;
   glm::dvec3 vec3(const YAML::Node& node, const std::string& what, Range range = Range::any()) const;
   /// A color: [r, g, b] or one number for gray; components >= 0.
   glm::dvec3 color(const YAML::Node& node, const std::string& what) const;
