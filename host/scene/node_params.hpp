@@ -80,18 +80,8 @@ struct ParamSpec {
   struct Kind {                                                          \
     params                                                               \
   };
+// node_kinds.def undefines the parameter macros at its end: the visits below define them anew.
 #include "scene/node_kinds.def"
-#undef CLMARCH_POINT
-#undef CLMARCH_VECTOR
-#undef CLMARCH_DIRECTION
-#undef CLMARCH_SCALAR
-#undef CLMARCH_INTEGER
-#undef CLMARCH_CHOICE
-#undef CLMARCH_REQUIRED_SCALAR
-#undef CLMARCH_REQUIRED_VECTOR
-#undef CLMARCH_REQUIRED_INTEGER
-#undef CLMARCH_REQUIRED_INTEGERS
-#undef CLMARCH_REQUIRED_AXES
 
 /// Drops the void that closes a list generated with a comma after every entry.
 template <class... Types>
@@ -141,18 +131,6 @@ using NodeParams = VariantBeforeVoid<TypeList<
 #define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params) CLMARCH_KIND_PARAMS(Kind, params)
 #include "scene/node_kinds.def"
 #undef CLMARCH_KIND_PARAMS
-
-#undef CLMARCH_POINT
-#undef CLMARCH_VECTOR
-#undef CLMARCH_DIRECTION
-#undef CLMARCH_SCALAR
-#undef CLMARCH_INTEGER
-#undef CLMARCH_CHOICE
-#undef CLMARCH_REQUIRED_SCALAR
-#undef CLMARCH_REQUIRED_VECTOR
-#undef CLMARCH_REQUIRED_INTEGER
-#undef CLMARCH_REQUIRED_INTEGERS
-#undef CLMARCH_REQUIRED_AXES
 
 /// Whether a parameter struct is a primitive's.
 template <class Params>
