@@ -232,5 +232,47 @@ TEST(KernelNormals, MatchTheSphereClosedFormForEachMethod) {
   }
 }
 
+// Far from the map frame's origin (the camera at the origin, the sphere 58 away along x, so the
+// hits have x of 57 to 58, where float's spacing is 3.8e-6, and y, z near 0), each axis's taps
+// p +- h round to float: x's spacing differs from 2h by a fraction of a unit of the last place there
+// (0.8 % at h = 1e-4), y's and z's hardly, so a normal divided by 2h on every axis turned by 0.27
+// degrees (issue 26). Divided by the taps' actual spacing, what is left is the rounding of the tap
+// values: each is |q| - r with q = tap - c exact or nearly (Sterbenz on x) and |q| close to r, two
+// roundings of about u r; a difference of two taps over the spacing 2h errs by at most 2 u r / h
+// per component, 2 sqrt(3) u r / h in all (0.12 degrees; measured 0.04), against which the central
+// stencil's 2 h^2 is nothing.
+TEST(KernelNormals, HoldFarFromTheFrameOrigin) {
+  const double r = 1.0, h = 1e-4;
+  Scene scene = scene_from_yaml(fmt::format(
+      "camera: {{position: [0, 0, 0], look_at: [58, 0, 0.5], fov: 3}}\n"
+      "render: {{width: 48, height: 48, normal_epsilon: {}, max_distance: 100}}\n"
+      "sdf: {{sphere: {{center: [58, 0, 0.5], radius: {}}}}}\n",
+      h, r));
+  ASSERT_EQ(map_frame_origin(scene), glm::dvec3(0.0));
+  const double u = 0x1p-24;  // float's unit roundoff
+  const double tolerance = 2.0 * h * h + 2.0 * std::sqrt(3.0) * u * r / h;
+  for (int lanes : {1, 16}) {
+    OpenClOptions options;
+    options.lanes = lanes;
+    options.purpose = KernelPurpose::Normals;
+    const FrameBuffers buffers = render_opencl(scene, options).buffers;
+    const CameraBasis basis = camera_basis(scene.camera, scene.render.width, scene.render.height);
+    int compared = 0;
+    double largest = 0.0;
+    for (int j = 0; j < scene.render.height; ++j) {
+      for (int i = 0; i < scene.render.width; ++i) {
+        const double depth = buffers.at(Channel::Depth, i, j);
+        if (!std::isfinite(depth)) continue;
+        const glm::dvec3 p = basis.origin + depth * pixel_ray_direction(basis, i, j);
+        const glm::dvec3 normal(buffers.at(Channel::NX, i, j), buffers.at(Channel::NY, i, j), buffers.at(Channel::NZ, i, j));
+        largest = std::max(largest, glm::length(normal - glm::normalize(p - glm::dvec3(58.0, 0.0, 0.5))));
+        ++compared;
+      }
+    }
+    EXPECT_LE(largest, tolerance) << "lanes " << lanes << ": " << glm::degrees(largest) << " degrees";
+    EXPECT_GT(compared, 48 * 48 / 4) << "the sphere covers part of the image";
+  }
+}
+
 }  // namespace
 }  // namespace clmarch
