@@ -2,7 +2,8 @@
 # Installs what clmarch needs from Debian's packages, skipping what is present. Run as root (or
 # with sudo available); safe to run again. clang and libclang-rt-14-dev (libFuzzer and clang's
 # sanitizer runtimes) are for scripts/fuzz.sh; libopenmpi-dev and openmpi-bin let `clmarch render`
-# run under mpirun (docs/cli.md#mpi). `setup.sh --plots` also installs python3-matplotlib
+# run under mpirun (docs/cli.md#mpi); python3 runs scripts/large-scene.py, whose scenes the tests
+# check. `setup.sh --plots` also installs python3-matplotlib
 # for scripts/sweep-plot.py (run it with /usr/bin/python3).
 set -euo pipefail
 
@@ -14,6 +15,7 @@ packages=(
   libgtest-dev libbenchmark-dev libmuparser-dev
   clang libclang-rt-14-dev
   libopenmpi-dev openmpi-bin
+  python3
 )
 for arg in "$@"; do
   case "$arg" in

@@ -1,18 +1,24 @@
 // The operand grid of large unions (host/prune/operand_grid.hpp): its pruned evaluation against the
 // unpruned one on random trees (every operator kind inside operands, smooth radii from 0 to large,
-// transforms, materials), on the kernel at every packet width and against the reference; its bound
-// outside the grid; and the program's size, which must not grow with the scene.
+// transforms, materials) and on every shipped scene, on the kernel at every packet width and
+// against the reference; its bound outside the grid; the scale script's scenes through the check;
+// and the program's size, which must not grow with the scene.
+#include "check/cross_check.hpp"
 #include "codegen/kernel_source.hpp"
 #include "prune/operand_grid.hpp"
+#include "reference/reference_renderer.hpp"
 #include "reference/reference_sdf.hpp"
 #include "render/opencl_renderer.hpp"
 #include "scene/scene_bounds.hpp"
+#include "scene/scene_loader.hpp"
 #include "support/test_support.hpp"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cfloat>
+#include <cstdlib>
+#include <filesystem>
 #include <random>
 
 namespace clmarch {
@@ -197,6 +203,68 @@ TEST(OperandGrid, CellListsAreAscendingNonEmptyAndShort) {
   // those within its nearest's reach plus its own diagonal, far fewer than all.
   const double mean = static_cast<double>(grid.operands.size()) / static_cast<double>(grid.cell_count());
   EXPECT_LT(mean, n / 4.0);
+}
+
+// The largest grid-able union of every shipped scene, taken alone in its own frame, evaluated from
+// its grid (render.pruning: grid, whatever its size) equals its unpruned evaluation inside the grid,
+// within the same rounding as the random trees above.
+TEST(OperandGrid, EqualsTheUnprunedUnionOfEveryShippedScene) {
+  int compared_scenes = 0;
+  for (const std::string& name : testing::shipped_scene_names()) {
+    SCOPED_TRACE(name);
+    Scene scene = load_scene_file(testing::source_path("scenes/" + name).string());
+    scene.render.pruning = Pruning::Grid;
+    const Node* union_node = grid_union(scene);
+    if (!union_node) continue;
+    Scene pruned;
+    pruned.render.pruning = Pruning::Grid;
+    pruned.sdf = *union_node;
+    pruned.sdf.transform = Transform{};
+    Scene full = pruned;
+    full.render.pruning = Pruning::None;
+    ASSERT_EQ(grid_union(pruned), &pruned.sdf);
+    const OperandGrid grid = build_operand_grid(pruned.sdf, glm::dvec3(0.0));
+    std::vector<glm::dvec3> points = sample_points(static_cast<unsigned>(compared_scenes) + 5, grid, 2048);
+    std::erase_if(points, [&](const glm::dvec3& p) { return !inside(grid, p); });
+    const std::size_t operands = pruned.sdf.children.size();
+    const double extent = glm::length(grid.upper - grid.lower);
+    const double k = is_smooth_operator(pruned.sdf.kind) ? smooth_k(pruned.sdf) : 0.0;
+    const double tolerance = k == 0.0 ? 0.0 : 2.0 * FLT_EPSILON * (extent + 1.0) * static_cast<double>(operands);
+    const PointSamples a = eval_points_opencl(pruned, points, OpenClOptions{});
+    const PointSamples b = eval_points_opencl(full, points, OpenClOptions{});
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      EXPECT_NEAR(a.distance[i], b.distance[i], tolerance) << points[i].x << ", " << points[i].y << ", " << points[i].z;
+    }
+    EXPECT_GT(points.size(), 500u);
+    ++compared_scenes;
+  }
+  EXPECT_GE(compared_scenes, 3) << "most shipped scenes have a union of bounded operands";
+}
+
+// The scenes scripts/large-scene.py writes (issue 23: random spheres in a union, a smooth-unioned
+// molecule, boxes less capsules), at two sizes each, pass the cross-check that clmarch check runs,
+// against the unpruned double reference.
+TEST(OperandGrid, ScriptScenesPassTheCheck) {
+  const testing::TempDir folder;
+  for (const char* kind : {"spheres", "molecule", "parts"}) {
+    for (int n : {60, 300}) {
+      SCOPED_TRACE(fmt::format("{} {}", kind, n));
+      const std::filesystem::path file = folder / fmt::format("{}-{}.yaml", kind, n);
+      const std::string command = fmt::format("python3 {} {} {} > {}", testing::shell_quote(testing::source_path("scripts/large-scene.py").string()),
+                                              kind, n, testing::shell_quote(file.string()));
+      ASSERT_EQ(std::system(command.c_str()), 0) << command;
+      Scene scene = load_scene_file(file.string());
+      scene.render.width = 64;
+      scene.render.height = 36;
+      ASSERT_NE(grid_union(scene), nullptr) << "render.pruning: auto takes the grid from 48 operands";
+      OpenClOptions options;
+      options.lanes = 16;
+      const FrameBuffers opencl = render_opencl(scene, options).buffers;
+      const CheckReport report = cross_check(scene, opencl, render_reference(scene), reshade_hits(scene, opencl));
+      EXPECT_TRUE(report.passed()) << report.to_text();
+      EXPECT_GT(report.both_hit, 64 * 36 / 10);
+    }
+  }
 }
 
 TEST(OperandGrid, AutoPrunesOnlyLargeUnionsAndNoneNever) {

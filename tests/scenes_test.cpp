@@ -14,16 +14,6 @@
 namespace clmarch {
 namespace {
 
-std::vector<std::string> shipped_scenes() {
-  std::vector<std::string> names;
-  for (const auto& entry : std::filesystem::directory_iterator(testing::source_path("scenes"))) {
-    const std::string ext = entry.path().extension().string();
-    if (ext == ".yaml" || ext == ".json") names.push_back(entry.path().filename().string());
-  }
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
 Scene load_small(const std::string& name) {
   Scene scene = load_scene_file(testing::source_path("scenes/" + name).string());
   scene.render.width = 64;
@@ -108,7 +98,7 @@ TEST_P(ShippedScene, FiniteBuffersThatAgreeAcrossPacketWidths) {
   EXPECT_LE(mask_differences, 2) << "hit masks of packet widths 1 and 16 differ";
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene, ::testing::ValuesIn(shipped_scenes()), [](const auto& info) {
+INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene, ::testing::ValuesIn(testing::shipped_scene_names()), [](const auto& info) {
   std::string name = info.param;
   for (char& ch : name) ch = std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
   return name;

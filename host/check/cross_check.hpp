@@ -38,6 +38,10 @@ struct CheckReport {
   ErrorSummary depth_in_tolerances;
   double steps_diff_mean = 0.0;
   double steps_diff_max = 0.0;
+  /// The scene evaluates a union from its operand grid, whose field outside the grid is a lower
+  /// bound of the union: its rays take more steps than the reference's there by design, so only
+  /// steps the kernel took fewer than the reference count (fewer would still be a fault).
+  bool steps_one_sided = false;
   /// Degrees, over pixels both hit.
   double normal_angle_p99 = 0.0;
   double color_max_abs = 0.0;

@@ -65,6 +65,15 @@ std::string error_of(const std::string& yaml, const std::vector<SceneOverride>& 
 
 std::filesystem::path source_path(const std::string& relative) { return std::filesystem::path(CLMARCH_SOURCE_DIR) / relative; }
 
+std::vector<std::string> shipped_scene_names() {
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(source_path("scenes"))) {
+    if (entry.path().extension() == ".yaml" || entry.path().extension() == ".json") names.push_back(entry.path().filename().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
 CommandResult run_clmarch(const std::vector<std::string>& args, const std::vector<std::string>& environment) {
   return run_clmarch_in_shell("", args, environment);
 }

@@ -19,6 +19,10 @@ std::string error_of(const std::string& yaml, const std::vector<SceneOverride>& 
 /// A path inside the source tree (scenes/torus.yaml).
 std::filesystem::path source_path(const std::string& relative);
 
+/// The file names of the scenes shipped in scenes/ (.yaml and .json), sorted: enumerated, so that a
+/// new scene is covered by every test that loops over them the day it is added.
+std::vector<std::string> shipped_scene_names();
+
 struct CommandResult {
   int exit_code = -1;
   std::string out;
