@@ -1,7 +1,10 @@
 // Images too large for the machine's memory: the estimate, the message, and the CLI refusing them
-// before anything is allocated (exit code 2, one line naming --size or render.width/height).
+// before anything is allocated (exit code 2, one line naming --size or render.width/height); scene
+// values too large for the device (the operand grid's host memory is tested in operand_grid_test).
+#include "cl/devices.hpp"
 #include "common/errors.hpp"
 #include "frame/frame_buffers.hpp"
+#include "render/device_inputs.hpp"
 #include "render/host_memory.hpp"
 #include "support/test_support.hpp"
 
@@ -36,6 +39,25 @@ TEST(HostMemory, ShortfallNamesNeededAndAvailableBytes) {
   EXPECT_NE(message.find("but only 1000000 bytes"), std::string::npos) << message;
   EXPECT_NE(message.find("(MemAvailable in /proc/meminfo)"), std::string::npos) << message;
   EXPECT_EQ(message.find('\n'), std::string::npos);
+}
+
+// Issue 23: a values buffer past the device's limit for it is refused naming the limit: the one
+// buffer it may allocate with an operand grid, its __constant memory without.
+TEST(DeviceMemory, ValuesBufferBeyondTheDeviceNamesTheLimit) {
+  const DeviceMemoryLimits limits{"cpu (Portable Computing Language)", 1000000, 65536};
+  EXPECT_EQ(values_buffer_shortfall(1000000, true, limits), "");
+  EXPECT_EQ(values_buffer_shortfall(65536, false, limits), "");
+  EXPECT_EQ(values_buffer_shortfall(1000004, true, limits),
+            "the scene's values buffer (its changing literals and its operand grid) needs 1000004 bytes (0.0 GiB), but the "
+            "device cpu (Portable Computing Language) allows at most 1000000 bytes (CL_DEVICE_MAX_MEM_ALLOC_SIZE)");
+  EXPECT_EQ(values_buffer_shortfall(65540, false, limits),
+            "the scene's values buffer (its changing literals, in __constant memory) needs 65540 bytes (0.0 GiB), but the "
+            "device cpu (Portable Computing Language) allows at most 65536 bytes (CL_DEVICE_MAX_CONSTANT_BUFFER_SIZE)");
+  // The figures the check reads from a real device are at least OpenCL's minimums for them.
+  const DeviceMemoryLimits device = device_memory_limits(select_device(std::nullopt));
+  EXPECT_GE(device.max_alloc, std::uint64_t{128} << 20);
+  EXPECT_GE(device.max_constant, std::uint64_t{64} << 10);
+  EXPECT_FALSE(device.device.empty());
 }
 
 TEST(HostMemory, AvailableMemoryIsReadOnLinux) {

@@ -5,6 +5,7 @@
 // and the program's size, which must not grow with the scene.
 #include "check/cross_check.hpp"
 #include "codegen/kernel_source.hpp"
+#include "common/errors.hpp"
 #include "prune/operand_grid.hpp"
 #include "reference/reference_renderer.hpp"
 #include "reference/reference_sdf.hpp"
@@ -203,6 +204,38 @@ TEST(OperandGrid, CellListsAreAscendingNonEmptyAndShort) {
   // those within its nearest's reach plus its own diagonal, far fewer than all.
   const double mean = static_cast<double>(grid.operands.size()) / static_cast<double>(grid.cell_count());
   EXPECT_LT(mean, n / 4.0);
+}
+
+// Issue 23: a grid too large for the memory given is refused with both sizes before the cells are
+// allocated, or while its lists grow past it; the grid that fits exactly is built.
+TEST(OperandGrid, RefusesAGridBeyondTheMemoryGiven) {
+  const Scene scene = scene_from_yaml(random_union(9, 400, 0.2, "grid"));
+  const OperandGrid grid = build_operand_grid(scene.sdf, glm::dvec3(0.0));
+  const std::uint64_t cells = static_cast<std::uint64_t>(grid.cell_count());
+  const std::uint64_t first_estimate = grid_host_bytes(grid.cell_count(), cells);
+  const std::uint64_t whole = grid_host_bytes(grid.cell_count(), grid.operands.size());
+  ASSERT_GT(grid.operands.size(), 2 * cells) << "the lists must outgrow the first estimate for the second check to be seen";
+  const auto refusal = [&](std::uint64_t bytes) {
+    try {
+      build_operand_grid(scene.sdf, glm::dvec3(0.0), AvailableMemory{bytes, "a test's budget"});
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const std::string early = refusal(first_estimate - 1);
+  EXPECT_NE(early.find(fmt::format("the smooth_union of 400 operands needs an operand grid (render.pruning) of {} x {} x {} cells "
+                                   "listing at least {} operands: {} bytes",
+                                   grid.dims.x, grid.dims.y, grid.dims.z, cells, first_estimate)),
+            std::string::npos)
+      << early;
+  EXPECT_NE(early.find(fmt::format("but only {} bytes", first_estimate - 1)), std::string::npos) << early;
+  EXPECT_NE(early.find("(a test's budget)"), std::string::npos) << early;
+  const std::string growing = refusal((first_estimate + whole) / 2);
+  EXPECT_NE(growing.find("listing at least"), std::string::npos) << growing;
+  EXPECT_EQ(growing.find(fmt::format("listing at least {} operands", cells)), std::string::npos)
+      << "refused only once the lists passed the budget: " << growing;
+  EXPECT_EQ(refusal(whole), "");
 }
 
 // The largest grid-able union of every shipped scene, taken alone in its own frame, evaluated from

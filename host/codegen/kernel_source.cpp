@@ -2,6 +2,7 @@
 #include "codegen/kernel_source.hpp"
 
 #include "cl/device_program.hpp"
+#include "common/errors.hpp"
 #include "codegen/cl_literals.hpp"
 #include "codegen/embedded_kernels.hpp"
 #include "codegen/sdf_codegen.hpp"
@@ -205,7 +206,9 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
   return src;
 }
 
-SdfCode march_scene_code(const Scene& scene, bool with_shading) {
+namespace {
+
+SdfCode scene_code(const Scene& scene, bool with_shading) {
   Literals literals;
   SdfCode code;
   code.source = sdf_functions(scene.sdf, map_frame_origin(scene), scene.render.subtree_bounds == SceneBounds::Sphere, literals,
@@ -218,6 +221,18 @@ SdfCode march_scene_code(const Scene& scene, bool with_shading) {
   }
   code.literals = literals.take();
   return code;
+}
+
+}  // namespace
+
+SdfCode march_scene_code(const Scene& scene, bool with_shading) {
+  // A number beyond float's range or an operand grid too large for memory is refused while the
+  // code is generated, which knows nodes and not files.
+  try {
+    return scene_code(scene, with_shading);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: {}", scene.source_name, e.what()));
+  }
 }
 
 ProgramValues scene_values(const Scene& scene, const KernelOptions& options) {

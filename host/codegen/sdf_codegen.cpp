@@ -4,6 +4,7 @@
 
 #include "codegen/cl_literals.hpp"
 #include "codegen/embedded_kernels.hpp"
+#include "common/available_memory.hpp"
 #include "common/errors.hpp"
 #include "device_types.h"
 #include "prune/operand_grid.hpp"
@@ -563,7 +564,22 @@ PackedGrid packed_grid_for(const Node& union_node, const glm::dvec3& offset, std
     const std::lock_guard<std::mutex> lock(mutex);
     if (last.data && last_key == key) return last;
   }
-  PackedGrid packed = pack_grid(build_operand_grid(union_node, offset), records, record_at);
+  // A program's code is generated once its device is selected (prepare_program): only the build's
+  // address space is still to come.
+  const std::optional<AvailableMemory> memory = available_host_memory(kOpenClBuildAddressSpace);
+  const OperandGrid grid = build_operand_grid(union_node, offset, memory);
+  const std::uint64_t packed_bytes =
+      sizeof(float) * (CLMARCH_GRID_HEADER_WORDS + grid.cell_start.size() + grid.operands.size() + records.size());
+  // Measured again: the grid is held now, and the packed words are allocated beside it.
+  if (const std::optional<AvailableMemory> left = available_host_memory(kOpenClBuildAddressSpace)) {
+    const std::string shortfall = memory_shortfall(packed_bytes, *left);
+    if (!shortfall.empty()) {
+      throw InputError(fmt::format("the operand grid (render.pruning) of the {} of {} operands packs into {} of host memory, {}",
+                                   node_kind_name(union_node.kind), union_node.children.size(), bytes_and_gibibytes(packed_bytes),
+                                   shortfall));
+    }
+  }
+  PackedGrid packed = pack_grid(grid, records, record_at);
   const std::lock_guard<std::mutex> lock(mutex);
   last_key = key;
   last = packed;

@@ -3,14 +3,17 @@
 // the fold over the kept ones equal to the fold over all.
 #include "prune/operand_grid.hpp"
 
+#include "common/errors.hpp"
 #include "common/progress.hpp"
 #include "prune/operand_bvh.hpp"
 #include "reference/reference_sdf.hpp"
 #include "scene/scene_bounds.hpp"
 
+#include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cfloat>
 #include <cmath>
 #include <limits>
@@ -170,7 +173,11 @@ const Node* grid_union(const Scene& scene) {
   return best;
 }
 
-OperandGrid build_operand_grid(const Node& union_node, const glm::dvec3& offset) {
+std::uint64_t grid_host_bytes(long long cells, std::uint64_t listed) {
+  return 4 * (3 * static_cast<std::uint64_t>(cells) + 2 * listed);
+}
+
+OperandGrid build_operand_grid(const Node& union_node, const glm::dvec3& offset, const std::optional<AvailableMemory>& memory) {
   std::vector<OperandBounds> bounds;
   bounds.reserve(union_node.children.size());
   glm::dvec3 lower(kInfinity), upper(-kInfinity);
@@ -207,8 +214,22 @@ OperandGrid build_operand_grid(const Node& union_node, const glm::dvec3& offset)
   const double rounding = 64.0 * FLT_EPSILON * (largest + max_component(extent) + k);
   const double reach = 0.5 * std::sqrt(3.0) * grid.cell_size;
 
-  const OperandBvh bvh(std::move(bounds));
   const long long cells = grid.cell_count();
+  // Every cell lists at least one operand; the lists' length is known only as they are pruned.
+  std::atomic<std::uint64_t> listed{static_cast<std::uint64_t>(cells)};
+  const auto require_memory = [&](std::uint64_t listed_at_least) {
+    if (!memory) return;
+    const std::uint64_t needed = grid_host_bytes(cells, listed_at_least);
+    const std::string shortfall = memory_shortfall(needed, *memory);
+    if (shortfall.empty()) return;
+    throw InputError(fmt::format("the {} of {} operands needs an operand grid (render.pruning) of {} x {} x {} cells "
+                                 "listing at least {} operands: {} of host memory, {}",
+                                 node_kind_name(union_node.kind), n, grid.dims.x, grid.dims.y, grid.dims.z, listed_at_least,
+                                 bytes_and_gibibytes(needed), shortfall));
+  };
+  require_memory(listed);
+
+  const OperandBvh bvh(std::move(bounds));
   constexpr long long kCellsPerChunk = 1024;
   const long long chunks = (cells + kCellsPerChunk - 1) / kCellsPerChunk;
   std::vector<std::vector<std::uint32_t>> chunk_operands(static_cast<std::size_t>(chunks));
@@ -226,6 +247,8 @@ OperandGrid build_operand_grid(const Node& union_node, const glm::dvec3& offset)
       pruner.prune(grid.cell_center(x, y, z), reach, out);
       cell_counts[static_cast<std::size_t>(c)] = static_cast<std::uint32_t>(out.size() - before);
     }
+    // The chunk's cells were counted once already.
+    require_memory(listed += out.size() - static_cast<std::uint64_t>(end - chunk * kCellsPerChunk));
     progress.advance();
   });
   grid.cell_start.resize(static_cast<std::size_t>(cells) + 1);

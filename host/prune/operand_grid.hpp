@@ -6,11 +6,13 @@
 // kernels/operand_grid.cl; docs/performance.md has the measurements behind the settings.
 #pragma once
 
+#include "common/available_memory.hpp"
 #include "scene/scene.hpp"
 
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace clmarch {
@@ -53,8 +55,16 @@ bool grid_can_prune(const Node& node);
 /// most operands, with none nothing.
 const Node* grid_union(const Scene& scene);
 
+/// Host bytes a grid of cells cells listing listed operands takes until it is packed: its cell
+/// counts, starts and lists, and beside them the packed copy of the starts and lists
+/// (host/codegen/sdf_codegen.cpp), 4 bytes each.
+std::uint64_t grid_host_bytes(long long cells, std::uint64_t listed);
+
 /// Builds the grid of union_node, whose points are given relative to the world point offset.
-/// Reports progress on a terminal for large unions; throws Cancelled on Ctrl-C.
-OperandGrid build_operand_grid(const Node& union_node, const glm::dvec3& offset);
+/// Reports progress on a terminal for large unions; throws Cancelled on Ctrl-C. With memory, throws
+/// InputError, naming the grid and both sizes, as soon as grid_host_bytes passes memory.bytes: before
+/// the cells are allocated, and while the lists grow.
+OperandGrid build_operand_grid(const Node& union_node, const glm::dvec3& offset,
+                               const std::optional<AvailableMemory>& memory = std::nullopt);
 
 }  // namespace clmarch

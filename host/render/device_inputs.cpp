@@ -2,10 +2,14 @@
 #include "render/device_inputs.hpp"
 
 #include "codegen/kernel_source.hpp"
+#include "common/available_memory.hpp"
+#include "common/errors.hpp"
 #include "render/live_tiles.hpp"
 #include "scene/camera_model.hpp"
 #include "scene/scene_bounds.hpp"
 #include "scene/tiling_model.hpp"
+
+#include <fmt/format.h>
 
 namespace clmarch {
 namespace {
@@ -94,9 +98,26 @@ void write_program_values(const cl::CommandQueue& queue, const cl::Buffer& buffe
 
 }  // namespace
 
+DeviceMemoryLimits device_memory_limits(const DeviceEntry& device) {
+  return {device.label(), device.device.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>(),
+          device.device.getInfo<CL_DEVICE_MAX_CONSTANT_BUFFER_SIZE>()};
+}
+
+std::string values_buffer_shortfall(std::uint64_t bytes, bool has_grid, const DeviceMemoryLimits& limits) {
+  const std::uint64_t limit = has_grid ? limits.max_alloc : limits.max_constant;
+  if (bytes <= limit) return {};
+  return fmt::format("the scene's values buffer ({}) needs {}, but the device {} allows at most {} bytes ({})",
+                     has_grid ? "its changing literals and its operand grid" : "its changing literals, in __constant memory",
+                     bytes_and_gibibytes(bytes), limits.device, limit,
+                     has_grid ? "CL_DEVICE_MAX_MEM_ALLOC_SIZE" : "CL_DEVICE_MAX_CONSTANT_BUFFER_SIZE");
+}
+
 std::optional<cl::Buffer> make_scene_values(const PreparedProgram& program, const Scene& scene) {
   const ProgramValues values = scene_values(scene, program.kernel_options);
   if (values.size() == 0) return std::nullopt;
+  const std::string shortfall =
+      values_buffer_shortfall(values.size() * sizeof(float), values.data != nullptr, device_memory_limits(program.program.device));
+  if (!shortfall.empty()) throw InputError(fmt::format("{}: {}", scene.source_name, shortfall));
   cl::Buffer buffer(program.program.context, CL_MEM_READ_ONLY, values.size() * sizeof(float));
   write_program_values(program.program.queue, buffer, values);
   return buffer;

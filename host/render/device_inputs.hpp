@@ -8,7 +8,9 @@
 #include "render/prepared_program.hpp"
 #include "scene/scene.hpp"
 
+#include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace clmarch {
@@ -18,9 +20,24 @@ MarchParams march_params(const Scene& scene, const Dispatch& dispatch);
 /// Lights as the kernel reads them (kernels/shading.cl): positions relative to the camera.
 std::vector<cl_float4> light_data(const Scene& scene);
 
+/// What one device lets a values buffer take.
+struct DeviceMemoryLimits {
+  /// "NAME (PLATFORM)".
+  std::string device;
+  /// CL_DEVICE_MAX_MEM_ALLOC_SIZE: the largest buffer.
+  std::uint64_t max_alloc = 0;
+  /// CL_DEVICE_MAX_CONSTANT_BUFFER_SIZE: a __constant buffer's limit (at least 64 KiB).
+  std::uint64_t max_constant = 0;
+};
+DeviceMemoryLimits device_memory_limits(const DeviceEntry& device);
+
+/// Empty when a values buffer of bytes fits the device: in global memory with an operand grid, in
+/// __constant memory without (sdf_functions' SceneValues); else why, one line naming the limit.
+std::string values_buffer_shortfall(std::uint64_t bytes, bool has_grid, const DeviceMemoryLimits& limits);
+
 /// The values buffer of program (its kernels' SceneValues), holding scene's literals at the
 /// program's value slots, then its operand grid's data; nothing for a program without either (its
-/// kernels get NULL).
+/// kernels get NULL). Throws InputError naming the scene when the device cannot hold it.
 std::optional<cl::Buffer> make_scene_values(const PreparedProgram& program, const Scene& scene);
 /// Writes scene's literals at the program's value slots and its grid's data into values (made for the
 /// same slots), or into a new buffer when the data outgrew it.

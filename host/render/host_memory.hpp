@@ -1,9 +1,10 @@
-// Host memory a render needs and the memory the machine has left, so that an image too large for
-// the machine fails with a message before anything is allocated (rather than in the OOM killer).
+// Host memory a render needs, so that an image too large for the machine fails with a message
+// before anything is allocated (rather than in the OOM killer).
 #pragma once
 
+#include "common/available_memory.hpp"
+
 #include <cstdint>
-#include <optional>
 #include <string>
 
 namespace clmarch {
@@ -15,24 +16,8 @@ namespace clmarch {
 /// the anti-aliasing's sums, refine flags and read-back planes (host/frame/antialias.hpp).
 std::uint64_t host_bytes_per_pixel(int samples = 1);
 
-/// Address space the OpenCL driver takes for itself, which the room under ulimit -v must leave it:
-/// PoCL 3.1 here, a 16x16 render's VmPeak is 876 MB with OpenCL and 431 MB on the reference.
-inline constexpr std::uint64_t kOpenClDriverAddressSpace = std::uint64_t{512} << 20;
-
 /// Host bytes a render of width x height needs at its peak: host_bytes_per_pixel(samples) per pixel.
 std::uint64_t render_host_bytes(int width, int height, int samples = 1);
-
-/// Memory this process may still use, and where the figure came from.
-struct AvailableMemory {
-  std::uint64_t bytes = 0;
-  /// "MemAvailable in /proc/meminfo", "the cgroup's memory.max", ...
-  std::string source;
-};
-
-/// The smallest of: MemAvailable (/proc/meminfo; free physical pages where that is missing), the
-/// room left under the cgroup's memory limit, and the room left under RLIMIT_AS less
-/// kOpenClDriverAddressSpace. Nothing when none of them can be read.
-std::optional<AvailableMemory> available_host_memory();
 
 /// Empty when a width x height render fits in available; else the reason, one line without the
 /// leading "what: ": "W x H pixels need N bytes (G GiB) of host memory (B bytes per pixel), but only A bytes ...".
