@@ -22,12 +22,7 @@ SDF_INLINE vec3v camera_ray_at(const MarchParams* params, vfloat x, vfloat y) {
   return v3_normalize(dir);
 }
 
-/* The ray through the centre of pixel (i, j), per lane; under ANTIALIAS through the pass's sample
- * point of the pixel (params->subpixel.xy, 0.5 on the centre pass: the same rays as without). */
+/* The ray through the centre of pixel (i, j), per lane. */
 SDF_INLINE vec3v camera_ray(const MarchParams* params, vint i, vint j) {
-#if defined(ANTIALIAS)
-  return camera_ray_at(params, TO_VFLOAT(i) + params->subpixel.x, TO_VFLOAT(j) + params->subpixel.y);
-#else
   return camera_ray_at(params, TO_VFLOAT(i) + 0.5f, TO_VFLOAT(j) + 0.5f);
-#endif
 }

@@ -57,6 +57,10 @@ typedef cl_float4 float4;
 
 /* Per-frame march parameters: the camera contract's basis and the march limits. Changing any of
  * these does not rebuild the program. */
+/* Floats from a refining pass's sample points' x to their y (kernels/march.cl, sample_packet):
+ * kMaxSamples (host/scene/scene.hpp) and a vector's lanes past the last. */
+#define CLMARCH_SAMPLE_POINT_STRIDE (1024 + 16)
+
 typedef struct MarchParams {
   float4 origin;       /* xyz = camera position relative to map_frame_origin (host/scene/camera_model.hpp) */
   float4 forward;      /* xyz = f, unit */
@@ -67,10 +71,9 @@ typedef struct MarchParams {
                             w = its radius; w = 0: rays are not clipped */
   float4 tile_reach;     /* x = reach^2: a tile whose centre ray q (unnormalised) has
                             |c x q|^2 > reach^2 |q|^2 misses the bounds (kernels/march.cl); y, z, w = 0 */
-  float4 subpixel;       /* ANTIALIAS programs: xy = where the rays cross their pixel, from its top-left
-                            corner in pixel units ((0.5, 0.5): the centre); z = 1 on a refining pass,
-                            whose rays march only for pixels flagged in sample_mask, without the
-                            coarse pass's starts (made for the centre rays); w = 0 */
+  float4 sampling;       /* ANTIALIAS programs: x = 1 on a refining pass, which marches the sample
+                            packets of its refine_entries instead of tiles (kernels/march.cl,
+                            sample_packet), y = render.samples; x = y = 0 on the centre pass; z = w = 0 */
   CLMARCH_INT width;
   CLMARCH_INT height;
   CLMARCH_INT first_row;    /* first image row of this dispatch (images render in chunks of rows) */

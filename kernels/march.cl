@@ -156,14 +156,8 @@ SDF_INLINE Packet packet_at(const MarchParams* params, int index, __global const
   k.columns = min(PACKET_WIDTH, params->width - k.x0);
   k.t_start = (vfloat)(0.0f);
   k.t_end = (vfloat)(params->max_distance);
-#if defined(ANTIALIAS)
-  const int refining = params->subpixel.z != 0.0f;
-#else
-  const int refining = 0;
-#endif
 #if !defined(NEED_SHADING)
-  /* The tile test and the cones are made for the centre rays; a refining pass's rays are off them. */
-  if (!refining && params->bounds.w > 0.0f && tile_misses_bounds(params, k.x0, y0)) {
+  if (params->bounds.w > 0.0f && tile_misses_bounds(params, k.x0, y0)) {
     k.dir = v3_splat(0.0f);
     k.marching = (vint)(0);
     return k;
@@ -173,41 +167,15 @@ SDF_INLINE Packet packet_at(const MarchParams* params, int index, __global const
   k.marching = MASK(LANE_X < k.columns) & MASK(LANE_Y < k.rows);
   if (params->bounds.w > 0.0f) clip_to_bounds(params->bounds, k.dir, &k.marching, &k.t_start, &k.t_end);
 #if defined(COARSE_PASS)
-  if (!refining) {
-    const int blocks_x = CLMARCH_COARSE_BLOCKS(params->width);
-    const real cone_start = coarse_starts[(y0 / CLMARCH_COARSE_BLOCK) * blocks_x + k.x0 / CLMARCH_COARSE_BLOCK];
-    k.t_start = fmax(k.t_start, cone_start);
-    k.marching &= MASK(k.t_start < k.t_end);
-  }
+  const int blocks_x = CLMARCH_COARSE_BLOCKS(params->width);
+  const real cone_start = coarse_starts[(y0 / CLMARCH_COARSE_BLOCK) * blocks_x + k.x0 / CLMARCH_COARSE_BLOCK];
+  k.t_start = fmax(k.t_start, cone_start);
+  k.marching &= MASK(k.t_start < k.t_end);
 #else
   (void)coarse_starts;
-  (void)refining;
 #endif
   return k;
 }
-
-#if defined(ANTIALIAS)
-/* On a refining pass (params->subpixel.z = 1), only the lanes of pixels flagged in sample_mask (one
- * byte per image pixel, row-major) march; returns whether the packet has any, for a packet without
- * is not written at all (the host reads only flagged pixels). Other passes: every lane, 1. */
-SDF_INLINE int refine_packet(const MarchParams* params, Packet* k, __global const uchar* sample_mask) {
-  if (params->subpixel.z == 0.0f || k->rows <= 0) return 1;
-  const int at = (params->first_row + k->row0) * params->width + k->x0;
-  mask1 flags[LANES];
-  int any = 0;
-  for (int lane = 0; lane < LANES; ++lane) {
-    const int x = lane % PACKET_WIDTH, y = lane / PACKET_WIDTH;
-    flags[lane] = x < k->columns && y < k->rows && sample_mask[at + y * params->width + x] ? -1 : 0;
-    any |= flags[lane] != 0;
-  }
-#if LANES == 1
-  k->marching &= flags[0];
-#else
-  k->marching &= VLOAD_LANES(0, flags);
-#endif
-  return any;
-}
-#endif
 
 /* The march limits of camera rays; with RECORD_SAMPLES, where the packet's points go. */
 SDF_INLINE MarchLimits camera_limits(SceneValues values, const MarchParams* params, const Packet* k, const MarchRecord* record) {
@@ -223,6 +191,27 @@ SDF_INLINE MarchLimits camera_limits(SceneValues values, const MarchParams* para
 #endif
   return limits;
 }
+
+#ifdef NEED_SHADING
+/* The shaded, tone-mapped color of packet k's rays (the sky's where they miss), and the normals at
+ * their hits (0 where they miss). */
+SDF_INLINE vec3v packet_color(SceneValues values, const Packet* k, const MarchResult* m, const MarchParams* params,
+                              __constant float4* lights, vec3v* normal) {
+  *normal = v3_splat(0.0f);
+  vec3v color = miss_color(values, k->dir, m->closest);
+  if (LANE_ANY(m->hit)) {
+    const Hit hit = surface_at(values, m, v3_splat(0.0f), k->dir, params->normal_epsilon);
+    *normal = v3_select(*normal, hit.normal, m->hit);
+    vec3v lit = shade(values, &hit, v3_scale(k->dir, -1.0f), m->hit, lights);
+#if defined(REFLECTION_BOUNCES)
+    lit = add_reflections(values, lit, hit, k->dir, m->hit, params, lights);
+#endif
+    lit = apply_fog(values, lit, k->dir, m->t, params->camera_height);
+    color = v3_select(color, lit, m->hit);
+  }
+  return tone_map(values, color);
+}
+#endif
 
 /* Writes what the march of packet k found: depth, steps (and wall steps), and as the program
  * needs them the normal and the shaded color. */
@@ -240,22 +229,10 @@ SDF_INLINE void finish_packet(SceneValues values, const Packet* k, const MarchRe
 #ifdef NEED_NORMALS
   vec3v normal = v3_splat(0.0f);
 #ifdef NEED_SHADING
-  vec3v color = miss_color(values, k->dir, m->closest);
-#endif
-  if (LANE_ANY(m->hit)) {
-#ifdef NEED_SHADING
-    const Hit hit = surface_at(values, m, v3_splat(0.0f), k->dir, params->normal_epsilon);
-    normal = v3_select(normal, hit.normal, m->hit);
-    vec3v lit = shade(values, &hit, v3_scale(k->dir, -1.0f), m->hit, lights);
-#if defined(REFLECTION_BOUNCES)
-    lit = add_reflections(values, lit, hit, k->dir, m->hit, params, lights);
-#endif
-    lit = apply_fog(values, lit, k->dir, m->t, params->camera_height);
-    color = v3_select(color, lit, m->hit);
+  const vec3v color = packet_color(values, k, m, params, lights, &normal);
 #else
-    normal = v3_select(normal, estimate_normal(values, m->local_point, params->normal_epsilon), m->hit);
+  if (LANE_ANY(m->hit)) normal = v3_select(normal, estimate_normal(values, m->local_point, params->normal_epsilon), m->hit);
 #endif
-  }
 #if defined(WRITE_NORMALS)
   STORE_PLANE(CLMARCH_CHANNEL_NX, normal.x);
   STORE_PLANE(CLMARCH_CHANNEL_NY, normal.y);
@@ -264,7 +241,6 @@ SDF_INLINE void finish_packet(SceneValues values, const Packet* k, const MarchRe
   (void)normal; /* a color image alone: three planes fewer to write (a quarter of the torus's frame) */
 #endif
 #ifdef NEED_SHADING
-  color = tone_map(values, color);
   STORE_PLANE(CLMARCH_CHANNEL_R, color.x);
   STORE_PLANE(CLMARCH_CHANNEL_G, color.y);
   STORE_PLANE(CLMARCH_CHANNEL_B, color.z);
@@ -273,6 +249,85 @@ SDF_INLINE void finish_packet(SceneValues values, const Packet* k, const MarchRe
 #undef STORE_PLANE
   (void)lights;
 }
+
+#if defined(ANTIALIAS)
+/* A refining pass's packet (params->sampling.x = 1): samples s0 .. s0 + LANES - 1 of one pixel, a
+ * sample a lane, those below N = params->sampling.y marching. The tile test and the cones are made
+ * for the centre rays; these are off them. entry = (the pixel's index in the
+ * rows from params->first_row on, s0); sample_points holds the samples' x, then from
+ * CLMARCH_SAMPLE_POINT_STRIDE their y, in pixel units from its top-left corner. A pixel's samples
+ * are as coherent as rays get: a packet of them marches with every lane busy, where a packet of
+ * neighbouring pixels marched once a sample left most lanes idle along the edges it refines. */
+SDF_INLINE Packet sample_packet(const MarchParams* params, int2 entry, __constant float* sample_points) {
+  Packet k;
+  const int row = entry.x / params->width;
+  k.x0 = entry.x - row * params->width;
+  k.row0 = row;
+  k.columns = 1;
+  k.rows = 1;
+  k.t_start = (vfloat)(0.0f);
+  k.t_end = (vfloat)(params->max_distance);
+  const vfloat x = (real)k.x0 + LOAD_LANES(entry.y, sample_points);
+  const vfloat y = (real)(params->first_row + row) + LOAD_LANES(entry.y, sample_points + CLMARCH_SAMPLE_POINT_STRIDE);
+  k.dir = camera_ray_at(params, x, y);
+  k.marching = MASK(entry.y + LANE_IOTA < (int)params->sampling.y);
+  if (params->bounds.w > 0.0f) clip_to_bounds(params->bounds, k.dir, &k.marching, &k.t_start, &k.t_end);
+  return k;
+}
+
+/* The sum of v over the lanes of live. */
+SDF_INLINE float live_lane_sum(vfloat v, vint live) {
+  float lanes[LANES];
+  STORE_LANES(select((vfloat)(0.0f), v, live), 0, lanes);
+  float sum = 0.0f;
+  for (int lane = 0; lane < LANES; ++lane) sum += lanes[lane];
+  return sum;
+}
+
+/* Writes what a sample packet's march found into sums: its lanes' tone-mapped colors summed
+ * (programs without shading: 0) and how many of them hit. */
+SDF_INLINE void store_sample_sum(SceneValues values, const Packet* k, const MarchResult* m, const MarchParams* params,
+                                 __constant float4* lights, __global float4* sums) {
+#ifdef NEED_SHADING
+  vec3v normal;
+  const vec3v color = packet_color(values, k, m, params, lights, &normal);
+  *sums = (float4)(live_lane_sum(color.x, k->marching), live_lane_sum(color.y, k->marching),
+                   live_lane_sum(color.z, k->marching), live_lane_sum((vfloat)(1.0f), m->hit));
+#else
+  (void)values;
+  (void)params;
+  (void)lights;
+  *sums = (float4)(0.0f, 0.0f, 0.0f, live_lane_sum((vfloat)(1.0f), m->hit));
+#endif
+}
+
+/* A refining pass's work-item: the sample packets of entries[item ..] (an entry of x < 0 pads the
+ * dispatch), their sums into sums[item ..]; two march interleaved, as on the centre pass. */
+SDF_INLINE void refine_item(const MarchParams* params, vec3v origin, __constant float4* lights, SceneValues values, int item,
+                            __global const int2* entries, __constant float* sample_points, __global float4* sums) {
+  const MarchRecord record = {0};
+  if (entries[item].x < 0) return;
+  const Packet a = sample_packet(params, entries[item], sample_points);
+#if PACKETS_PER_ITEM == 2
+  const int b_wanted = entries[item + 1].x >= 0;
+  Packet b = a;
+  if (b_wanted) b = sample_packet(params, entries[item + 1], sample_points);
+  PlainMarch march_a = plain_march_begin(origin, a.dir, a.marching, a.t_start, a.t_end, camera_limits(values, params, &a, &record));
+  PlainMarch march_b = plain_march_begin(origin, b.dir, b_wanted ? b.marching : (vint)(0), b.t_start, b.t_end,
+                                         camera_limits(values, params, &b, &record));
+  march_plain_pair(&march_a, &march_b);
+  const MarchResult ma = plain_march_end(&march_a);
+  store_sample_sum(values, &a, &ma, params, lights, sums + item);
+  if (b_wanted) {
+    const MarchResult mb = plain_march_end(&march_b);
+    store_sample_sum(values, &b, &mb, params, lights, sums + item + 1);
+  }
+#else
+  const MarchResult m = MARCH(origin, a.dir, a.marching, a.t_start, a.t_end, camera_limits(values, params, &a, &record));
+  store_sample_sum(values, &a, &m, params, lights, sums + item);
+#endif
+}
+#endif
 
 /* Each work-item marches PACKETS_PER_ITEM consecutive packets of the chunk: two on CPUs, whose
  * steps interleave (march_plain_pair), one on GPUs and under the cells tiling. values holds the
@@ -283,7 +338,7 @@ __kernel void march(const MarchParams params, __global float* out, __constant fl
                     , __global const float* coarse_starts
 #endif
 #if defined(ANTIALIAS)
-                    , __global const uchar* sample_mask, __global const int* refine_packets
+                    , __global const int2* refine_entries, __constant float* sample_points, __global float4* sample_sums
 #endif
 #if defined(RECORD_SAMPLES)
                     , __global const int* sample_base, __global float* samples, const int sample_stride
@@ -304,45 +359,28 @@ __kernel void march(const MarchParams params, __global float* out, __constant fl
 #endif
   const int item = (int)get_global_id(0) * PACKETS_PER_ITEM;
 #if defined(ANTIALIAS)
-  /* A refining pass runs over the host's list of the chunk's packets that hold a flagged pixel
-   * (padded with packets past the chunk), not over the whole chunk. */
-  const int refining = params.subpixel.z != 0.0f;
-  const int first = refining ? refine_packets[item] : item;
-#else
-  const int first = item;
+  /* A refining pass runs over the host's list of sample packets, not over the chunk's tiles. */
+  if (params.sampling.x != 0.0f) {
+    refine_item(&params, origin, lights, values, item, refine_entries, sample_points, sample_sums);
+    return;
+  }
 #endif
-  Packet a = packet_at(&params, first, coarse_starts);
+  Packet a = packet_at(&params, item, coarse_starts);
   if (a.rows <= 0) return; /* padding of the dispatch to whole work-groups */
-#if defined(ANTIALIAS)
-  const int a_wanted = refine_packet(&params, &a, sample_mask);
-#else
-  const int a_wanted = 1;
-#endif
 #if PACKETS_PER_ITEM == 2
-#if defined(ANTIALIAS)
-  Packet b = packet_at(&params, refining ? refine_packets[item + 1] : item + 1, coarse_starts);
-#else
-  Packet b = packet_at(&params, first + 1, coarse_starts);
-#endif
-#if defined(ANTIALIAS)
-  const int b_wanted = b.rows > 0 && refine_packet(&params, &b, sample_mask);
-#else
+  Packet b = packet_at(&params, item + 1, coarse_starts);
   const int b_wanted = b.rows > 0;
-#endif
   PlainMarch march_a = plain_march_begin(origin, a.dir, a.marching, a.t_start, a.t_end, camera_limits(values, &params, &a, &record));
   /* Past the chunk b has no lane marching, and its loop never runs. */
   PlainMarch march_b = plain_march_begin(origin, b.dir, b.marching, b.t_start, b.t_end, camera_limits(values, &params, &b, &record));
   march_plain_pair(&march_a, &march_b);
-  if (a_wanted) {
-    const MarchResult ma = plain_march_end(&march_a);
-    finish_packet(values, &a, &ma, &params, out, lights);
-  }
+  const MarchResult ma = plain_march_end(&march_a);
+  finish_packet(values, &a, &ma, &params, out, lights);
   if (b_wanted) {
     const MarchResult mb = plain_march_end(&march_b);
     finish_packet(values, &b, &mb, &params, out, lights);
   }
 #else
-  if (!a_wanted) return;
   const MarchResult m = MARCH(origin, a.dir, a.marching, a.t_start, a.t_end, camera_limits(values, &params, &a, &record));
   finish_packet(values, &a, &m, &params, out, lights);
 #endif

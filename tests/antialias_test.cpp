@@ -140,6 +140,21 @@ TEST(Antialias, AdaptiveDecisionFlagsBothSidesOfAnEdgeOnly) {
   EXPECT_EQ(pixels_to_refine(f, false), std::vector<std::uint8_t>(18, 1));
 }
 
+// A pixel is compared with its 4 neighbours: a straight edge crossing a pixel leaves the neighbour
+// along its normal's larger axis on its other side, so the diagonals found nothing more and
+// refined a third more pixels (docs/scene-format.md, "Anti-aliasing").
+TEST(Antialias, AdaptiveDecisionComparesTheFourNeighbours) {
+  FrameBuffers f(3, 3);
+  for (int j = 0; j < 3; ++j) {
+    for (int i = 0; i < 3; ++i) {
+      f.at(Channel::Depth, i, j) = i == 1 && j == 1 ? 2.0f : INFINITY;
+      f.at(Channel::R, i, j) = f.at(Channel::G, i, j) = f.at(Channel::B, i, j) = 0.0f;
+    }
+  }
+  const std::vector<std::uint8_t> refine = pixels_to_refine(f, true);
+  EXPECT_EQ(refine, (std::vector<std::uint8_t>{0, 1, 0, 1, 1, 1, 0, 1, 0}));
+}
+
 struct Shape {
   const char* name;
   std::string sdf;
@@ -212,7 +227,7 @@ TEST(Antialias, ChunksAndLanesRefineTheSamePixels) {
   const Scene scene = scene_from_yaml(high_contrast_scene("{box: {half_size: [0.8, 0.8, 0.8], rotate: [0, 0, 30]}}", 16, true));
   const FrameBuffers whole = render_opencl(scene, {}).buffers;
   OpenClOptions chunked;
-  chunked.max_chunk_pixels = 32 * 8;  // four dispatches of 8 rows, each with its own packet list
+  chunked.max_chunk_pixels = 32 * 8;  // four centre dispatches of 8 rows; one refining pass over them all
   const FrameBuffers parts = render_opencl(scene, chunked).buffers;
   for (Channel c : {Channel::R, Channel::A, Channel::Samples, Channel::Depth}) {
     EXPECT_EQ(parts.plane(c), whole.plane(c)) << kChannelNames[static_cast<int>(c)];
@@ -224,6 +239,33 @@ TEST(Antialias, ChunksAndLanesRefineTheSamePixels) {
   for (std::size_t p = 0; p < whole.plane(Channel::A).size(); ++p) {
     // The same rays; a lane's arithmetic may round a sample point's ray apart (fp contraction).
     EXPECT_NEAR(single.plane(Channel::A)[p], whole.plane(Channel::A)[p], 1.0 / 16 + 1e-6) << p;
+  }
+}
+
+// The refining pass marches at most 65,536 sample packets a dispatch: 200 x 180 pixels of 16
+// samples take 36,000 packets with 16 lanes (one dispatch) and 540,000 with one lane (nine), whose
+// sums must land on their pixels as the reference's do.
+TEST(Antialias, RefiningInSeveralDispatchesMatchesTheReference) {
+  std::string yaml = high_contrast_scene("{box: {half_size: [0.8, 0.8, 0.8], rotate: [0, 0, 30]}}", 16, false);
+  yaml.replace(yaml.find("width: 32, height: 32"), std::string("width: 32, height: 32").size(), "width: 200, height: 180");
+  const Scene scene = scene_from_yaml(yaml);
+  const FrameBuffers reference = render_reference(scene);
+  for (int lanes : {16, 1}) {
+    OpenClOptions options;
+    options.lanes = lanes;
+    const FrameBuffers device = render_opencl(scene, options).buffers;
+    int apart = 0, partial = 0;
+    for (std::size_t p = 0; p < reference.plane(Channel::A).size(); ++p) {
+      const float a = device.plane(Channel::A)[p];
+      partial += a > 0.0f && a < 1.0f;
+      // The same rays; one may graze apart (as in CoverageMatchesTheExactAreaOnBothBackends).
+      if (std::abs(a - reference.plane(Channel::A)[p]) > 1.0f / 16 + 1e-6f) ++apart;
+      ASSERT_NEAR(device.plane(Channel::R)[p], a, 1e-6) << "lanes " << lanes << " pixel " << p;
+    }
+    EXPECT_LE(apart, 4) << "lanes " << lanes;
+    // The square's side, 1.6 at 4.2 from the camera, spans 1.6 / 4.2 * 180 / (2 tan 22.5 deg) = 83
+    // rows: its rim crosses at least 4 x 83 pixels, each partly covered.
+    EXPECT_GT(partial, 300) << "lanes " << lanes;
   }
 }
 

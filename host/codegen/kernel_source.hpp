@@ -74,7 +74,7 @@ MarchOutputs march_outputs(const Scene& scene, KernelPurpose purpose);
 
 /// Whether the march program of purpose anti-aliases (ANTIALIAS: render.samples > 1; not the
 /// benchmark's ceiling): its camera rays cross their pixels at MarchParams::sample, and it takes
-/// the sample_mask argument of refining passes (kernels/march.cl).
+/// the sample_mask, refine_packets and sample_points arguments of its refining pass (kernels/march.cl).
 bool uses_antialiasing(const Scene& scene, KernelPurpose purpose);
 
 /// Packets each work-item of the march kernel marches (PACKETS_PER_ITEM): two, interleaved, with

@@ -53,19 +53,20 @@ std::vector<std::uint8_t> pixels_to_refine(const FrameBuffers& centre, bool adap
   const int width = centre.width, height = centre.height;
   std::vector<std::uint8_t> refine(static_cast<std::size_t>(width) * height, adaptive ? 0 : 1);
   if (!adaptive) return refine;
-  // Each edge between two neighbours flags both: the right, lower and two diagonal neighbours of
-  // every pixel cover each pair once.
+  // Each edge between two neighbours flags both: the right and lower neighbours of every pixel
+  // cover each pair once. A straight edge crossing a pixel leaves the neighbour along its normal's
+  // larger axis on its other side, so the diagonals would find no pixel it crosses that these miss.
   EdgeInputs inputs{centre.plane(Channel::Depth), {}};
   const Channel colors[3] = {Channel::R, Channel::G, Channel::B};
   for (int c = 0; c < 3; ++c) {
     inputs.seen[c].resize(refine.size());
     std::transform(centre.plane(colors[c]).begin(), centre.plane(colors[c]).end(), inputs.seen[c].begin(), perceived);
   }
-  const int di[4] = {1, -1, 0, 1}, dj[4] = {0, 1, 1, 1};
+  const int di[2] = {1, 0}, dj[2] = {0, 1};
   for (int j = 0; j < height; ++j) {
     for (int i = 0; i < width; ++i) {
       const std::size_t a = static_cast<std::size_t>(j) * width + i;
-      for (int k = 0; k < 4; ++k) {
+      for (int k = 0; k < 2; ++k) {
         const int ni = i + di[k], nj = j + dj[k];
         if (ni < 0 || ni >= width || nj >= height) continue;
         const std::size_t b = static_cast<std::size_t>(nj) * width + ni;

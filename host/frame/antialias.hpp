@@ -17,7 +17,7 @@ namespace clmarch {
 /// the set's stratification: every column and every row of count strata holds one point.
 glm::dvec2 sample_point(int index, int count);
 
-/// Thresholds of the adaptive decision, each a jump between a pixel and one of its 8 neighbours
+/// Thresholds of the adaptive decision, each a jump between a pixel and one of its 4 neighbours
 /// that marks an edge (docs/scene-format.md, "Anti-aliasing", says why these values). Normals are
 /// not compared: programs that draw the color image alone do not write them, and the image must
 /// not change with --buffers; a crease that shows in the image shows in the color test.
@@ -30,20 +30,21 @@ struct EdgeThresholds {
 };
 
 /// One byte per pixel of centre (row-major), 1 where the pixel gets all its samples: with adaptive,
-/// a pixel whose 3x3 neighbourhood (within centre) shows a hit against a miss or a jump over a
-/// threshold; without, every pixel.
+/// a pixel that differs from one of its 4 neighbours (within centre) by a hit against a miss or
+/// a jump over a threshold; without, every pixel.
 std::vector<std::uint8_t> pixels_to_refine(const FrameBuffers& centre, bool adaptive, const EdgeThresholds& thresholds = {});
 
 /// Sums of the samples of the refined pixels, which finish_samples turns into their mean.
 class SampleSums {
  public:
   SampleSums(const FrameBuffers& centre, std::vector<std::uint8_t> refine);
-  /// Adds the sample of pixel (row-major index) i: its color, and whether it hit.
-  void add(std::size_t i, const glm::vec3& color, bool hit) {
-    sums_[4 * i] += color.r;
-    sums_[4 * i + 1] += color.g;
-    sums_[4 * i + 2] += color.b;
-    sums_[4 * i + 3] += hit ? 1.0 : 0.0;
+  /// Adds samples of pixel (row-major index) i: the sum of their colors, and how many of them hit
+  /// (one sample: its color, and 1 or 0).
+  void add(std::size_t i, const glm::vec3& colors, float hits) {
+    sums_[4 * i] += colors.r;
+    sums_[4 * i + 1] += colors.g;
+    sums_[4 * i + 2] += colors.b;
+    sums_[4 * i + 3] += hits;
   }
   const std::vector<std::uint8_t>& refine() const { return refine_; }
   /// Writes into buffers (the centre render) R, G, B and A as the means of count samples of each

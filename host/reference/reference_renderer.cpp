@@ -204,7 +204,7 @@ FrameBuffers render_reference(const Scene& scene, const std::optional<ConeStarts
         for (int k = 1; k < count; ++k) {
           const glm::dvec2 point = sample_point(k, count);
           const RayResult r = trace_within(scene, bounds, basis.origin, camera_ray_direction(basis, i + point.x, j + point.y));
-          sums.add(at, glm::vec3(r.color), r.hit);
+          sums.add(at, glm::vec3(r.color), r.hit ? 1.0f : 0.0f);
         }
       }
     }

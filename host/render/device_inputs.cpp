@@ -46,10 +46,6 @@ MarchParams march_params(const Scene& scene, const Dispatch& dispatch) {
   params.camera_height = static_cast<float>(scene.camera.position.y);
   params.over_relaxation = static_cast<float>(camera_over_relaxation(scene));
   params.hit_cone_slope = static_cast<float>(hit_cone_slope(scene.render, scene.camera));
-  // The centre pass: anti-aliasing programs' rays through the pixel centres (refine_samples sets
-  // the other samples).
-  params.subpixel.s[0] = 0.5f;
-  params.subpixel.s[1] = 0.5f;
   if (const std::optional<BoundingSphere> bounds = camera_ray_bounds(scene)) {
     const glm::dvec3 c = scene.camera.position - bounds->center;
     params.bounds = to_cl(c);

@@ -15,8 +15,8 @@ constexpr std::uint64_t kWrittenChannels = 14;
 
 std::uint64_t host_bytes_per_pixel(int samples) {
   const std::uint64_t frame = 2 * kChannelCount * sizeof(float) + 3 * kWrittenChannels * sizeof(float);
-  // SampleSums' four doubles, its flags and the device's copy of them, four read-back planes.
-  const std::uint64_t antialiasing = 4 * sizeof(double) + 2 + 4 * sizeof(float);
+  // SampleSums' four doubles and its flag (the refining pass's buffers are of a fixed size).
+  const std::uint64_t antialiasing = 4 * sizeof(double) + 1;
   return samples > 1 ? frame + antialiasing : frame;
 }
 

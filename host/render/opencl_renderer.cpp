@@ -31,6 +31,21 @@ std::uint64_t plane_total(const std::vector<float>& plane) {
 
 }  // namespace
 
+/// Sample packets a refining dispatch marches at most (kernels/march.cl, refine_item): enough that
+/// PoCL's cost a dispatch is small beside them, few enough that the buffers stay small.
+constexpr std::size_t kRefineBatch = std::size_t{1} << 16;
+
+/// The refining pass's inputs and output besides the march's own (kernels/march.cl, refine_item).
+struct AntialiasBuffers {
+  /// kRefineBatch sample packets: (pixel index in the band, first sample).
+  cl::Buffer refine_entries;
+  /// The sample points of render.samples (sample_point), as floats: x, then y from
+  /// CLMARCH_SAMPLE_POINT_STRIDE.
+  cl::Buffer sample_points;
+  /// Each packet's summed colors and hits.
+  cl::Buffer sample_sums;
+};
+
 struct OpenClRenderer::State {
   /// The scene's settings; not its tree, which the program holds (a million primitives' tree is
   /// hundreds of megabytes, and a copy of it set the process's peak memory).
@@ -45,10 +60,8 @@ struct OpenClRenderer::State {
   std::optional<cl::Buffer> values;
   cl::Kernel kernel;
   std::optional<ConePass> cones;
-  /// ANTIALIAS programs: which pixels of the image a refining pass marches (one byte each), and
-  /// the packets of a chunk it runs over.
-  std::optional<cl::Buffer> sample_mask;
-  std::optional<cl::Buffer> refine_packets;
+  /// ANTIALIAS programs' refining pass.
+  std::optional<AntialiasBuffers> antialias;
   /// Whether the coarse pass ran for the current scene (render_rows runs it at the first band).
   bool cones_run = false;
 };
@@ -72,12 +85,13 @@ OpenClRenderer::OpenClRenderer(const Scene& scene, const OpenClOptions& options)
     s.cones = make_cone_pass(s.prepared, scene, s.values);
     const int next_arg = bind_march_inputs(s.kernel, s.out, s.lights, s.values, s.cones);
     if (uses_antialiasing(scene, options.purpose)) {
-      const std::size_t pixels = static_cast<std::size_t>(scene.render.width) * scene.render.height;
-      s.sample_mask = cl::Buffer(dp.context, CL_MEM_READ_ONLY, pixels);
-      s.refine_packets = cl::Buffer(dp.context, CL_MEM_READ_ONLY,
-                                    s.dispatch.global_items * s.prepared.packets_per_item * sizeof(cl_int));
-      s.kernel.setArg(next_arg, *s.sample_mask);
-      s.kernel.setArg(next_arg + 1, *s.refine_packets);
+      static_assert(kMaxSamples + 16 <= CLMARCH_SAMPLE_POINT_STRIDE, "every sample point and a vector's lanes past it");
+      s.antialias = AntialiasBuffers{cl::Buffer(dp.context, CL_MEM_READ_ONLY, kRefineBatch * sizeof(cl_int2)),
+                                     cl::Buffer(dp.context, CL_MEM_READ_ONLY, 2 * CLMARCH_SAMPLE_POINT_STRIDE * sizeof(float)),
+                                     cl::Buffer(dp.context, CL_MEM_WRITE_ONLY, kRefineBatch * sizeof(cl_float4))};
+      s.kernel.setArg(next_arg, s.antialias->refine_entries);
+      s.kernel.setArg(next_arg + 1, s.antialias->sample_points);
+      s.kernel.setArg(next_arg + 2, s.antialias->sample_sums);
     }
   });
 }
@@ -113,87 +127,63 @@ const std::string& OpenClRenderer::source() const { return state_->prepared.sour
 
 namespace {
 
-/// The packets (row-major tiles of the chunk of rows first_row .. first_row + rows - 1, as the
-/// march kernel numbers them) that hold a pixel refine flags, padded for the dispatch of dispatch's
-/// work-group size with a packet past the chunk.
-std::vector<cl_int> packets_to_refine(const std::vector<std::uint8_t>& refine, int width, int band_first_row, int first_row,
-                                      int rows, const Dispatch& dispatch, int packets_per_item) {
-  const int tiles_per_row = (width + dispatch.tile_width - 1) / dispatch.tile_width;
-  std::vector<cl_int> packets;
-  for (int row = 0; row < rows; ++row) {
-    const std::size_t at = static_cast<std::size_t>(first_row - band_first_row + row) * width;
-    for (int x = 0; x < width; ++x) {
-      if (!refine[at + x]) continue;
-      packets.push_back((row / dispatch.tile_height) * tiles_per_row + x / dispatch.tile_width);
-    }
-  }
-  std::sort(packets.begin(), packets.end());
-  packets.erase(std::unique(packets.begin(), packets.end()), packets.end());
-  if (packets.empty()) return packets;
-  const std::size_t group = dispatch.local_items * packets_per_item;
-  const cl_int past_the_chunk = (dispatch.chunk_rows / dispatch.tile_height + 1) * tiles_per_row;
-  packets.resize((packets.size() + group - 1) / group * group, past_the_chunk);
-  return packets;
-}
-
-/// The refining passes of an anti-aliased render of rows band_first_row .. end_row - 1, whose
-/// centre rays are in buffers: samples 1 .. N - 1 of the pixels pixels_to_refine flags, one
-/// dispatch of the march kernel per sample and chunk over the packets that hold such pixels, their
-/// means written into buffers. Returns the passes' kernel time.
-double refine_samples(const RenderSettings& render, PreparedProgram& prepared, cl::Kernel& kernel, const cl::Buffer& out,
-                      const cl::Buffer& sample_mask, const cl::Buffer& refine_packets, MarchParams params,
-                      const Dispatch& dispatch, int band_first_row, int end_row, FrameBuffers& buffers) {
+/// The refining pass of an anti-aliased render of rows band_first_row .. end_row - 1, whose centre
+/// rays are in buffers: samples 1 .. N - 1 of the pixels pixels_to_refine flags, in sample packets
+/// of one pixel's samples (kernels/march.cl, sample_packet), kRefineBatch of them a dispatch, which
+/// sums each packet's colors and hits; their means are written into buffers. Returns its kernel time.
+double refine_samples(const RenderSettings& render, PreparedProgram& prepared, cl::Kernel& kernel,
+                      const AntialiasBuffers& antialias, MarchParams params, const Dispatch& dispatch, int band_first_row,
+                      int end_row, FrameBuffers& buffers) {
   const int count = render.samples;
   SampleSums sums(buffers, pixels_to_refine(buffers, render.adaptive));
   const std::vector<std::uint8_t>& refine = sums.refine();
+  DeviceProgram& dp = prepared.program;
+  std::vector<float> points(2 * CLMARCH_SAMPLE_POINT_STRIDE, 0.0f);
+  for (int k = 0; k < count; ++k) {
+    const glm::dvec2 point = sample_point(k, count);
+    points[k] = static_cast<float>(point.x);
+    points[CLMARCH_SAMPLE_POINT_STRIDE + k] = static_cast<float>(point.y);
+  }
+  dp.queue.enqueueWriteBuffer(antialias.sample_points, CL_TRUE, 0, points.size() * sizeof(float), points.data());
+  params.first_row = band_first_row;
+  params.sampling.s[0] = 1.0f;
+  params.sampling.s[1] = static_cast<float>(count);
+  kernel.setArg(0, sizeof(MarchParams), &params);
+
+  const std::size_t group = dispatch.local_items * prepared.packets_per_item;
+  std::vector<cl_int2> entries;
+  entries.reserve(kRefineBatch);
+  std::vector<cl_float4> packet_sums(kRefineBatch);
   double kernel_ms = 0.0;
-  if (std::find(refine.begin(), refine.end(), 1) != refine.end()) {
-    DeviceProgram& dp = prepared.program;
-    const int width = buffers.width;
-    const bool color = std::find(prepared.planes.begin(), prepared.planes.end(), CLMARCH_CHANNEL_R) != prepared.planes.end();
-    const std::size_t band_offset = static_cast<std::size_t>(band_first_row) * width;
-    dp.queue.enqueueWriteBuffer(sample_mask, CL_TRUE, band_offset, refine.size(), refine.data());
-    std::vector<float> depth(dispatch.plane_stride), r(dispatch.plane_stride), g(dispatch.plane_stride), b(dispatch.plane_stride);
-    const auto read_plane = [&](int channel, std::size_t floats, std::vector<float>& into) {
-      dp.queue.enqueueReadBuffer(out, CL_FALSE, channel * dispatch.plane_stride * sizeof(float), floats * sizeof(float), into.data());
-    };
-    for (int k = 1; k < count; ++k) {
-      const glm::dvec2 point = sample_point(k, count);
-      params.subpixel.s[0] = static_cast<float>(point.x);
-      params.subpixel.s[1] = static_cast<float>(point.y);
-      params.subpixel.s[2] = 1.0f;
-      for (int first_row = band_first_row; first_row < end_row; first_row += dispatch.chunk_rows) {
-        throw_if_cancelled();
-        const int rows = std::min(dispatch.chunk_rows, end_row - first_row);
-        const std::vector<cl_int> packets =
-            packets_to_refine(refine, width, band_first_row, first_row, rows, dispatch, prepared.packets_per_item);
-        if (packets.empty()) continue;
-        dp.queue.enqueueWriteBuffer(refine_packets, CL_TRUE, 0, packets.size() * sizeof(cl_int), packets.data());
-        params.first_row = first_row;
-        kernel.setArg(0, sizeof(MarchParams), &params);
-        cl::Event done;
-        dp.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(packets.size() / prepared.packets_per_item),
-                                      cl::NDRange(dispatch.local_items), nullptr, &done);
-        const std::size_t floats = static_cast<std::size_t>(rows) * width;
-        read_plane(CLMARCH_CHANNEL_DEPTH, floats, depth);
-        if (color) {
-          read_plane(CLMARCH_CHANNEL_R, floats, r);
-          read_plane(CLMARCH_CHANNEL_G, floats, g);
-          read_plane(CLMARCH_CHANNEL_B, floats, b);
-        }
-        {
-          const BlockingCall uninterruptible_wait;
-          dp.queue.finish();
-        }
-        kernel_ms += event_milliseconds(done);
-        const std::size_t first = static_cast<std::size_t>(first_row - band_first_row) * width;
-        for (std::size_t i = 0; i < floats; ++i) {
-          if (!refine[first + i]) continue;  // not marched: the plane holds another pass's value
-          sums.add(first + i, color ? glm::vec3(r[i], g[i], b[i]) : glm::vec3(0.0f), std::isfinite(depth[i]));
-        }
-      }
+  const auto run_batch = [&] {
+    throw_if_cancelled();
+    const std::size_t used = entries.size();
+    entries.resize((used + group - 1) / group * group, cl_int2{{-1, 0}});
+    dp.queue.enqueueWriteBuffer(antialias.refine_entries, CL_TRUE, 0, entries.size() * sizeof(cl_int2), entries.data());
+    cl::Event done;
+    dp.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(entries.size() / prepared.packets_per_item),
+                                  cl::NDRange(dispatch.local_items), nullptr, &done);
+    dp.queue.enqueueReadBuffer(antialias.sample_sums, CL_FALSE, 0, used * sizeof(cl_float4), packet_sums.data());
+    {
+      const BlockingCall uninterruptible_wait;
+      dp.queue.finish();
+    }
+    kernel_ms += event_milliseconds(done);
+    for (std::size_t e = 0; e < used; ++e) {
+      const cl_float4& sum = packet_sums[e];
+      sums.add(static_cast<std::size_t>(entries[e].s[0]), glm::vec3(sum.s[0], sum.s[1], sum.s[2]), sum.s[3]);
+    }
+    entries.clear();
+  };
+  const std::size_t band_pixels = static_cast<std::size_t>(end_row - band_first_row) * buffers.width;
+  for (std::size_t i = 0; i < band_pixels; ++i) {
+    if (!refine[i]) continue;
+    for (int first = 1; first < count; first += prepared.lanes) {
+      entries.push_back(cl_int2{{static_cast<cl_int>(i), first}});
+      if (entries.size() + group > kRefineBatch) run_batch();
     }
   }
+  if (!entries.empty()) run_batch();
   sums.finish(buffers, count);
   return kernel_ms;
 }
@@ -268,9 +258,9 @@ RenderResult OpenClRenderer::render_rows(int band_first_row, int band_rows) {
       for (float steps : read_cone_plane(dp.queue, *s.cones, s.cones->steps)) coarse_steps += static_cast<std::uint64_t>(steps);
       kernel_ms += event_milliseconds(*cones_done);
     }
-    if (s.sample_mask) {
-      kernel_ms += refine_samples(s.render, s.prepared, s.kernel, s.out, *s.sample_mask, *s.refine_packets, params, dispatch,
-                                  band_first_row, end_row, result.buffers);
+    if (s.antialias) {
+      kernel_ms += refine_samples(s.render, s.prepared, s.kernel, *s.antialias, params, dispatch, band_first_row, end_row,
+                                  result.buffers);
     } else {
       set_single_sample_coverage(result.buffers);
     }
