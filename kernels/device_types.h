@@ -71,9 +71,10 @@ typedef struct MarchParams {
                             w = its radius; w = 0: rays are not clipped */
   float4 tile_reach;     /* x = reach^2: a tile whose centre ray q (unnormalised) has
                             |c x q|^2 > reach^2 |q|^2 misses the bounds (kernels/march.cl); y, z, w = 0 */
-  float4 sampling;       /* ANTIALIAS programs: x = 1 on a refining pass, which marches the sample
-                            packets of its refine_entries instead of tiles (kernels/march.cl,
-                            sample_packet), y = render.samples; x = y = 0 on the centre pass; z = w = 0 */
+  float4 sampling;       /* ANTIALIAS programs: x = 1 on a refining pass, which marches samples 1 ..
+                            y - 1 (y = render.samples) of the z pixels of its refine_pixels instead
+                            of tiles (kernels/march.cl, sample_packet); x = y = z = 0 on the centre
+                            pass; w = 0 */
   CLMARCH_INT width;
   CLMARCH_INT height;
   CLMARCH_INT first_row;    /* first image row of this dispatch (images render in chunks of rows) */

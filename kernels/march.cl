@@ -251,80 +251,126 @@ SDF_INLINE void finish_packet(SceneValues values, const Packet* k, const MarchRe
 }
 
 #if defined(ANTIALIAS)
-/* A refining pass's packet (params->sampling.x = 1): samples s0 .. s0 + LANES - 1 of one pixel, a
- * sample a lane, those below N = params->sampling.y marching. The tile test and the cones are made
- * for the centre rays; these are off them. entry = (the pixel's index in the
- * rows from params->first_row on, s0); sample_points holds the samples' x, then from
- * CLMARCH_SAMPLE_POINT_STRIDE their y, in pixel units from its top-left corner. A pixel's samples
- * are as coherent as rays get: a packet of them marches with every lane busy, where a packet of
- * neighbouring pixels marched once a sample left most lanes idle along the edges it refines. */
-SDF_INLINE Packet sample_packet(const MarchParams* params, int2 entry, __constant float* sample_points) {
+#if LANES == 1
+#define LOAD_PRIVATE(a) ((a)[0])
+#else
+#define LOAD_PRIVATE(a) VLOAD_LANES(0, (a))
+#endif
+
+/* A refining pass's packet number `packet` (params->sampling.x = 1): the (pixel, sample) pairs
+ * packet * LANES .. packet * LANES + LANES - 1, a pair a lane, of samples 1 .. N - 1 (N =
+ * params->sampling.y) of each of the pass's params->sampling.z pixels in turn: pair f is sample
+ * 1 + f % (N - 1) of pixel pixels[f / (N - 1)] (its index in the rows from params->first_row on).
+ * sample_points holds the samples' x, then from CLMARCH_SAMPLE_POINT_STRIDE their y, in pixel
+ * units from its top-left corner. A pixel's samples are as coherent as rays get, and every lane
+ * has one, where a packet of neighbouring pixels marched once a sample left most lanes idle along
+ * the edges it refines. The tile test and the cones are made for the centre rays; these are off
+ * them. */
+SDF_INLINE Packet sample_packet(const MarchParams* params, int packet, __global const int* pixels,
+                                __constant float* sample_points) {
+  const int per_pixel = (int)params->sampling.y - 1;
+  const int pairs = (int)params->sampling.z * per_pixel;
+  real x[LANES], y[LANES];
+  mask1 live[LANES];
+  /* Divisions once a pixel, not once a lane: they were most of a sample's cost where rays miss. */
+  const int first = packet * LANES;
+  int pixel_at = first / per_pixel;
+  int sample = 1 + first - pixel_at * per_pixel;
+  int pixel_x = 0, pixel_y = 0;
+  int located = -1;
+  for (int lane = 0; lane < LANES; ++lane) {
+    const int in_range = first + lane < pairs;
+    if (in_range && located != pixel_at) {
+      const int pixel = pixels[pixel_at];
+      const int row = pixel / params->width;
+      pixel_x = pixel - row * params->width;
+      pixel_y = params->first_row + row;
+      located = pixel_at;
+    }
+    x[lane] = (real)pixel_x + (in_range ? sample_points[sample] : 0.5f);
+    y[lane] = (real)pixel_y + (in_range ? sample_points[CLMARCH_SAMPLE_POINT_STRIDE + sample] : 0.5f);
+    live[lane] = in_range ? -1 : 0;
+    if (++sample > per_pixel) {
+      sample = 1;
+      ++pixel_at;
+    }
+  }
   Packet k;
-  const int row = entry.x / params->width;
-  k.x0 = entry.x - row * params->width;
-  k.row0 = row;
-  k.columns = 1;
-  k.rows = 1;
+  k.x0 = 0;
+  k.row0 = 0;
+  k.columns = 0;
+  k.rows = 0;
   k.t_start = (vfloat)(0.0f);
   k.t_end = (vfloat)(params->max_distance);
-  const vfloat x = (real)k.x0 + LOAD_LANES(entry.y, sample_points);
-  const vfloat y = (real)(params->first_row + row) + LOAD_LANES(entry.y, sample_points + CLMARCH_SAMPLE_POINT_STRIDE);
-  k.dir = camera_ray_at(params, x, y);
-  k.marching = MASK(entry.y + LANE_IOTA < (int)params->sampling.y);
+  k.dir = camera_ray_at(params, LOAD_PRIVATE(x), LOAD_PRIVATE(y));
+  k.marching = LOAD_PRIVATE(live);
   if (params->bounds.w > 0.0f) clip_to_bounds(params->bounds, k.dir, &k.marching, &k.t_start, &k.t_end);
   return k;
 }
 
-/* The sum of v over the lanes of live. */
-SDF_INLINE float live_lane_sum(vfloat v, vint live) {
-  float lanes[LANES];
-  STORE_LANES(select((vfloat)(0.0f), v, live), 0, lanes);
-  float sum = 0.0f;
-  for (int lane = 0; lane < LANES; ++lane) sum += lanes[lane];
-  return sum;
-}
-
-/* Writes what a sample packet's march found into sums: its lanes' tone-mapped colors summed
- * (programs without shading: 0) and how many of them hit. */
-SDF_INLINE void store_sample_sum(SceneValues values, const Packet* k, const MarchResult* m, const MarchParams* params,
-                                 __constant float4* lights, __global float4* sums) {
+/* Writes what a sample packet's march found: for each pixel whose pairs it holds, the sum of their
+ * tone-mapped colors (programs without shading: 0) and how many of them hit, as a float4 at the
+ * first of those pairs (a pair that starts the packet or its pixel's samples); the other pairs'
+ * slots are left alone: the host adds about a float4 a packet instead of one a sample. */
+SDF_INLINE void store_samples(SceneValues values, const Packet* k, const MarchResult* m, const MarchParams* params,
+                              __constant float4* lights, int packet, __global float4* samples) {
+  const int pairs = (int)params->sampling.z * ((int)params->sampling.y - 1);
+  float r[LANES], g[LANES], b[LANES], hit[LANES];
 #ifdef NEED_SHADING
   vec3v normal;
   const vec3v color = packet_color(values, k, m, params, lights, &normal);
-  *sums = (float4)(live_lane_sum(color.x, k->marching), live_lane_sum(color.y, k->marching),
-                   live_lane_sum(color.z, k->marching), live_lane_sum((vfloat)(1.0f), m->hit));
+  STORE_LANES(color.x, 0, r);
+  STORE_LANES(color.y, 0, g);
+  STORE_LANES(color.z, 0, b);
 #else
   (void)values;
-  (void)params;
   (void)lights;
-  *sums = (float4)(0.0f, 0.0f, 0.0f, live_lane_sum((vfloat)(1.0f), m->hit));
+  STORE_LANES((vfloat)(0.0f), 0, r);
+  STORE_LANES((vfloat)(0.0f), 0, g);
+  STORE_LANES((vfloat)(0.0f), 0, b);
 #endif
+  STORE_LANES(select((vfloat)(0.0f), (vfloat)(1.0f), m->hit), 0, hit);
+  const int per_pixel = (int)params->sampling.y - 1;
+  const int first = packet * LANES;
+  int to_pixel_end = per_pixel - first % per_pixel; /* pairs left of the first lane's pixel */
+  float4 sum = (float4)(0.0f);
+  int run_start = first;
+  for (int lane = 0; lane < LANES && first + lane < pairs; ++lane) {
+    if (to_pixel_end == 0) {
+      samples[run_start] = sum;
+      sum = (float4)(0.0f);
+      run_start = first + lane;
+      to_pixel_end = per_pixel;
+    }
+    sum += (float4)(r[lane], g[lane], b[lane], hit[lane]);
+    --to_pixel_end;
+  }
+  if (run_start < pairs) samples[run_start] = sum;
 }
 
-/* A refining pass's work-item: the sample packets of entries[item ..] (an entry of x < 0 pads the
- * dispatch), their sums into sums[item ..]; two march interleaved, as on the centre pass. */
+/* A refining pass's work-item: sample packets item and item + 1 (PACKETS_PER_ITEM = 2, marched
+ * interleaved, as on the centre pass) or item, each lane's result into samples[its pair]. */
 SDF_INLINE void refine_item(const MarchParams* params, vec3v origin, __constant float4* lights, SceneValues values, int item,
-                            __global const int2* entries, __constant float* sample_points, __global float4* sums) {
+                            __global const int* pixels, __constant float* sample_points, __global float4* samples) {
   const MarchRecord record = {0};
-  if (entries[item].x < 0) return;
-  const Packet a = sample_packet(params, entries[item], sample_points);
+  const int pairs = (int)params->sampling.z * ((int)params->sampling.y - 1);
+  if (item * LANES >= pairs) return; /* padding of the dispatch to whole work-groups */
+  const Packet a = sample_packet(params, item, pixels, sample_points);
 #if PACKETS_PER_ITEM == 2
-  const int b_wanted = entries[item + 1].x >= 0;
-  Packet b = a;
-  if (b_wanted) b = sample_packet(params, entries[item + 1], sample_points);
+  /* Past the pairs b has no lane marching, and its loop never runs. */
+  const Packet b = sample_packet(params, item + 1, pixels, sample_points);
   PlainMarch march_a = plain_march_begin(origin, a.dir, a.marching, a.t_start, a.t_end, camera_limits(values, params, &a, &record));
-  PlainMarch march_b = plain_march_begin(origin, b.dir, b_wanted ? b.marching : (vint)(0), b.t_start, b.t_end,
-                                         camera_limits(values, params, &b, &record));
+  PlainMarch march_b = plain_march_begin(origin, b.dir, b.marching, b.t_start, b.t_end, camera_limits(values, params, &b, &record));
   march_plain_pair(&march_a, &march_b);
   const MarchResult ma = plain_march_end(&march_a);
-  store_sample_sum(values, &a, &ma, params, lights, sums + item);
-  if (b_wanted) {
+  store_samples(values, &a, &ma, params, lights, item, samples);
+  if ((item + 1) * LANES < pairs) {
     const MarchResult mb = plain_march_end(&march_b);
-    store_sample_sum(values, &b, &mb, params, lights, sums + item + 1);
+    store_samples(values, &b, &mb, params, lights, item + 1, samples);
   }
 #else
   const MarchResult m = MARCH(origin, a.dir, a.marching, a.t_start, a.t_end, camera_limits(values, params, &a, &record));
-  store_sample_sum(values, &a, &m, params, lights, sums + item);
+  store_samples(values, &a, &m, params, lights, item, samples);
 #endif
 }
 #endif
@@ -338,7 +384,7 @@ __kernel void march(const MarchParams params, __global float* out, __constant fl
                     , __global const float* coarse_starts
 #endif
 #if defined(ANTIALIAS)
-                    , __global const int2* refine_entries, __constant float* sample_points, __global float4* sample_sums
+                    , __global const int* refine_pixels, __constant float* sample_points, __global float4* refined_samples
 #endif
 #if defined(RECORD_SAMPLES)
                     , __global const int* sample_base, __global float* samples, const int sample_stride
@@ -359,9 +405,9 @@ __kernel void march(const MarchParams params, __global float* out, __constant fl
 #endif
   const int item = (int)get_global_id(0) * PACKETS_PER_ITEM;
 #if defined(ANTIALIAS)
-  /* A refining pass runs over the host's list of sample packets, not over the chunk's tiles. */
+  /* A refining pass runs over the samples of the host's list of pixels, not over the chunk's tiles. */
   if (params.sampling.x != 0.0f) {
-    refine_item(&params, origin, lights, values, item, refine_entries, sample_points, sample_sums);
+    refine_item(&params, origin, lights, values, item, refine_pixels, sample_points, refined_samples);
     return;
   }
 #endif

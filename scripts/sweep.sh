@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The time-vs-error sweeps of docs/accuracy.md: for each scene, every setting varied alone around
 # the scene's own settings, then the pixel-cone factor, at 320x180 on the default OpenCL device.
-# Writes docs/sweeps/SCENE.csv and docs/images/sweep_SCENE.png (needs scripts/setup.sh --plots).
+# Writes docs/sweeps/SCENE.csv and docs/images/sweep_SCENE.png (needs scripts/setup.sh --plots),
+# and docs/sweeps/SCENE_samples.csv: render.samples and render.adaptive against a 256-ray reference.
 # Usage: scripts/sweep.sh [SCENE_NAME ...]   (default: torus mandelbulb menger terrain_fbm tiled_spheres)
 # SWEEP_SIZE (320x180), SWEEP_REPEAT (9) and CLMARCH (build/clmarch) change what runs.
 set -euo pipefail
@@ -33,4 +34,7 @@ for name in "${scenes[@]}"; do
   "$clmarch" bench "scenes/$name.yaml" --size "$size" --repeat "$repeat" --csv "$csv" --append \
     --set render.hit_threshold=pixel_cone --sweep render.cone_factor=0.5,1,2,4
   /usr/bin/python3 scripts/sweep-plot.py "$csv" -o "docs/images/sweep_$name.png"
+  # Anti-aliasing against a reference of 256 rays a pixel (its own file: another reference).
+  "$clmarch" bench "scenes/$name.yaml" --size "$size" --repeat "$repeat" --csv "docs/sweeps/${name}_samples.csv" \
+    --sweep render.samples=1,4,16,64 --sweep render.adaptive=true,false
 done

@@ -242,9 +242,9 @@ TEST(Antialias, ChunksAndLanesRefineTheSamePixels) {
   }
 }
 
-// The refining pass marches at most 65,536 sample packets a dispatch: 200 x 180 pixels of 16
-// samples take 36,000 packets with 16 lanes (one dispatch) and 540,000 with one lane (nine), whose
-// sums must land on their pixels as the reference's do.
+// The refining pass marches at most 262,144 (pixel, sample) pairs a dispatch: 200 x 180 pixels of
+// 16 samples are 540,000 pairs (three dispatches, the last part-filled), whose results must land on
+// their pixels as the reference's do, with 16 lanes a packet and with one.
 TEST(Antialias, RefiningInSeveralDispatchesMatchesTheReference) {
   std::string yaml = high_contrast_scene("{box: {half_size: [0.8, 0.8, 0.8], rotate: [0, 0, 30]}}", 16, false);
   yaml.replace(yaml.find("width: 32, height: 32"), std::string("width: 32, height: 32").size(), "width: 200, height: 180");

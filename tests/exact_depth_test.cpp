@@ -8,8 +8,10 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
+#include <vector>
 
 namespace clmarch {
 namespace {
@@ -194,6 +196,32 @@ TEST_P(ExactDepth, HoldsWithATighterEpsilon) {
 INSTANTIATE_TEST_SUITE_P(Primitives, ExactDepth, ::testing::ValuesIn(depth_cases()),
                          [](const auto& info) { return info.param.name; });
 
+/// A pixel where the normals program hit a sphere: its depth, and the distance of its normal from
+/// the closed form normalize(p - centre) at the point p where the march stopped.
+struct SphereNormalError {
+  int i = 0, j = 0;
+  double depth = 0.0, error = 0.0;
+};
+
+std::vector<SphereNormalError> sphere_normal_errors(const Scene& scene, int lanes, const glm::dvec3& centre) {
+  OpenClOptions options;
+  options.lanes = lanes;
+  options.purpose = KernelPurpose::Normals;
+  const FrameBuffers buffers = render_opencl(scene, options).buffers;
+  const CameraBasis basis = camera_basis(scene.camera, scene.render.width, scene.render.height);
+  std::vector<SphereNormalError> hits;
+  for (int j = 0; j < scene.render.height; ++j) {
+    for (int i = 0; i < scene.render.width; ++i) {
+      const double depth = buffers.at(Channel::Depth, i, j);
+      if (!std::isfinite(depth)) continue;
+      const glm::dvec3 p = basis.origin + depth * pixel_ray_direction(basis, i, j);
+      const glm::dvec3 normal(buffers.at(Channel::NX, i, j), buffers.at(Channel::NY, i, j), buffers.at(Channel::NZ, i, j));
+      hits.push_back({i, j, depth, glm::length(normal - glm::normalize(p - centre))});
+    }
+  }
+  return hits;
+}
+
 // The kernel's normals against the sphere's closed form, normalize(p) at the point p where the
 // march stopped (the gradient of the exact field there), for each finite-difference method: the
 // central stencil errs by ~(h kappa)^2, the one-sided ones (tetrahedral, forward) by ~h kappa with
@@ -205,29 +233,16 @@ TEST(KernelNormals, MatchTheSphereClosedFormForEachMethod) {
         "render: {{width: 64, height: 48, normal_method: {}, normal_epsilon: 1.0e-3}}\n"
         "sdf: {{sphere: {{radius: 1}}}}\n",
         method));
+    const double camera_distance = glm::length(scene.camera.position);
+    const double h = scene.render.normal_epsilon;
+    const double stencil = std::string(method) == "central" ? 2.0 * h * h : 2.0 * h;
     for (int lanes : {1, 16}) {
-      OpenClOptions options;
-      options.lanes = lanes;
-      options.purpose = KernelPurpose::Normals;
-      const FrameBuffers buffers = render_opencl(scene, options).buffers;
-      const CameraBasis basis = camera_basis(scene.camera, scene.render.width, scene.render.height);
-      const double h = scene.render.normal_epsilon;
-      const double stencil = std::string(method) == "central" ? 2.0 * h * h : 2.0 * h;
-      int compared = 0;
-      for (int j = 0; j < scene.render.height; ++j) {
-        for (int i = 0; i < scene.render.width; ++i) {
-          const double depth = buffers.at(Channel::Depth, i, j);
-          if (!std::isfinite(depth)) continue;
-          const glm::dvec3 p = basis.origin + depth * pixel_ray_direction(basis, i, j);
-          const double rounding = 2.0 * std::sqrt(3.0) * kFloatRelative * (glm::length(basis.origin) + depth) / h;
-          const glm::dvec3 normal(buffers.at(Channel::NX, i, j), buffers.at(Channel::NY, i, j),
-                                  buffers.at(Channel::NZ, i, j));
-          EXPECT_LE(glm::length(normal - glm::normalize(p)), stencil + rounding)
-              << method << " lanes " << lanes << " pixel " << i << "," << j;
-          ++compared;
-        }
+      const std::vector<SphereNormalError> hits = sphere_normal_errors(scene, lanes, glm::dvec3(0.0));
+      for (const SphereNormalError& hit : hits) {
+        const double rounding = 2.0 * std::sqrt(3.0) * kFloatRelative * (camera_distance + hit.depth) / h;
+        EXPECT_LE(hit.error, stencil + rounding) << method << " lanes " << lanes << " pixel " << hit.i << "," << hit.j;
       }
-      EXPECT_GT(compared, 300) << method << ": the sphere covers part of the image";
+      EXPECT_GT(hits.size(), 300u) << method << ": the sphere covers part of the image";
     }
   }
 }
@@ -252,25 +267,11 @@ TEST(KernelNormals, HoldFarFromTheFrameOrigin) {
   const double u = 0x1p-24;  // float's unit roundoff
   const double tolerance = 2.0 * h * h + 2.0 * std::sqrt(3.0) * u * r / h;
   for (int lanes : {1, 16}) {
-    OpenClOptions options;
-    options.lanes = lanes;
-    options.purpose = KernelPurpose::Normals;
-    const FrameBuffers buffers = render_opencl(scene, options).buffers;
-    const CameraBasis basis = camera_basis(scene.camera, scene.render.width, scene.render.height);
-    int compared = 0;
+    const std::vector<SphereNormalError> hits = sphere_normal_errors(scene, lanes, glm::dvec3(58.0, 0.0, 0.5));
     double largest = 0.0;
-    for (int j = 0; j < scene.render.height; ++j) {
-      for (int i = 0; i < scene.render.width; ++i) {
-        const double depth = buffers.at(Channel::Depth, i, j);
-        if (!std::isfinite(depth)) continue;
-        const glm::dvec3 p = basis.origin + depth * pixel_ray_direction(basis, i, j);
-        const glm::dvec3 normal(buffers.at(Channel::NX, i, j), buffers.at(Channel::NY, i, j), buffers.at(Channel::NZ, i, j));
-        largest = std::max(largest, glm::length(normal - glm::normalize(p - glm::dvec3(58.0, 0.0, 0.5))));
-        ++compared;
-      }
-    }
+    for (const SphereNormalError& hit : hits) largest = std::max(largest, hit.error);
     EXPECT_LE(largest, tolerance) << "lanes " << lanes << ": " << glm::degrees(largest) << " degrees";
-    EXPECT_GT(compared, 48 * 48 / 4) << "the sphere covers part of the image";
+    EXPECT_GT(hits.size(), 48u * 48u / 4u) << "the sphere covers part of the image";
   }
 }
 

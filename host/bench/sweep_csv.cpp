@@ -26,7 +26,9 @@ const char* const kColumns[] = {
     "both_hit", "depth_rms", "depth_p99", "depth_max", "depth_rel_rms", "depth_rel_p99", "depth_rel_max",
     "mask_silhouette_rate", "mask_interior_rate", "normal_p99_deg", "color_psnr_db",
     // the reference
-    "reference_epsilon", "reference_max_steps"};
+    "reference_epsilon", "reference_max_steps",
+    // anti-aliasing in force, and the reference's rays a pixel (columns added after the others)
+    "samples", "adaptive", "reference_samples"};
 
 std::string quoted(const std::string& field) {
   if (field.find_first_of(",\"\n") == std::string::npos) return field;
@@ -55,7 +57,8 @@ std::string row_line(const std::string& scene, const SweepResult& result, const 
       std::to_string(e.both_hit), number(e.depth_abs.rms), number(e.depth_abs.p99), number(e.depth_abs.max),
       number(e.depth_rel.rms), number(e.depth_rel.p99), number(e.depth_rel.max),
       number(e.mask_mismatch_silhouette / pixels), number(e.mask_mismatch_interior / pixels), number(e.normal_angle_p99),
-      number(e.color_psnr_db), number(row.reference_epsilon), std::to_string(result.reference_max_steps)};
+      number(e.color_psnr_db), number(row.reference_epsilon), std::to_string(result.reference_max_steps),
+      std::to_string(r.samples), r.adaptive ? "true" : "false", std::to_string(row.reference_samples)};
   return fmt::format("{}\n", fmt::join(fields, ","));
 }
 

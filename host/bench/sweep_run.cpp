@@ -11,6 +11,7 @@
 #include <fmt/ranges.h>
 #include <glm/glm.hpp>
 
+#include <algorithm>
 #include <map>
 
 namespace clmarch {
@@ -36,22 +37,40 @@ Scene high_accuracy_scene(const Scene& scene, const SweepSettings& settings) {
   r.hit_threshold = HitThreshold::Fixed;
   r.over_relaxation = 1.0;
   r.normal_method = NormalMethod::Central;
+  if (settings.reference_samples > 0) {
+    r.samples = settings.reference_samples;
+    r.adaptive = false;
+  }
   return out;
 }
 
-SweepResult run_sweep(const std::vector<SweepCase>& cases, const SweepSettings& settings) {
+namespace {
+
+/// Whether a case varies the anti-aliasing, whose error only an anti-aliased reference shows.
+bool sweeps_antialiasing(const std::vector<SweepCase>& cases) {
+  return std::any_of(cases.begin(), cases.end(), [](const SweepCase& c) {
+    return std::any_of(c.combination.begin(), c.combination.end(), [](const std::pair<std::string, std::string>& set) {
+      return set.first == "render.samples" || set.first == "render.adaptive";
+    });
+  });
+}
+
+}  // namespace
+
+SweepResult run_sweep(const std::vector<SweepCase>& cases, SweepSettings settings) {
+  if (settings.reference_samples == 0 && sweeps_antialiasing(cases)) settings.reference_samples = kAntialiasedReferenceSamples;
   SweepResult result;
   result.reference_max_steps = settings.reference_max_steps;
   // Cases that draw the same picture (the same keys outside render.*) share its reference.
-  std::map<std::vector<std::string>, std::pair<FrameBuffers, double>> references;
+  std::map<std::vector<std::string>, std::pair<FrameBuffers, RenderSettings>> references;
   for (const SweepCase& c : cases) {
     const std::vector<std::string> picture = picture_sets(c.combination);
     if (references.contains(picture)) continue;
     const Scene reference_scene = high_accuracy_scene(c.picture, settings);
-    log_info(fmt::format("sweep: CPU reference{}, epsilon {:.3g}, max_steps {}",
+    log_info(fmt::format("sweep: CPU reference{}, epsilon {:.3g}, max_steps {}, {} rays a pixel",
                          picture.empty() ? "" : fmt::format(" of {}", fmt::join(picture, " ")),
-                         reference_scene.render.epsilon, reference_scene.render.max_steps));
-    references.emplace(picture, std::pair(render_reference(reference_scene), reference_scene.render.epsilon));
+                         reference_scene.render.epsilon, reference_scene.render.max_steps, reference_scene.render.samples));
+    references.emplace(picture, std::pair(render_reference(reference_scene), reference_scene.render));
   }
 
   std::vector<Scene> scenes;
@@ -69,9 +88,10 @@ SweepResult run_sweep(const std::vector<SweepCase>& cases, const SweepSettings& 
     row.device = first.stats.device;
     row.steps_per_pixel = static_cast<double>(first.stats.steps) / pixels;
     row.is_defaults = cases[k].is_defaults;
-    const auto& [reference, reference_epsilon] = references.at(picture_sets(cases[k].combination));
+    const auto& [reference, reference_render] = references.at(picture_sets(cases[k].combination));
     row.error = cross_check(scenes[k], first.buffers, reference);
-    row.reference_epsilon = reference_epsilon;
+    row.reference_epsilon = reference_render.epsilon;
+    row.reference_samples = reference_render.samples;
     result.rows.push_back(std::move(row));
   }
   for (int round = 0; round < settings.repeat; ++round) {

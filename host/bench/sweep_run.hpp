@@ -34,7 +34,14 @@ struct SweepSettings {
   double reference_epsilon_scale = 1e-9;
   /// The reference's step budget: large enough that grazing rays end by hitting or leaving.
   int reference_max_steps = 20000;
+  /// The reference's rays a pixel (render.samples, adaptive off) when a sweep varies
+  /// render.samples or render.adaptive: its colour error (color_psnr_db) then measures the
+  /// anti-aliasing against a converged image. 0: the scene's own.
+  int reference_samples = 0;
 };
+
+/// Rays a pixel of the reference of a sweep that varies render.samples or render.adaptive.
+inline constexpr int kAntialiasedReferenceSamples = 256;
 
 /// What one combination measured.
 struct SweepRow {
@@ -55,6 +62,8 @@ struct SweepRow {
   CheckReport error;
   /// The epsilon of the reference it was compared with (scaled to its camera's distance).
   double reference_epsilon = 0.0;
+  /// The reference's rays a pixel.
+  int reference_samples = 1;
 };
 
 struct SweepResult {
@@ -66,14 +75,16 @@ struct SweepResult {
 /// times the scene's size, plain sphere tracing, a large step budget, central-difference normals.
 /// The normal step stays the scene's normal_epsilon: it is part of the look (fractals and sharp
 /// edges have no useful gradient at much finer steps), so a render's normal error is measured
-/// against the normal the scene asks for. Step-count AO is off (see run_sweep).
+/// against the normal the scene asks for. Step-count AO is off (see run_sweep). With
+/// settings.reference_samples, that many rays a pixel, everywhere.
 Scene high_accuracy_scene(const Scene& scene, const SweepSettings& settings);
 
 /// Renders the reference of each distinct picture once (one for a sweep of render.* and kernel keys
-/// alone), then every case: one untimed render whose buffers are compared with its picture's
+/// alone; kAntialiasedReferenceSamples rays a pixel where render.samples or render.adaptive is
+/// swept, unless settings name a count), then every case: one untimed render whose buffers are compared with its picture's
 /// reference, then settings.repeat timed rounds over all cases. Step-count ambient occlusion is
 /// turned off in every render: it makes the color a function of the step count, which is what a
 /// sweep changes, so it would hide the errors being measured.
-SweepResult run_sweep(const std::vector<SweepCase>& cases, const SweepSettings& settings);
+SweepResult run_sweep(const std::vector<SweepCase>& cases, SweepSettings settings);
 
 }  // namespace clmarch

@@ -31,19 +31,20 @@ std::uint64_t plane_total(const std::vector<float>& plane) {
 
 }  // namespace
 
-/// Sample packets a refining dispatch marches at most (kernels/march.cl, refine_item): enough that
-/// PoCL's cost a dispatch is small beside them, few enough that the buffers stay small.
-constexpr std::size_t kRefineBatch = std::size_t{1} << 16;
+/// (pixel, sample) pairs a refining dispatch marches at most (kernels/march.cl, sample_packet):
+/// enough that PoCL's cost a dispatch is small beside them, few enough that the buffers stay small
+/// (4 MiB of results).
+constexpr std::size_t kRefinePairs = std::size_t{1} << 18;
 
 /// The refining pass's inputs and output besides the march's own (kernels/march.cl, refine_item).
 struct AntialiasBuffers {
-  /// kRefineBatch sample packets: (pixel index in the band, first sample).
-  cl::Buffer refine_entries;
+  /// A dispatch's pixels, by index in the band: at most kRefinePairs.
+  cl::Buffer refine_pixels;
   /// The sample points of render.samples (sample_point), as floats: x, then y from
   /// CLMARCH_SAMPLE_POINT_STRIDE.
   cl::Buffer sample_points;
-  /// Each packet's summed colors and hits.
-  cl::Buffer sample_sums;
+  /// Sums of colors and hits, at the first pair of each pixel in each packet.
+  cl::Buffer refined_samples;
 };
 
 struct OpenClRenderer::State {
@@ -86,12 +87,12 @@ OpenClRenderer::OpenClRenderer(const Scene& scene, const OpenClOptions& options)
     const int next_arg = bind_march_inputs(s.kernel, s.out, s.lights, s.values, s.cones);
     if (uses_antialiasing(scene, options.purpose)) {
       static_assert(kMaxSamples + 16 <= CLMARCH_SAMPLE_POINT_STRIDE, "every sample point and a vector's lanes past it");
-      s.antialias = AntialiasBuffers{cl::Buffer(dp.context, CL_MEM_READ_ONLY, kRefineBatch * sizeof(cl_int2)),
+      s.antialias = AntialiasBuffers{cl::Buffer(dp.context, CL_MEM_READ_ONLY, kRefinePairs * sizeof(cl_int)),
                                      cl::Buffer(dp.context, CL_MEM_READ_ONLY, 2 * CLMARCH_SAMPLE_POINT_STRIDE * sizeof(float)),
-                                     cl::Buffer(dp.context, CL_MEM_WRITE_ONLY, kRefineBatch * sizeof(cl_float4))};
-      s.kernel.setArg(next_arg, s.antialias->refine_entries);
+                                     cl::Buffer(dp.context, CL_MEM_WRITE_ONLY, kRefinePairs * sizeof(cl_float4))};
+      s.kernel.setArg(next_arg, s.antialias->refine_pixels);
       s.kernel.setArg(next_arg + 1, s.antialias->sample_points);
-      s.kernel.setArg(next_arg + 2, s.antialias->sample_sums);
+      s.kernel.setArg(next_arg + 2, s.antialias->refined_samples);
     }
   });
 }
@@ -128,9 +129,9 @@ const std::string& OpenClRenderer::source() const { return state_->prepared.sour
 namespace {
 
 /// The refining pass of an anti-aliased render of rows band_first_row .. end_row - 1, whose centre
-/// rays are in buffers: samples 1 .. N - 1 of the pixels pixels_to_refine flags, in sample packets
-/// of one pixel's samples (kernels/march.cl, sample_packet), kRefineBatch of them a dispatch, which
-/// sums each packet's colors and hits; their means are written into buffers. Returns its kernel time.
+/// rays are in buffers: samples 1 .. N - 1 of the pixels pixels_to_refine flags, a (pixel, sample)
+/// pair a lane (kernels/march.cl, sample_packet), at most kRefinePairs a dispatch; their means are
+/// written into buffers. Returns its kernel time.
 double refine_samples(const RenderSettings& render, PreparedProgram& prepared, cl::Kernel& kernel,
                       const AntialiasBuffers& antialias, MarchParams params, const Dispatch& dispatch, int band_first_row,
                       int end_row, FrameBuffers& buffers) {
@@ -148,42 +149,46 @@ double refine_samples(const RenderSettings& render, PreparedProgram& prepared, c
   params.first_row = band_first_row;
   params.sampling.s[0] = 1.0f;
   params.sampling.s[1] = static_cast<float>(count);
-  kernel.setArg(0, sizeof(MarchParams), &params);
 
-  const std::size_t group = dispatch.local_items * prepared.packets_per_item;
-  std::vector<cl_int2> entries;
-  entries.reserve(kRefineBatch);
-  std::vector<cl_float4> packet_sums(kRefineBatch);
+  const std::size_t per_pixel = static_cast<std::size_t>(count - 1);
+  const std::size_t batch_pixels = std::max<std::size_t>(1, kRefinePairs / per_pixel);
+  const std::size_t lanes = static_cast<std::size_t>(prepared.lanes);
+  std::vector<cl_int> pixels;
+  pixels.reserve(batch_pixels);
+  std::vector<cl_float4> samples(batch_pixels * per_pixel);
   double kernel_ms = 0.0;
   const auto run_batch = [&] {
     throw_if_cancelled();
-    const std::size_t used = entries.size();
-    entries.resize((used + group - 1) / group * group, cl_int2{{-1, 0}});
-    dp.queue.enqueueWriteBuffer(antialias.refine_entries, CL_TRUE, 0, entries.size() * sizeof(cl_int2), entries.data());
+    const std::size_t pairs = pixels.size() * per_pixel;
+    params.sampling.s[2] = static_cast<float>(pixels.size());
+    kernel.setArg(0, sizeof(MarchParams), &params);
+    dp.queue.enqueueWriteBuffer(antialias.refine_pixels, CL_TRUE, 0, pixels.size() * sizeof(cl_int), pixels.data());
+    const std::size_t packets = (pairs + lanes - 1) / lanes;
+    const std::size_t items = (packets + prepared.packets_per_item - 1) / prepared.packets_per_item;
+    const std::size_t global = (items + dispatch.local_items - 1) / dispatch.local_items * dispatch.local_items;
     cl::Event done;
-    dp.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(entries.size() / prepared.packets_per_item),
-                                  cl::NDRange(dispatch.local_items), nullptr, &done);
-    dp.queue.enqueueReadBuffer(antialias.sample_sums, CL_FALSE, 0, used * sizeof(cl_float4), packet_sums.data());
+    dp.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global), cl::NDRange(dispatch.local_items), nullptr, &done);
+    dp.queue.enqueueReadBuffer(antialias.refined_samples, CL_FALSE, 0, pairs * sizeof(cl_float4), samples.data());
     {
       const BlockingCall uninterruptible_wait;
       dp.queue.finish();
     }
     kernel_ms += event_milliseconds(done);
-    for (std::size_t e = 0; e < used; ++e) {
-      const cl_float4& sum = packet_sums[e];
-      sums.add(static_cast<std::size_t>(entries[e].s[0]), glm::vec3(sum.s[0], sum.s[1], sum.s[2]), sum.s[3]);
+    // A packet's sums of one pixel lie at the first of its pairs there (kernels/march.cl, store_samples).
+    for (std::size_t pair = 0; pair < pairs; ++pair) {
+      if (pair % lanes != 0 && pair % per_pixel != 0) continue;
+      const cl_float4& sum = samples[pair];
+      sums.add(static_cast<std::size_t>(pixels[pair / per_pixel]), glm::vec3(sum.s[0], sum.s[1], sum.s[2]), sum.s[3]);
     }
-    entries.clear();
+    pixels.clear();
   };
   const std::size_t band_pixels = static_cast<std::size_t>(end_row - band_first_row) * buffers.width;
   for (std::size_t i = 0; i < band_pixels; ++i) {
     if (!refine[i]) continue;
-    for (int first = 1; first < count; first += prepared.lanes) {
-      entries.push_back(cl_int2{{static_cast<cl_int>(i), first}});
-      if (entries.size() + group > kRefineBatch) run_batch();
-    }
+    pixels.push_back(static_cast<cl_int>(i));
+    if (pixels.size() == batch_pixels) run_batch();
   }
-  if (!entries.empty()) run_batch();
+  if (!pixels.empty()) run_batch();
   sums.finish(buffers, count);
   return kernel_ms;
 }
