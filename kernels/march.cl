@@ -349,7 +349,7 @@ SDF_INLINE void store_samples(SceneValues values, const Packet* k, const MarchRe
 }
 
 /* A refining pass's work-item: sample packets item and item + 1 (PACKETS_PER_ITEM = 2, marched
- * interleaved, as on the centre pass) or item, each lane's result into samples[its pair]. */
+ * interleaved, as on the centre pass) or item, their sums into samples (store_samples). */
 SDF_INLINE void refine_item(const MarchParams* params, vec3v origin, __constant float4* lights, SceneValues values, int item,
                             __global const int* pixels, __constant float* sample_points, __global float4* samples) {
   const MarchRecord record = {0};
