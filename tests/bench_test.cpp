@@ -7,12 +7,14 @@
 #include "scene/scene_loader.hpp"
 #include "support/test_support.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <string>
 
 namespace clmarch {
@@ -189,6 +191,31 @@ TEST(Bench, JsonHasEveryFigureAndTheyAreConsistent) {
   ASSERT_EQ(stats.exit_code, kExitOk) << stats.err;
   const double steps = nlohmann::json::parse(stats.out)["steps"];
   EXPECT_TRUE(near(j["steps_per_pixel"], steps / pixels)) << r.out;
+}
+
+// A union evaluated from its operand grid reads the grid from the values buffer: the ceiling's
+// marches and replay got none and crashed the process in grid_distance.
+TEST(Bench, CeilingOfAnOperandGridScene) {
+  std::string yaml = "camera: {position: [0, 0.5, 4], look_at: [0, 0, 0]}\nrender: {width: 40, height: 24}\nsdf:\n  union:\n";
+  for (int i = 0; i < 64; ++i) {
+    yaml += fmt::format("    - sphere: {{center: [{}, {}, {}], radius: 0.12}}\n", (i % 4) * 0.5 - 0.75, (i / 4 % 4) * 0.5 - 0.75,
+                        (i / 16) * 0.5 - 0.75);
+  }
+  const Scene scene = testing::scene_from_yaml(yaml);
+  ASSERT_EQ(scene.render.pruning, Pruning::Auto);
+  OpenClOptions options;
+  options.purpose = KernelPurpose::DepthSteps;
+  const RenderResult render = render_opencl(scene, options);
+  CeilingKernel ceiling(scene, options, 2);
+  EXPECT_GT(render.stats.steps, 0u);
+  EXPECT_EQ(ceiling.marched_steps(), render.stats.steps);
+  EXPECT_GE(ceiling.run_ms(), 0.0);
+  EXPECT_EQ(ceiling.counted_evaluations(), ceiling.points());
+  testing::TempDir dir;
+  std::ofstream(dir / "grid.yaml") << yaml;
+  const testing::CommandResult bench = run_clmarch({"bench", (dir / "grid.yaml").string(), "--repeat", "1", "--json", "--no-reference"});
+  ASSERT_EQ(bench.exit_code, kExitOk) << bench.err;
+  EXPECT_GT(nlohmann::json::parse(bench.out)["ceiling_samples"].get<double>(), 0.0);
 }
 
 TEST(Bench, NoReferenceAndText) {

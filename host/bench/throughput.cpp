@@ -16,9 +16,9 @@ namespace {
 
 /// Marches the scene's camera rays with the Ceiling program: each pixel's k-th evaluated point is
 /// stored at sample_base[pixel] + k of the x, y, z planes of samples (stride floats apart), and
-/// nothing for a base of -1. Returns the steps of every pixel.
-std::vector<int> record_march(const Scene& scene, PreparedProgram& prepared, const std::vector<cl_int>& sample_base,
-                              cl::Buffer* samples, std::size_t stride) {
+/// nothing for a base of -1. values: the program's values buffer. Returns the steps of every pixel.
+std::vector<int> record_march(const Scene& scene, PreparedProgram& prepared, const std::optional<cl::Buffer>& values,
+                              const std::vector<cl_int>& sample_base, cl::Buffer* samples, std::size_t stride) {
   DeviceProgram& dp = prepared.program;
   const int width = scene.render.width, height = scene.render.height;
   const Dispatch dispatch = plan_tile_dispatch(prepared, width, height, chunk_pixels_for(dp.device));
@@ -30,9 +30,8 @@ std::vector<int> record_march(const Scene& scene, PreparedProgram& prepared, con
   cl::Buffer bases(dp.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sample_base.size() * sizeof(cl_int),
                    const_cast<cl_int*>(sample_base.data()));
   cl::Kernel kernel(dp.program, "march");
-  // Benchmark programs spell every literal (no value slots): the values buffer is NULL.
-  std::optional<ConePass> cones = make_cone_pass(prepared, scene, std::nullopt);
-  const int record_arg = bind_march_inputs(kernel, out, light_buffer, std::nullopt, cones);
+  std::optional<ConePass> cones = make_cone_pass(prepared, scene, values);
+  const int record_arg = bind_march_inputs(kernel, out, light_buffer, values, cones);
   kernel.setArg(record_arg, bases);
   if (samples) {
     kernel.setArg(record_arg + 1, *samples);
@@ -87,7 +86,10 @@ CeilingKernel::CeilingKernel(const Scene& scene, const OpenClOptions& options, i
     // from the running sum of its steps. Both marches run the same program, so they take the same steps.
     const std::size_t pixels = static_cast<std::size_t>(scene.render.width) * scene.render.height;
     std::vector<cl_int> sample_base(pixels, -1);
-    const std::vector<int> steps = record_march(scene, prepared_, sample_base, nullptr, 0);
+    // Benchmark programs spell every literal (no value slots): the values hold an operand grid's
+    // data, or are NULL without one.
+    values_ = make_scene_values(prepared_, scene);
+    const std::vector<int> steps = record_march(scene, prepared_, values_, sample_base, nullptr, 0);
     marched_steps_ = std::accumulate(steps.begin(), steps.end(), std::uint64_t{0});
     pixel_stride_ = std::max<std::uint64_t>(1, (marched_steps_ + max_samples - 1) / max_samples);
     for (std::size_t pixel = 0; pixel < pixels; pixel += pixel_stride_) {
@@ -102,7 +104,7 @@ CeilingKernel::CeilingKernel(const Scene& scene, const OpenClOptions& options, i
     const std::size_t bytes = 3 * plane_ * sizeof(float);
     samples_buffer_ = cl::Buffer(program.context, CL_MEM_READ_WRITE, bytes);
     program.queue.enqueueFillBuffer(samples_buffer_, 0.0f, 0, bytes);
-    record_march(scene, prepared_, sample_base, &samples_buffer_, plane_);
+    record_march(scene, prepared_, values_, sample_base, &samples_buffer_, plane_);
 
     kernel_ = cl::Kernel(program.program, "replay_samples");
     sums_ = cl::Buffer(program.context, CL_MEM_WRITE_ONLY, plane_ * sizeof(float));
@@ -113,7 +115,7 @@ CeilingKernel::CeilingKernel(const Scene& scene, const OpenClOptions& options, i
     kernel_.setArg(3, static_cast<cl_int>(repeats_));
     kernel_.setArg(4, sums_);
     kernel_.setArg(5, evaluations_);
-    set_scene_values_arg(kernel_, 6, std::nullopt);
+    set_scene_values_arg(kernel_, 6, values_);
   });
 }
 

@@ -10,6 +10,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace clmarch {
@@ -65,6 +66,7 @@ class CeilingKernel {
   std::size_t local_items_ = 0;
   std::size_t plane_ = 0;
   cl::Kernel kernel_;
+  std::optional<cl::Buffer> values_;
   cl::Buffer samples_buffer_;
   cl::Buffer sums_;
   cl::Buffer evaluations_;
