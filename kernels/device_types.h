@@ -25,7 +25,9 @@ typedef cl_float4 float4;
 #define CLMARCH_CHANNEL_NZ 7
 /* Not an EXR channel: the wall steps of the tiling's cell traversal, part of steps. */
 #define CLMARCH_CHANNEL_WALL_STEPS 8
-#define CLMARCH_CHANNEL_COUNT 9
+/* The number of the primitive a ray hit (host/scene/scene.hpp, primitive_count), -1 on a miss. */
+#define CLMARCH_CHANNEL_ID 9
+#define CLMARCH_CHANNEL_COUNT 10
 
 /* Columns of the tile a packet of `lanes` pixels covers (its rows: lanes / columns): 1x1, 2x2,
  * 4x2, 4x4. The host plans its dispatch of tiles by it (host/render/dispatch_plan.hpp). */
@@ -40,7 +42,8 @@ typedef cl_float4 float4;
  * header at the start of the scene data (SCENE_DATA), float words; the _AT words hold int offsets
  * into the scene data (bit patterns, read with as_int). The cells are a CSR index into the list:
  * cell c lists the words list[cells[c]] .. list[cells[c + 1] - 1], each the offset of an operand's
- * record: its distance shape, its color shape, the offset of its color literals, then literals. */
+ * record: its distance shape, its color shape, the offset of its color literals, the number of its
+ * first primitive (the id channel's), then literals. */
 #define CLMARCH_GRID_ORIGIN 0          /* 3 words: the grid's lowest corner, in map()'s frame */
 #define CLMARCH_GRID_INVERSE_CELL 3    /* 1 / the cells' side */
 #define CLMARCH_GRID_DIMS 4            /* 3 words: cells per axis, as floats (at most 2^24 cells) */
@@ -50,7 +53,8 @@ typedef cl_float4 float4;
 #define CLMARCH_GRID_CELLS_AT 13
 #define CLMARCH_GRID_LIST_AT 14
 #define CLMARCH_GRID_HEADER_WORDS 15
-#define CLMARCH_GRID_RECORD_WORDS 3    /* distance shape, color shape, offset of the color literals */
+#define CLMARCH_GRID_RECORD_ID 3       /* the word of a record holding its first primitive's number */
+#define CLMARCH_GRID_RECORD_WORDS 4    /* distance shape, color shape, offset of the color literals, id */
 
 /* Lights, two float4 each, positions relative to the camera (computed on the host in double). */
 #define CLMARCH_LIGHT_FLOAT4S 2

@@ -1,7 +1,7 @@
 /* The sphere-tracing kernel: each work-item marches PACKETS_PER_ITEM packets, each a tile of
  * PACKET_WIDTH x PACKET_HEIGHT pixels in lock-step (the loops: march_loop.cl, tiling.cl), then
  * writes depth (+inf on a miss), steps, wall steps under the cells tiling, and with WRITE_NORMALS /
- * NEED_SHADING the normal and the final color, into planes of out (CLMARCH_CHANNEL_*),
+ * WRITE_IDS / NEED_SHADING the normal, the primitive hit and the final color, into planes of out (CLMARCH_CHANNEL_*),
  * plane_stride floats each, for every pixel: the host reads these planes back as they are
  * (host/codegen/kernel_source.cpp, MarchOutputs). A dispatch covers the image rows first_row ..
  * first_row + chunk_rows - 1; a plane holds them row by row. */
@@ -14,7 +14,11 @@ SDF_INLINE Hit surface_at(SceneValues values, const MarchResult* m, vec3v relati
   hit.point = m->local_point;
   hit.relative = v3_add(relative_origin, v3_scale(dir, m->t));
   hit.normal = estimate_normal(values, m->local_point, normal_epsilon);
+#if defined(WRITE_IDS)
+  map_color(values, m->local_point, &hit.albedo, &hit.surface, &hit.id);
+#else
   map_color(values, m->local_point, &hit.albedo, &hit.surface);
+#endif
   hit.steps = m->steps;
   return hit;
 }
@@ -194,14 +198,19 @@ SDF_INLINE MarchLimits camera_limits(SceneValues values, const MarchParams* para
 
 #ifdef NEED_SHADING
 /* The shaded, tone-mapped color of packet k's rays (the sky's where they miss), and the normals at
- * their hits (0 where they miss). */
+ * their hits (0 where they miss) and with WRITE_IDS the numbers of the primitives hit (-1 where
+ * they miss). */
 SDF_INLINE vec3v packet_color(SceneValues values, const Packet* k, const MarchResult* m, const MarchParams* params,
-                              __constant float4* lights, vec3v* normal) {
+                              __constant float4* lights, vec3v* normal, vfloat* id) {
   *normal = v3_splat(0.0f);
+  *id = (vfloat)(-1.0f);
   vec3v color = miss_color(values, k->dir, m->closest);
   if (LANE_ANY(m->hit)) {
     const Hit hit = surface_at(values, m, v3_splat(0.0f), k->dir, params->normal_epsilon);
     *normal = v3_select(*normal, hit.normal, m->hit);
+#if defined(WRITE_IDS)
+    *id = select(*id, hit.id, m->hit);
+#endif
     vec3v lit = shade(values, &hit, v3_scale(k->dir, -1.0f), m->hit, lights);
 #if defined(REFLECTION_BOUNCES)
     lit = add_reflections(values, lit, hit, k->dir, m->hit, params, lights);
@@ -228,10 +237,24 @@ SDF_INLINE void finish_packet(SceneValues values, const Packet* k, const MarchRe
 
 #ifdef NEED_NORMALS
   vec3v normal = v3_splat(0.0f);
+  vfloat id = (vfloat)(-1.0f);
 #ifdef NEED_SHADING
-  const vec3v color = packet_color(values, k, m, params, lights, &normal);
+  const vec3v color = packet_color(values, k, m, params, lights, &normal, &id);
 #else
-  if (LANE_ANY(m->hit)) normal = v3_select(normal, estimate_normal(values, m->local_point, params->normal_epsilon), m->hit);
+  if (LANE_ANY(m->hit)) {
+    normal = v3_select(normal, estimate_normal(values, m->local_point, params->normal_epsilon), m->hit);
+#if defined(WRITE_IDS)
+    vec3v albedo, surface;
+    vfloat hit_id;
+    map_color(values, m->local_point, &albedo, &surface, &hit_id);
+    id = select(id, hit_id, m->hit);
+#endif
+  }
+#endif
+#if defined(WRITE_IDS)
+  STORE_PLANE(CLMARCH_CHANNEL_ID, id);
+#else
+  (void)id;
 #endif
 #if defined(WRITE_NORMALS)
   STORE_PLANE(CLMARCH_CHANNEL_NX, normal.x);
@@ -318,7 +341,8 @@ SDF_INLINE void store_samples(SceneValues values, const Packet* k, const MarchRe
   float r[LANES], g[LANES], b[LANES], hit[LANES];
 #ifdef NEED_SHADING
   vec3v normal;
-  const vec3v color = packet_color(values, k, m, params, lights, &normal);
+  vfloat id;
+  const vec3v color = packet_color(values, k, m, params, lights, &normal, &id);
   STORE_LANES(color.x, 0, r);
   STORE_LANES(color.y, 0, g);
   STORE_LANES(color.z, 0, b);

@@ -11,6 +11,10 @@ SDF_INLINE vfloat smooth_union_blend(vfloat a, vfloat b, float k) { return clamp
 SDF_INLINE vfloat smooth_intersection_blend(vfloat a, vfloat b, float k) { return clamp(0.5f - 0.5f * (b - a) / k, 0.0f, 1.0f); }
 SDF_INLINE vfloat smooth_subtraction_blend(vfloat a, vfloat b, float k) { return clamp(0.5f - 0.5f * (a + b) / k, 0.0f, 1.0f); }
 
+/* The id channel's number where a smooth operator blends two operands: y's where the weight h
+ * of y is at least a half, else x's (numbers are not mixed). */
+SDF_INLINE vfloat id_mix(vfloat x, vfloat y, vfloat h) { return select(x, y, MASK(h >= 0.5f)); }
+
 SDF_INLINE vfloat op_smooth_union(vfloat a, vfloat b, float k) {
   vfloat h = smooth_union_blend(a, b, k);
   return mix(b, a, h) - k * h * (1.0f - h);

@@ -14,6 +14,9 @@ typedef struct {
   vec3v albedo;
   vec3v surface;  /* x = metallic, y = roughness, z = reflectivity */
   vfloat steps;
+#if defined(WRITE_IDS)
+  vfloat id;      /* the number of the primitive hit */
+#endif
 } Hit;
 
 SDF_INLINE vec3v point_light_direction(vec3v p, float4 position) { return v3_normalize(v3_sub(v3_from(position), p)); }

@@ -1,5 +1,5 @@
 // The --buffers EXR: its channel names are a contract (R, G, B, depth, steps, N.x, N.y, N.z, then
-// A, Z, samples, P.x, P.y, P.z) and its values follow the documented rules (linear color, +inf
+// A, Z, samples, id, P.x, P.y, P.z) and its values follow the documented rules (linear color, +inf
 // depth on a miss, unit normals, coverage, the camera in the header).
 #include "support/test_support.hpp"
 
@@ -27,7 +27,7 @@ TEST(BuffersExr, ChannelsAndValuesFollowTheContract) {
     std::vector<std::string> names(spec.channelnames.begin(), spec.channelnames.end());
     std::sort(names.begin(), names.end());
     EXPECT_EQ(names, (std::vector<std::string>{"A", "B", "G", "N.x", "N.y", "N.z", "P.x", "P.y", "P.z", "R", "Z", "depth",
-                                               "samples", "steps"}));
+                                               "id", "samples", "steps"}));
     const auto channel = [&](const char* name) { return spec.channelindex(name); };
     const testing::Image image = testing::read_image(dir / "b.exr");
     // The corner misses the sphere, the centre hits it head-on at distance 4. The corner's ray
@@ -47,6 +47,9 @@ TEST(BuffersExr, ChannelsAndValuesFollowTheContract) {
     EXPECT_EQ(image.at(16, 12, channel("Z")), image.at(16, 12, channel("depth")));
     EXPECT_TRUE(std::isinf(image.at(0, 0, channel("Z"))));
     EXPECT_EQ(image.at(16, 12, channel("samples")), 1.0f);
+    // The scene's one primitive is number 0; a miss is -1.
+    EXPECT_EQ(image.at(16, 12, channel("id")), 0.0f);
+    EXPECT_EQ(image.at(0, 0, channel("id")), -1.0f);
     // P lies on the unit sphere, depth away from the camera at (0, 0, 5).
     const double px = image.at(16, 12, channel("P.x")), py = image.at(16, 12, channel("P.y")), pz = image.at(16, 12, channel("P.z"));
     EXPECT_NEAR(std::sqrt(px * px + py * py + pz * pz), 1.0, 1e-3);

@@ -264,7 +264,7 @@ TEST(CheckCli, AFailingCheckExitsOneAndWritesBothRendersAndTheirDifference) {
     EXPECT_EQ(image->width, 48);
     EXPECT_EQ(image->height, 32);
   }
-  ASSERT_EQ(difference.channels, 11) << "the --buffers channels but P: R, G, B, depth, steps, N.x, N.y, N.z, A, Z, samples";
+  ASSERT_EQ(difference.channels, 12) << "the --buffers channels but P: R, G, B, depth, steps, N.x, N.y, N.z, A, Z, samples, id";
   // The difference holds |opencl - reference| per channel: here the normals (N.x, N.y, N.z).
   std::vector<int> normal_channels;
   {
@@ -518,6 +518,44 @@ TEST_F(CheckThresholds, InteriorHitMaskFlipsAtOneInAThousand) {
   EXPECT_FALSE(failed_on(within, "interior pixels")) << within.to_text();
   const CheckReport past = flip_blocks(allowed + 1);
   EXPECT_TRUE(failed_on(past, "interior pixels")) << past.to_text();
+}
+
+TEST_F(CheckThresholds, IdMismatchesAwayFromIdEdgesAtOneInAThousand) {
+  // Blocks of 3 x 3 hits given another primitive's number: the centre of each is an interior
+  // mismatch, its ring edge ones (8 a block, within a tenth of the edge pixels only for few blocks).
+  const int allowed = static_cast<int>(std::ceil(0.001 * reference_.width * reference_.height));
+  const auto renumber_blocks = [&](int blocks) {
+    FrameBuffers copy = reference_;
+    int made = 0;
+    // A block every 4 pixels: the column and row between blocks keep the reference's number.
+    for (int j = 2; j + 2 < copy.height && made < blocks; j += 4) {
+      for (int i = 2; i + 2 < copy.width && made < blocks; i += 4) {
+        bool all_hits = true;
+        for (int dj = -2; dj <= 2; ++dj) {
+          for (int di = -2; di <= 2; ++di) all_hits = all_hits && hit(i + di, j + dj);
+        }
+        if (!all_hits) continue;
+        for (int dj = -1; dj <= 1; ++dj) {
+          for (int di = -1; di <= 1; ++di) copy.at(Channel::Id, i + di, j + dj) = 7.0f;
+        }
+        ++made;
+      }
+    }
+    EXPECT_EQ(made, blocks) << "the torus has room for the blocks";
+    return cross_check(scene_, copy, reference_, reshade_hits(scene_, copy));
+  };
+  const CheckReport within = renumber_blocks(allowed);
+  EXPECT_EQ(within.id_mismatch_interior, allowed);
+  EXPECT_EQ(within.id_mismatch_edge, 8 * allowed);
+  EXPECT_FALSE(failed_on(within, "away from id edges")) << within.to_text();
+  const CheckReport past = renumber_blocks(allowed + 1);
+  EXPECT_TRUE(failed_on(past, "away from id edges")) << past.to_text();
+  // Renumbered everywhere, the edges are the hits next to misses: far past a tenth of them.
+  const CheckReport everywhere = perturbed_and_reshaded([](FrameBuffers& b, int i, int j) {
+    if (std::isfinite(b.at(Channel::Depth, i, j))) b.at(Channel::Id, i, j) = 3.0f;
+  });
+  EXPECT_TRUE(failed_on(everywhere, "away from id edges")) << everywhere.to_text();
+  EXPECT_EQ(reference_.at(Channel::Id, reference_.width / 2, reference_.height / 2) >= 0.0f, hit(reference_.width / 2, reference_.height / 2));
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // Exact-depth renders on the OpenCL device: scenes of one sphere, box or plane compared pixel by
 // pixel with closed-form ray intersections in double precision.
 #include "analytic_intersections.hpp"
+#include "reference/reference_renderer.hpp"
 #include "render/opencl_renderer.hpp"
 #include "scene/camera_model.hpp"
 #include "support/test_support.hpp"
@@ -11,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <set>
 #include <vector>
 
 namespace clmarch {
@@ -45,17 +47,10 @@ struct PixelTruth {
   double cosine = 0.0;
 };
 
-void check_exact_depth(const DepthCase& c, int lanes) {
-  Scene scene = scene_from_yaml(c.scene_yaml);
-  scene.render.width = 96;
-  scene.render.height = 64;
-  OpenClOptions options;
-  options.lanes = lanes;
-  options.purpose = KernelPurpose::DepthSteps;
-  const FrameBuffers buffers = render_opencl(scene, options).buffers;
+/// What each pixel's ray meets by the closed form, row-major.
+std::vector<PixelTruth> pixel_truths(const DepthCase& c, const Scene& scene) {
   const CameraBasis basis = camera_basis(scene.camera, scene.render.width, scene.render.height);
   const int w = scene.render.width, h = scene.render.height;
-
   std::vector<PixelTruth> truth(static_cast<std::size_t>(w) * h);
   for (int j = 0; j < h; ++j) {
     for (int i = 0; i < w; ++i) {
@@ -70,23 +65,43 @@ void check_exact_depth(const DepthCase& c, int lanes) {
       }
     }
   }
-  const auto at = [&](int i, int j) -> const PixelTruth& { return truth[static_cast<std::size_t>(j) * w + i]; };
+  return truth;
+}
+
+/// Whether pixel (i, j) of an image of width w and height h grazes its surface or neighbours a
+/// pixel that meets something else.
+bool near_silhouette(const std::vector<PixelTruth>& truth, int w, int h, int i, int j) {
+  const PixelTruth& t = truth[static_cast<std::size_t>(j) * w + i];
+  if (t.hit && t.cosine < kGrazingCosine) return true;
+  for (int dj = -1; dj <= 1; ++dj) {
+    for (int di = -1; di <= 1; ++di) {
+      const int ni = i + di, nj = j + dj;
+      if (ni < 0 || nj < 0 || ni >= w || nj >= h) continue;
+      // Another object's edge is a silhouette as much as a miss is: a ray grazing it within
+      // epsilon may stop there.
+      const PixelTruth& n = truth[static_cast<std::size_t>(nj) * w + ni];
+      if (n.hit != t.hit || n.object != t.object) return true;
+    }
+  }
+  return false;
+}
+
+void check_exact_depth(const DepthCase& c, int lanes) {
+  Scene scene = scene_from_yaml(c.scene_yaml);
+  scene.render.width = 96;
+  scene.render.height = 64;
+  OpenClOptions options;
+  options.lanes = lanes;
+  options.purpose = KernelPurpose::DepthSteps;
+  const FrameBuffers buffers = render_opencl(scene, options).buffers;
+  const CameraBasis basis = camera_basis(scene.camera, scene.render.width, scene.render.height);
+  const int w = scene.render.width, h = scene.render.height;
+  const std::vector<PixelTruth> truth = pixel_truths(c, scene);
   int compared = 0, hits = 0;
   for (int j = 0; j < h; ++j) {
     for (int i = 0; i < w; ++i) {
-      const PixelTruth& t = at(i, j);
-      bool silhouette = t.hit && t.cosine < kGrazingCosine;
-      for (int dj = -1; dj <= 1; ++dj) {
-        for (int di = -1; di <= 1; ++di) {
-          const int ni = i + di, nj = j + dj;
-          if (ni < 0 || nj < 0 || ni >= w || nj >= h) continue;
-          // Another object's edge is a silhouette as much as a miss is: a ray grazing it within
-          // epsilon may stop there.
-          const PixelTruth& n = at(ni, nj);
-          if (n.hit != t.hit || n.object != t.object) silhouette = true;
-        }
-      }
-      if (silhouette) continue;
+      if (near_silhouette(truth, w, h, i, j)) continue;
+      const PixelTruth& t = truth[static_cast<std::size_t>(j) * w + i];
       ++compared;
       const float depth = buffers.at(Channel::Depth, i, j);
       ASSERT_EQ(std::isfinite(depth), t.hit) << c.name << " lanes " << lanes << " pixel " << i << "," << j;
@@ -191,6 +206,33 @@ TEST_P(ExactDepth, HoldsWithATighterEpsilon) {
   DepthCase c = GetParam();
   c.scene_yaml += "render: {epsilon: 1.0e-5, max_steps: 1000}\n";
   check_exact_depth(c, 16);
+}
+
+// The id channel away from silhouettes: the number of the object the closed form hits (the
+// spheres' order in the file; the union's from its operand grid), -1 on a miss; the reference's too.
+TEST_P(ExactDepth, IdsAreThePrimitivesHit) {
+  const DepthCase& c = GetParam();
+  Scene scene = scene_from_yaml(c.scene_yaml);
+  scene.render.width = 96;
+  scene.render.height = 64;
+  OpenClOptions options;
+  options.purpose = KernelPurpose::Normals;
+  const FrameBuffers device = render_opencl(scene, options).buffers;
+  const FrameBuffers reference = render_reference(scene);
+  const std::vector<PixelTruth> truth = pixel_truths(c, scene);
+  const int w = scene.render.width, h = scene.render.height;
+  std::set<float> seen;
+  for (int j = 0; j < h; ++j) {
+    for (int i = 0; i < w; ++i) {
+      if (near_silhouette(truth, w, h, i, j)) continue;
+      const PixelTruth& t = truth[static_cast<std::size_t>(j) * w + i];
+      const float want = t.hit ? static_cast<float>(t.object) : kMissId;
+      ASSERT_EQ(device.at(Channel::Id, i, j), want) << c.name << " pixel " << i << "," << j;
+      ASSERT_EQ(reference.at(Channel::Id, i, j), want) << c.name << " pixel " << i << "," << j;
+      seen.insert(want);
+    }
+  }
+  EXPECT_GE(seen.size(), c.object_at ? 20u : 1u) << c.name << ": the image should show many of its objects";
 }
 
 INSTANTIATE_TEST_SUITE_P(Primitives, ExactDepth, ::testing::ValuesIn(depth_cases()),

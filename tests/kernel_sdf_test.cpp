@@ -1,5 +1,6 @@
 // Every primitive, operator and transform against closed-form distances, evaluated both by the
 // generated OpenCL map() on the device (at every packet width) and by the CPU reference.
+#include "prune/operand_grid.hpp"
 #include "reference/reference_sdf.hpp"
 #include "render/opencl_renderer.hpp"
 #include "support/test_support.hpp"
@@ -268,6 +269,56 @@ TEST(KernelColor, BlendsLikeTheReference) {
     EXPECT_NEAR(color.x, 0.75, 1e-12);
     EXPECT_NEAR(color.z, 0.25, 1e-12);
   }
+}
+
+// The id channel's numbers: primitives in file order through nested operators, the subtracted
+// operand where it carves, the heavier operand of a smooth blend, one number for every copy of a
+// repeat; from code, from an operand grid of the outer union (numbers from its records) and of a
+// nested union (numbers offset by the primitives before it), and in the reference.
+TEST(KernelIds, NumberPrimitivesInFileOrder) {
+  const std::string yaml =
+      "sdf:\n  union:\n"
+      "    - sphere: {center: [-3, 0, 0], radius: 0.5}\n"
+      "    - smooth_union: {k: 0.2, children: [{sphere: {radius: 0.5}}, {box: {center: [0.8, 0, 0], half_size: [0.3, 0.3, 0.3]}}]}\n"
+      "    - subtraction: {children: [{box: {center: [3, 0, 0], half_size: [0.5, 0.5, 0.5]}}, "
+      "{sphere: {center: [3, 0.5, 0], radius: 0.3}}]}\n"
+      "    - repeat: {period: [0, 0, 2], translate: [0, 3, 0], children: [{sphere: {radius: 0.3}}]}\n"
+      "    - union: [{sphere: {center: [0, -3, 0], radius: 0.5}}, {sphere: {center: [0, -3, 2], radius: 0.5}}, "
+      "{sphere: {center: [0, -3, 4], radius: 0.5}}]\n";
+  // Each point 0.1 outside the surface it is nearest to, or (3, 0.3, 0) inside the box where the
+  // sphere carves it.
+  const std::vector<std::pair<glm::dvec3, int>> probes = {
+      {{-3.6, 0, 0}, 0}, {{-0.6, 0, 0}, 1}, {{1.2, 0, 0}, 2},  {{3.6, 0, 0}, 3},      {{3, 0.3, 0}, 4},
+      {{0, 3.4, 0}, 5},  {{0, 3, 2.4}, 5},  {{0, -3.6, 0}, 6}, {{0, -3.6, 2}, 7},     {{0, -3, 4.6}, 8}};
+  std::vector<glm::dvec3> points;
+  for (const auto& probe : probes) points.push_back(probe.first);
+  for (const char* pruning : {"none", "grid"}) {
+    for (const std::string& scene_yaml : {yaml, yaml + "render: {subtree_bounds: none}\n"}) {
+      Scene scene = scene_from_yaml(scene_yaml);
+      scene.render.pruning = std::string(pruning) == "grid" ? Pruning::Grid : Pruning::None;
+      for (int lanes : {1, 16}) {
+        OpenClOptions options;
+        options.lanes = lanes;
+        const PointSamples samples = eval_points_opencl(scene, points, options);
+        for (std::size_t i = 0; i < probes.size(); ++i) {
+          EXPECT_EQ(samples.primitive[i], static_cast<float>(probes[i].second)) << pruning << " lanes " << lanes << " probe " << i;
+          EXPECT_EQ(reference_sample(scene.sdf, points[i]).primitive, probes[i].second) << "probe " << i;
+        }
+      }
+    }
+  }
+  // With the grid the outer union (5 operands) is evaluated from data; in a scene whose largest
+  // union is the nested one (6 operands) its records number from 6.
+  Scene nested = scene_from_yaml(yaml);
+  nested.sdf.children.pop_back();
+  nested.sdf.children.push_back(scene_from_yaml(yaml).sdf.children.back());
+  nested.sdf.children.back().children.push_back(scene_from_yaml("sdf: {sphere: {center: [0, -3, 6], radius: 0.5}}").sdf);
+  nested.sdf.children.back().children.push_back(scene_from_yaml("sdf: {sphere: {center: [0, -3, 8], radius: 0.5}}").sdf);
+  nested.sdf.children.back().children.push_back(scene_from_yaml("sdf: {sphere: {center: [0, -3, 10], radius: 0.5}}").sdf);
+  nested.render.pruning = Pruning::Grid;
+  ASSERT_EQ(grid_union(nested), &nested.sdf.children.back());
+  const PointSamples samples = eval_points_opencl(nested, {{0, -3.6, 0}, {0, -3, 8.6}, {-3.6, 0, 0}}, OpenClOptions{});
+  EXPECT_EQ(samples.primitive, (std::vector<float>{6.0f, 10.0f, 0.0f}));
 }
 
 }  // namespace

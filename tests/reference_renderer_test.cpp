@@ -473,9 +473,9 @@ TEST(RenderReference, EveryPixelIsItsRay) {
     for (int i = 0; i < fb.width; ++i) {
       const RayResult r = reference_trace(s, basis.origin, pixel_ray_direction(basis, i, j));
       hits += r.hit;
-      // wall_steps 0 (no tiling); one ray per pixel: A is the hit, samples 1.
-      const double want[kChannelCount] = {r.color.r, r.color.g, r.color.b, r.depth, double(r.steps),
-                                          r.normal.x, r.normal.y, r.normal.z, 0.0, r.hit ? 1.0 : 0.0, 1.0};
+      // wall_steps 0 (no tiling); the primitive hit or -1; one ray per pixel: A is the hit, samples 1.
+      const double want[kChannelCount] = {r.color.r, r.color.g, r.color.b, r.depth, double(r.steps), r.normal.x, r.normal.y,
+                                          r.normal.z, 0.0, r.hit ? double(r.primitive) : -1.0, r.hit ? 1.0 : 0.0, 1.0};
       for (int c = 0; c < kChannelCount; ++c) {
         EXPECT_EQ(fb.at(Channel(c), i, j), static_cast<float>(want[c])) << kChannelNames[c] << " at " << i << "," << j;
       }

@@ -138,6 +138,58 @@ bool has_non_finite_value(const FrameBuffers& b, int i, int j) {
          !std::isfinite(b.at(Channel::NZ, i, j));
 }
 
+/// Pixels where the two renders disagree (a hit against a miss, one primitive against another),
+/// the tolerance the check sets for them, and what they are.
+struct Disagreements {
+  int count;
+  int& limit;
+  const char* what;
+};
+
+/// Sets the limits of pixels that disagree, away from an edge one in a thousand of the image,
+/// next to one (edge_pixels of them) a tenth of those and 2, and records a failure past either.
+void limit_disagreements(CheckReport& r, const Disagreements& interior, const Disagreements& edge, int edge_pixels) {
+  interior.limit = static_cast<int>(std::ceil(kInteriorMismatchShare * r.pixels));
+  edge.limit = static_cast<int>(std::ceil(kSilhouetteMismatchShare * edge_pixels)) + 2;
+  if (interior.count > interior.limit) {
+    r.failures.push_back(fmt::format("{} {} (at most {})", interior.count, interior.what, interior.limit));
+  }
+  if (edge.count > edge.limit) {
+    r.failures.push_back(fmt::format("{} {} (at most {} of {} edge pixels)", edge.count, edge.what, edge.limit, edge_pixels));
+  }
+}
+
+/// Whether pixel (i, j) of b has a neighbour with another primitive number (a miss's included).
+bool next_to_another_id(const FrameBuffers& b, int i, int j) {
+  for (int dj = -1; dj <= 1; ++dj) {
+    for (int di = -1; di <= 1; ++di) {
+      const int ni = i + di, nj = j + dj;
+      if (ni < 0 || nj < 0 || ni >= b.width || nj >= b.height) continue;
+      if (b.at(Channel::Id, ni, nj) != b.at(Channel::Id, i, j)) return true;
+    }
+  }
+  return false;
+}
+
+/// Compares the id channels of the pixels both renders hit. A number is decided by which operand's
+/// distance is least (or largest, or heavier) at the hit: where two surfaces meet the two renders'
+/// hits, an epsilon apart, can fall on either side, so a mismatch next to an id edge is allowed as
+/// a hit/miss flip at a silhouette is, and elsewhere as rarely as an interior flip.
+void compare_ids(CheckReport& r, const FrameBuffers& opencl, const FrameBuffers& reference) {
+  int edge_pixels = 0;
+  for (int j = 0; j < opencl.height; ++j) {
+    for (int i = 0; i < opencl.width; ++i) {
+      if (!is_hit(opencl, i, j) || !is_hit(reference, i, j)) continue;
+      ++r.ids_compared;
+      const bool edge = next_to_another_id(opencl, i, j) || next_to_another_id(reference, i, j);
+      edge_pixels += edge;
+      if (opencl.at(Channel::Id, i, j) != reference.at(Channel::Id, i, j)) (edge ? r.id_mismatch_edge : r.id_mismatch_interior) += 1;
+    }
+  }
+  limit_disagreements(r, {r.id_mismatch_interior, r.tolerances.id_mismatch_interior, "pixels away from id edges hit different primitives"},
+                      {r.id_mismatch_edge, r.tolerances.id_mismatch_edge, "pixels at id edges hit different primitives"}, edge_pixels);
+}
+
 }  // namespace
 
 CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const FrameBuffers& reference) {
@@ -238,8 +290,6 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
   r.color_psnr_db = mse > 0.0 ? 10.0 * std::log10(1.0 / mse) : std::numeric_limits<double>::infinity();
 
   CheckReport::Tolerances& t = r.tolerances;
-  t.mask_mismatch_interior = static_cast<int>(std::ceil(kInteriorMismatchShare * r.pixels));
-  t.mask_mismatch_silhouette = static_cast<int>(std::ceil(kSilhouetteMismatchShare * edge_pixels)) + 2;
   t.depth_in_tolerances_p99 = 1.0;
   t.steps_diff_mean = 1.0;
   const double normal_ratio_p99 = summarise(normal_tol).p99;
@@ -253,14 +303,9 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
     r.failures.push_back(fmt::format("{} OpenCL and {} reference pixels hold a NaN or an infinity (color, a hit's "
                                      "normal, or a NaN depth)", r.non_finite_opencl, r.non_finite_reference));
   }
-  if (r.mask_mismatch_interior > t.mask_mismatch_interior) {
-    r.failures.push_back(fmt::format("{} interior pixels hit on one side only (at most {})", r.mask_mismatch_interior,
-                                     t.mask_mismatch_interior));
-  }
-  if (r.mask_mismatch_silhouette > t.mask_mismatch_silhouette) {
-    r.failures.push_back(fmt::format("{} silhouette pixels hit on one side only (at most {} of {} edge pixels)",
-                                     r.mask_mismatch_silhouette, t.mask_mismatch_silhouette, edge_pixels));
-  }
+  limit_disagreements(r, {r.mask_mismatch_interior, t.mask_mismatch_interior, "interior pixels hit on one side only"},
+                      {r.mask_mismatch_silhouette, t.mask_mismatch_silhouette, "silhouette pixels hit on one side only"},
+                      edge_pixels);
   if (r.depth_in_tolerances.p99 > t.depth_in_tolerances_p99) {
     r.failures.push_back(fmt::format("depth error p99 is {:.3g} times its per-pixel tolerance (epsilon / cos + rounding)",
                                      r.depth_in_tolerances.p99));
@@ -288,6 +333,7 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
 CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const FrameBuffers& reference,
                         const FrameBuffers& reshaded) {
   CheckReport r = cross_check(scene, opencl, reference);
+  compare_ids(r, opencl, reference);
   // Both sides shade the same depth, normal and steps, so only float arithmetic separates them,
   // inside the shading and along its shadow, occlusion and mirror rays: within half a step of 8
   // bits of the color's own size (HDR colors above 1 keep float's relative precision), plus the
@@ -342,13 +388,16 @@ nlohmann::json CheckReport::to_json() const {
             {"miss_p99_abs", miss_color_p99_abs},
             {"compared", color_compared}}},
           {"shading", {{"max_abs", shading_max_abs}, {"p99_abs", shading_p99_abs}, {"compared", shading_compared}}},
+          {"id_mismatch", {{"edge", id_mismatch_edge}, {"interior", id_mismatch_interior}, {"compared", ids_compared}}},
           {"non_finite", {{"opencl", non_finite_opencl}, {"reference", non_finite_reference}}},
           {"tolerances",
            {{"mask_mismatch_interior", tolerances.mask_mismatch_interior},
             {"mask_mismatch_silhouette", tolerances.mask_mismatch_silhouette},
             {"depth_in_tolerances_p99", tolerances.depth_in_tolerances_p99},
             {"steps_diff_mean", tolerances.steps_diff_mean},
-            {"shading_p99_abs", tolerances.shading_p99_abs}}},
+            {"shading_p99_abs", tolerances.shading_p99_abs},
+            {"id_mismatch_interior", tolerances.id_mismatch_interior},
+            {"id_mismatch_edge", tolerances.id_mismatch_edge}}},
           {"failures", failures}};
 }
 
@@ -372,6 +421,10 @@ std::string CheckReport::to_text() const {
   if (shading_compared > 0) {
     out += fmt::format("shading           max abs {:.3g}  p99 abs {:.3g}  ({} hits shaded by both)\n", shading_max_abs,
                        shading_p99_abs, shading_compared);
+  }
+  if (ids_compared > 0) {
+    out += fmt::format("id mismatch       edge {} (max {}), interior {} (max {})  ({} hits compared)\n", id_mismatch_edge,
+                       tolerances.id_mismatch_edge, id_mismatch_interior, tolerances.id_mismatch_interior, ids_compared);
   }
   out += passed() ? "check passed\n" : "check FAILED:\n";
   for (const std::string& f : failures) out += "  " + f + "\n";

@@ -59,6 +59,12 @@ struct CheckReport {
   double shading_max_abs = 0.0;
   double shading_p99_abs = 0.0;
   int shading_compared = 0;
+  /// The id channel, with the shading (renders with normals write it): pixels both hit whose
+  /// primitive numbers differ, next to an id edge (a neighbour of another number, or a miss, in
+  /// either render) or elsewhere; ids_compared is 0 when the check ran without the shading.
+  int id_mismatch_edge = 0;
+  int id_mismatch_interior = 0;
+  int ids_compared = 0;
 
   /// The tolerances in force, and what failed.
   struct Tolerances {
@@ -70,6 +76,8 @@ struct CheckReport {
     double color_p99_abs = 0.0;
     double miss_color_p99_abs = 0.0;
     double shading_p99_abs = 0.0;
+    int id_mismatch_interior = 0;
+    int id_mismatch_edge = 0;
   } tolerances;
   std::vector<std::string> failures;
 

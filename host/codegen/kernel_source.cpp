@@ -88,6 +88,7 @@ std::string feature_defines(const Scene& scene, const KernelOptions& options) {
   const MarchOutputs outputs = march_outputs(scene, options.purpose);
   // Shading needs the normal whether or not its planes are written.
   if (outputs.normals) out += "#define WRITE_NORMALS\n";
+  if (outputs.ids) out += "#define WRITE_IDS\n";
   if (outputs.normals || outputs.color) {
     out += "#define NEED_NORMALS\n";
     if (scene.render.normal_method == NormalMethod::Tetrahedral) out += "#define NORMAL_TETRAHEDRAL\n";
@@ -117,13 +118,15 @@ std::string feature_defines(const Scene& scene, const KernelOptions& options) {
 
 /// The scene's code as eval_points has it: world points, every literal spelled.
 SdfCode eval_points_scene_code(const Scene& scene) {
-  return generate_sdf_code(scene.sdf, glm::dvec3(0.0), scene.render.subtree_bounds == SceneBounds::Sphere, grid_union(scene));
+  return generate_sdf_code(scene.sdf, glm::dvec3(0.0), scene.render.subtree_bounds == SceneBounds::Sphere, grid_union(scene),
+                           true);
 }
 
 /// The scene's code as a program built with options has it.
 SdfCode program_scene_code(const Scene& scene, const KernelOptions& options) {
   if (options.purpose == KernelPurpose::EvalPoints) return eval_points_scene_code(scene);
-  return march_scene_code(scene, march_outputs(scene, options.purpose).color);
+  const MarchOutputs outputs = march_outputs(scene, options.purpose);
+  return march_scene_code(scene, outputs.color, outputs.ids);
 }
 
 /// True if node or a descendant is of one of kinds: the library files of rare primitives are
@@ -151,12 +154,14 @@ std::vector<int> MarchOutputs::planes() const {
   if (color) planes.insert(planes.end(), {CLMARCH_CHANNEL_R, CLMARCH_CHANNEL_G, CLMARCH_CHANNEL_B});
   if (normals) planes.insert(planes.end(), {CLMARCH_CHANNEL_NX, CLMARCH_CHANNEL_NY, CLMARCH_CHANNEL_NZ});
   if (wall_steps) planes.push_back(CLMARCH_CHANNEL_WALL_STEPS);
+  if (ids) planes.push_back(CLMARCH_CHANNEL_ID);
   return planes;
 }
 
 MarchOutputs march_outputs(const Scene& scene, KernelPurpose purpose) {
   MarchOutputs outputs;
   outputs.normals = purpose == KernelPurpose::Normals || purpose == KernelPurpose::Shaded;
+  outputs.ids = outputs.normals;
   outputs.color = purpose == KernelPurpose::Shaded || purpose == KernelPurpose::Color;
   outputs.wall_steps = uses_cells_tiling(scene);
   return outputs;
@@ -208,11 +213,11 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
 
 namespace {
 
-SdfCode scene_code(const Scene& scene, bool with_shading) {
+SdfCode scene_code(const Scene& scene, bool with_shading, bool with_ids) {
   Literals literals;
   SdfCode code;
   code.source = sdf_functions(scene.sdf, map_frame_origin(scene), scene.render.subtree_bounds == SceneBounds::Sphere, literals,
-                              grid_union(scene), code.data);
+                              grid_union(scene), code.data, with_ids);
   // Recorded whether or not the program shades, so that a literal's index is the same in every program.
   const std::string shading = shading_value_defines(scene, literals);
   if (with_shading) code.source += shading;
@@ -225,11 +230,11 @@ SdfCode scene_code(const Scene& scene, bool with_shading) {
 
 }  // namespace
 
-SdfCode march_scene_code(const Scene& scene, bool with_shading) {
+SdfCode march_scene_code(const Scene& scene, bool with_shading, bool with_ids) {
   // A number beyond float's range or an operand grid too large for memory is refused while the
   // code is generated, which knows nodes and not files.
   try {
-    return scene_code(scene, with_shading);
+    return scene_code(scene, with_shading, with_ids);
   } catch (const InputError& e) {
     throw InputError(fmt::format("{}: {}", scene.source_name, e.what()));
   }

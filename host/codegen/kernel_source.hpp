@@ -66,6 +66,7 @@ struct MarchOutputs {
   bool normals = false;     ///< WRITE_NORMALS: N.x, N.y, N.z
   bool color = false;       ///< NEED_SHADING: R, G, B
   bool wall_steps = false;  ///< the cells tiling: wall steps
+  bool ids = false;         ///< WRITE_IDS: the primitive hit (with the normals)
 
   /// The planes the kernel writes for every pixel of a dispatch; the others it never touches.
   std::vector<int> planes() const;
@@ -96,9 +97,9 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
 
 /// The scene's code in its march programs, literals open: the distance functions (points relative
 /// to map_frame_origin, subtrees gated as render.subtree_bounds says), then with_shading the
-/// shading's numbers, and the cone pass's margin when it runs. Each literal has the same index
-/// with and without the shading.
-SdfCode march_scene_code(const Scene& scene, bool with_shading = true);
+/// shading's numbers, and the cone pass's margin when it runs; with_ids, map_color numbers the
+/// primitive it hit. Each literal has the same index with and without the shading and the ids.
+SdfCode march_scene_code(const Scene& scene, bool with_shading = true, bool with_ids = false);
 
 /// What the values buffer of the scene's march program built with options holds.
 ProgramValues scene_values(const Scene& scene, const KernelOptions& options);

@@ -114,25 +114,59 @@ struct GridEmission {
   std::string functions;
   std::shared_ptr<const std::vector<float>> data;
 
-  void emit(const Node& union_node, const Material& color, const glm::dvec3& offset, bool gate_subtrees, Literals& lit);
+  void emit(const Node& union_node, int first_id, const Material& color, const glm::dvec3& offset, bool gate_subtrees,
+            Literals& lit);
+};
+
+/// The functions that blend an operator's operands' materials: select(second, first, mask), or
+/// mix(second, first, weight) for the smooth operators.
+struct BlendFunctions {
+  const char* select;
+  const char* mix;
+};
+inline constexpr BlendFunctions kColorBlend{"v3_select", "v3_mix"};
+/// Numbers are not blended: a smooth operator's id is its heavier operand's (kernels/operators.cl).
+inline constexpr BlendFunctions kIdBlend{"select", "id_mix"};
+
+/// The primitive number (the id channel's) of each child's first primitive, children of a node
+/// whose first is first.
+std::vector<int> child_first_ids(const Node& node, int first) {
+  std::vector<int> firsts;
+  firsts.reserve(node.children.size());
+  for (const Node& child : node.children) {
+    firsts.push_back(first);
+    first += primitive_count(child);
+  }
+  return firsts;
+}
+
+/// How an emitter numbers primitives for the id channel: not at all, or from a base, the number
+/// of the first primitive of the tree it emits (empty: 0; an operand grid's record holds its own).
+struct IdNumbering {
+  bool on = false;
+  std::string base;
 };
 
 /// Emits the statements of one function body; with_color also tracks the material (albedo and
-/// surface = metallic, roughness, reflectivity), blended by the same rules as the albedo.
+/// surface = metallic, roughness, reflectivity), blended by the same rules as the albedo, and
+/// with ids the number of the primitive the material is of.
 class SdfEmitter {
  public:
-  SdfEmitter(bool with_color, bool gate_subtrees, Literals& literals, GridEmission* grid = nullptr)
-      : with_color_(with_color), gate_subtrees_(gate_subtrees), lit_(literals), grid_(grid) {}
+  SdfEmitter(bool with_color, bool gate_subtrees, Literals& literals, GridEmission* grid = nullptr, IdNumbering ids = {})
+      : with_color_(with_color), gate_subtrees_(gate_subtrees), lit_(literals), grid_(grid), ids_(std::move(ids)) {}
 
   struct Value {
     std::string distance;
     std::string color;    // empty without color
     std::string surface;  // empty without color
+    std::string id;       // empty without ids
   };
 
   /// The node's value at the point p + offset (offset: a constant the generator folds into the
   /// node's positions in double).
   Value emit(const Node& node, const std::string& p, const Material& inherited, const glm::dvec3& offset) {
+    // The node's first primitive number, which its operators' children change while they emit.
+    const int first_id = first_id_;
     const Material color = material_of(node, inherited);
     const auto [local_p, local_offset] = emit_transform(node.transform, p, offset);
     Value value = is_primitive(node.kind) ? emit_primitive(node, local_p, color, local_offset)
@@ -149,6 +183,7 @@ class SdfEmitter {
       line(fmt::format("vfloat {} = {} * {};  /* step_factor */", bounded, value.distance, lit_.f(node.step_factor)));
       value.distance = bounded;
     }
+    first_id_ = first_id;
     return value;
   }
 
@@ -156,17 +191,18 @@ class SdfEmitter {
 
   /// The blend of the material of an operator's operands, as combine() writes it: {0} and {1} are
   /// the first and second operand's colors, a and b their distances, k the blend radius's mark.
-  static std::string blend_rule(NodeKind kind, const std::string& a, const std::string& b, const std::string& k) {
+  static std::string blend_rule(NodeKind kind, const std::string& a, const std::string& b, const std::string& k,
+                                const BlendFunctions& f = kColorBlend) {
     switch (kind) {
-      case NodeKind::Union: return fmt::format("v3_select({}, {}, MASK({} <= {}))", "{1}", "{0}", a, b);
-      case NodeKind::Intersection: return fmt::format("v3_select({}, {}, MASK({} >= {}))", "{1}", "{0}", a, b);
-      case NodeKind::Subtraction: return fmt::format("v3_select({}, {}, MASK({} >= -{}))", "{1}", "{0}", a, b);
+      case NodeKind::Union: return fmt::format("{}({}, {}, MASK({} <= {}))", f.select, "{1}", "{0}", a, b);
+      case NodeKind::Intersection: return fmt::format("{}({}, {}, MASK({} >= {}))", f.select, "{1}", "{0}", a, b);
+      case NodeKind::Subtraction: return fmt::format("{}({}, {}, MASK({} >= -{}))", f.select, "{1}", "{0}", a, b);
       case NodeKind::SmoothUnion:
-        return fmt::format("v3_mix({}, {}, smooth_union_blend({}, {}, {}))", "{1}", "{0}", a, b, k);
+        return fmt::format("{}({}, {}, smooth_union_blend({}, {}, {}))", f.mix, "{1}", "{0}", a, b, k);
       case NodeKind::SmoothIntersection:
-        return fmt::format("v3_mix({}, {}, smooth_intersection_blend({}, {}, {}))", "{1}", "{0}", a, b, k);
+        return fmt::format("{}({}, {}, smooth_intersection_blend({}, {}, {}))", f.mix, "{1}", "{0}", a, b, k);
       case NodeKind::SmoothSubtraction:
-        return fmt::format("v3_mix({}, {}, smooth_subtraction_blend({}, {}, {}))", "{0}", "{1}", a, b, k);
+        return fmt::format("{}({}, {}, smooth_subtraction_blend({}, {}, {}))", f.mix, "{0}", "{1}", a, b, k);
 #define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind:
 #define CLMARCH_MODIFIER(Kind, name, params_list) case NodeKind::Kind:
 #include "scene/node_kinds.def"
@@ -223,7 +259,7 @@ class SdfEmitter {
   }
 
   Value emit_primitive(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
-    Value value{fresh("d"), "", ""};
+    Value value{fresh("d"), "", "", ""};
     // Terrain noise hashes absolute lattice coordinates, so it cannot fold the offset.
     const std::string call = node.kind == NodeKind::Terrain
                                  ? primitive_call(node, absolute_point(p, offset), glm::dvec3(0.0), lit_)
@@ -235,6 +271,12 @@ class SdfEmitter {
       value.surface = fresh("s");
       line(fmt::format("vec3v {} = v3_from({});", value.surface,
                        lit_.f4(glm::dvec3(color.metallic, color.roughness, color.reflectivity))));
+    }
+    if (with_color_ && ids_.on) {
+      // Spelled, not a literal: numbers never vary between frames, and literals keep their indices.
+      value.id = fresh("i");
+      const std::string number = fmt::format("{}.0f", first_id_);
+      line(fmt::format("vfloat {} = (vfloat)({});", value.id, ids_.base.empty() ? number : ids_.base + " + " + number));
     }
     return value;
   }
@@ -250,9 +292,11 @@ class SdfEmitter {
     if (node.kind == NodeKind::RepeatPolar) return emit_repeat_polar(node, p, color, offset);
     if (node.kind == NodeKind::RepeatLimited) return emit_repeat_limited(node, p, color, offset);
     if (node.kind == NodeKind::Union) return emit_union(node, p, color, offset);
+    const std::vector<int> firsts = child_first_ids(node, first_id_);
     Value acc = emit(node.children.front(), p, color, offset);
     for (std::size_t i = 1; i < node.children.size(); ++i) {
       const Node& child = node.children[i];
+      first_id_ = firsts[i];
       const std::optional<std::string> skip_limit = sequential_skip_limit(node, acc.distance);
       const Value next = skip_limit ? emit_gated(child, p, color, offset, *skip_limit) : emit(child, p, color, offset);
       acc = combine(node, acc, next);
@@ -284,6 +328,7 @@ class SdfEmitter {
   /// the first child at the minimum whatever the order): children not worth a bound first, then
   /// the others gated by the least distance so far; combined in the scene's order.
   Value emit_union(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
+    const std::vector<int> firsts = child_first_ids(node, first_id_);
     std::vector<std::size_t> gated, plain;
     for (std::size_t i = 0; i < node.children.size(); ++i) (worth_a_bound(node.children[i]) ? gated : plain).push_back(i);
     std::vector<std::optional<Value>> values(node.children.size());
@@ -298,10 +343,12 @@ class SdfEmitter {
       least = next;
     };
     for (std::size_t i : plain) {
+      first_id_ = firsts[i];
       values[i] = emit(node.children[i], p, color, offset);
       if (!gated.empty()) fold(values[i]->distance);
     }
     for (std::size_t i : gated) {
+      first_id_ = firsts[i];
       values[i] = least.empty() ? emit(node.children[i], p, color, offset)
                                 : emit_gated(node.children[i], p, color, offset, least);
       if (i != gated.back()) fold(values[i]->distance);
@@ -322,7 +369,7 @@ class SdfEmitter {
                    const std::string& skip_limit) {
     if (!worth_a_bound(child)) return emit(child, p, color, offset);
     const BoundingSphere sphere = *node_bounds(child);
-    Value out{fresh("d"), "", ""};
+    Value out{fresh("d"), "", "", ""};
     line(fmt::format("vfloat {} = sd_bound({}, {}, {}, {});  /* bound of {} */", out.distance, p,
                      lit_.f4(sphere.center - offset), lit_.f(sphere.radius), lit_.f(1.0 / sphere.gain),
                      node_kind_name(child.kind)));
@@ -331,11 +378,16 @@ class SdfEmitter {
       out.surface = fresh("s");
       line(fmt::format("vec3v {} = v3_splat(0.0f), {} = v3_splat(0.0f);", out.color, out.surface));
     }
+    if (with_color_ && ids_.on) {
+      out.id = fresh("i");
+      line(fmt::format("vfloat {} = (vfloat)(-1.0f);", out.id));
+    }
     line(fmt::format("if (LANE_ANY(MASK({} <= {}))) {{", out.distance, skip_limit));
     indent_ += "  ";
     const Value inside = emit(child, p, color, offset);
     line(fmt::format("{} = {};", out.distance, inside.distance));
     if (with_color_) line(fmt::format("{} = {}; {} = {};", out.color, inside.color, out.surface, inside.surface));
+    if (!out.id.empty()) line(fmt::format("{} = {};", out.id, inside.id));
     indent_.resize(indent_.size() - 2);
     line("}");
     return out;
@@ -360,7 +412,7 @@ class SdfEmitter {
   Value emit_displace(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
     const Value child = emit(node.children.front(), p, color, offset);
     const std::string at = absolute_point(p, offset);
-    Value out{fresh("d"), child.color, child.surface};
+    Value out{fresh("d"), child.color, child.surface, child.id};
     line(fmt::format("vfloat {} = ({} + displacement({}, {}, {})) * {};  /* displace */", out.distance, child.distance, at,
                      lit_.f(params_of<Displace>(node).amplitude), lit_.f(params_of<Displace>(node).frequency),
                      lit_.f(1.0 / displacement_lipschitz(node))));
@@ -385,7 +437,7 @@ class SdfEmitter {
   Value emit_distance_map(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset,
                           const char* format, double amount) {
     const Value child = emit(node.children.front(), p, color, offset);
-    Value out{fresh("d"), child.color, child.surface};
+    Value out{fresh("d"), child.color, child.surface, child.id};
     line(fmt::format("vfloat {} = {};  /* {} */", out.distance, fmt::format(fmt::runtime(format), child.distance, lit_.f(amount)),
                      node_kind_name(node.kind)));
     return out;
@@ -440,7 +492,7 @@ class SdfEmitter {
   }
 
   Value combine(const Node& node, const Value& a, const Value& b) {
-    Value out{fresh("d"), "", ""};
+    Value out{fresh("d"), "", "", ""};
     const std::string k = blend_radius(node);
     if (with_color_) {
       const std::string blend = blend_rule(node.kind, a.distance, b.distance, k);
@@ -449,21 +501,30 @@ class SdfEmitter {
       out.surface = fresh("s");
       line(fmt::format("vec3v {} = {};", out.surface, fmt::format(fmt::runtime(blend), a.surface, b.surface)));
     }
+    if (with_color_ && ids_.on) {
+      out.id = fresh("i");
+      const std::string rule = blend_rule(node.kind, a.distance, b.distance, k, kIdBlend);
+      line(fmt::format("vfloat {} = {};", out.id, fmt::format(fmt::runtime(rule), a.id, b.id)));
+    }
     line(fmt::format("vfloat {} = {};", out.distance, combine_rule(node.kind, a.distance, b.distance, k)));
     return out;
   }
 
   /// The union of many operands, read from its operand grid (kernels/operand_grid.cl).
   Value emit_grid(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
-    if (!grid_->emitted) grid_->emit(node, color, offset, gate_subtrees_, lit_);
-    Value out{fresh("d"), "", ""};
+    if (!grid_->emitted) grid_->emit(node, first_id_, color, offset, gate_subtrees_, lit_);
+    Value out{fresh("d"), "", "", ""};
     const std::string what = fmt::format("{} of {} operands, from its operand grid", node_kind_name(node.kind), node.children.size());
     if (with_color_) {
       out.color = fresh("c");
       out.surface = fresh("s");
+      // The grid's operands always number their primitives; programs without ids drop the number.
+      const std::string id = fresh("i");
       line(fmt::format("vec3v {}, {};", out.color, out.surface));
-      line(fmt::format("vfloat {} = grid_distance_color(values, {}, &{}, &{});  /* {} */", out.distance, p, out.color,
-                       out.surface, what));
+      line(fmt::format("vfloat {};", id));
+      line(fmt::format("vfloat {} = grid_distance_color(values, {}, &{}, &{}, &{});  /* {} */", out.distance, p, out.color,
+                       out.surface, id, what));
+      if (ids_.on) out.id = id;
     } else {
       line(fmt::format("vfloat {} = grid_distance(values, {});  /* {} */", out.distance, p, what));
     }
@@ -474,6 +535,9 @@ class SdfEmitter {
   bool gate_subtrees_;
   Literals& lit_;
   GridEmission* grid_;
+  IdNumbering ids_;
+  /// The number of the first primitive of the node being emitted, from the emitter's base.
+  int first_id_ = 0;
   int counter_ = 0;
   std::string body_;
   std::string indent_;
@@ -586,8 +650,8 @@ PackedGrid packed_grid_for(const Node& union_node, const glm::dvec3& offset, std
   return packed;
 }
 
-void GridEmission::emit(const Node& union_node, const Material& color, const glm::dvec3& offset, bool gate_subtrees,
-                        Literals& lit) {
+void GridEmission::emit(const Node& union_node, int first_id, const Material& color, const glm::dvec3& offset,
+                        bool gate_subtrees, Literals& lit) {
   // Each operand's code, its literals left open: operands whose code reads alike share a shape.
   std::map<std::string, std::uint32_t> distance_ids, color_ids;
   std::vector<std::string> distance_shapes, color_shapes;
@@ -599,22 +663,27 @@ void GridEmission::emit(const Node& union_node, const Material& color, const glm
   std::vector<float> records;
   std::vector<std::uint32_t> record_at;
   record_at.reserve(union_node.children.size());
-  for (const Node& operand : union_node.children) {
+  const std::vector<int> firsts = child_first_ids(union_node, first_id);
+  const IdNumbering record_ids{true, "(float)as_int(SCENE_DATA[at + CLMARCH_GRID_RECORD_ID])"};
+  for (std::size_t i = 0; i < union_node.children.size(); ++i) {
+    const Node& operand = union_node.children[i];
     Literals distance_literals, color_literals;
     SdfEmitter distance(false, gate_subtrees, distance_literals);
     const SdfEmitter::Value d = distance.emit(operand, "p", color, offset);
-    SdfEmitter colored(true, gate_subtrees, color_literals);
+    SdfEmitter colored(true, gate_subtrees, color_literals, nullptr, record_ids);
     const SdfEmitter::Value c = colored.emit(operand, "p", color, offset);
     const std::uint32_t distance_shape =
         shape_of(distance_ids, distance_shapes, distance.body() + fmt::format("  return {};\n", d.distance));
     const std::uint32_t color_shape = shape_of(
         color_ids, color_shapes,
-        colored.body() + fmt::format("  *albedo = {};\n  *surface = {};\n  return {};\n", c.color, c.surface, c.distance));
+        colored.body() +
+            fmt::format("  *albedo = {};\n  *surface = {};\n  *id = {};\n  return {};\n", c.color, c.surface, c.id, c.distance));
     const std::vector<float> distance_values = distance_literals.take(), color_values = color_literals.take();
     record_at.push_back(static_cast<std::uint32_t>(records.size()));
     records.push_back(int_word(distance_shape));
     records.push_back(int_word(color_shape));
     records.push_back(int_word(static_cast<std::uint32_t>(CLMARCH_GRID_RECORD_WORDS + distance_values.size())));
+    records.push_back(int_word(static_cast<std::uint32_t>(firsts[i])));
     records.insert(records.end(), distance_values.begin(), distance_values.end());
     records.insert(records.end(), color_values.begin(), color_values.end());
   }
@@ -637,10 +706,13 @@ void GridEmission::emit(const Node& union_node, const Material& color, const glm
   functions += fmt::format("#define GRID_COMBINE(a, b) {}\n", SdfEmitter::combine_rule(union_node.kind, "(a)", "(b)", k));
   functions += fmt::format("#define GRID_BLEND(first, second, a, b) {}\n",
                            fmt::format(fmt::runtime(SdfEmitter::blend_rule(union_node.kind, "(a)", "(b)", k)), "(first)", "(second)"));
+  functions += fmt::format(
+      "#define GRID_ID_BLEND(first, second, a, b) {}\n",
+      fmt::format(fmt::runtime(SdfEmitter::blend_rule(union_node.kind, "(a)", "(b)", k, kIdBlend)), "(first)", "(second)"));
   functions += shape_function("SDF_INLINE vfloat grid_operand_distance(SceneValues values, int at, vec3v p)",
                               "at + CLMARCH_GRID_RECORD_WORDS", "SCENE_DATA[at]", distance_shapes);
   functions += shape_function(
-      "SDF_INLINE vfloat grid_operand_color(SceneValues values, int at, vec3v p, vec3v* albedo, vec3v* surface)",
+      "SDF_INLINE vfloat grid_operand_color(SceneValues values, int at, vec3v p, vec3v* albedo, vec3v* surface, vfloat* id)",
       "at + as_int(SCENE_DATA[at + 2])", "SCENE_DATA[at + 1]", color_shapes);
   functions += kernel_file("operand_grid.cl");
   functions += "#line 1 \"generated scene\"\n";
@@ -668,12 +740,12 @@ std::string Literals::f4(const glm::dvec3& v) {
 }
 
 std::string sdf_functions(const Node& root, const glm::dvec3& frame_origin, bool gate_subtrees, Literals& literals,
-                          const Node* grid_node, std::shared_ptr<const std::vector<float>>& data) {
+                          const Node* grid_node, std::shared_ptr<const std::vector<float>>& data, bool with_ids) {
   GridEmission grid;
   grid.node = grid_node;
   SdfEmitter distance_only(false, gate_subtrees, literals, &grid);
   const SdfEmitter::Value d = distance_only.emit(root, "p", Material{}, frame_origin);
-  SdfEmitter with_color(true, gate_subtrees, literals, &grid);
+  SdfEmitter with_color(true, gate_subtrees, literals, &grid, IdNumbering{with_ids, ""});
   const SdfEmitter::Value dc = with_color.emit(root, "p", Material{}, frame_origin);
   data = std::move(grid.data);
   const std::string frame = frame_origin == glm::dvec3(0.0)
@@ -693,16 +765,19 @@ std::string sdf_functions(const Node& root, const glm::dvec3& frame_origin, bool
       "/* Distance to the scene. */\n"
       "SDF_INLINE vfloat map(SceneValues values, vec3v p) {{\n{}  return {};\n}}\n\n"
       "/* Distance to the scene and the material there: albedo, surface = (metallic, roughness,\n"
-      " * reflectivity). */\n"
-      "SDF_INLINE vfloat map_color(SceneValues values, vec3v p, vec3v* albedo, vec3v* surface) {{\n{}  *albedo = {};\n"
-      "  *surface = {};\n  return {};\n}}\n",
-      distance_only.body(), d.distance, with_color.body(), dc.color, dc.surface, dc.distance);
+      " * reflectivity){}. */\n"
+      "SDF_INLINE vfloat map_color(SceneValues values, vec3v p, vec3v* albedo, vec3v* surface{}) {{\n{}  *albedo = {};\n"
+      "  *surface = {};\n{}  return {};\n}}\n",
+      distance_only.body(), d.distance, with_ids ? ", and id, the number of the primitive it is of" : "",
+      with_ids ? ", vfloat* id" : "", with_color.body(), dc.color, dc.surface,
+      with_ids ? fmt::format("  *id = {};\n", dc.id) : std::string(), dc.distance);
 }
 
-SdfCode generate_sdf_code(const Node& root, const glm::dvec3& frame_origin, bool gate_subtrees, const Node* grid_node) {
+SdfCode generate_sdf_code(const Node& root, const glm::dvec3& frame_origin, bool gate_subtrees, const Node* grid_node,
+                          bool with_ids) {
   Literals literals;
   SdfCode code;
-  code.source = sdf_functions(root, frame_origin, gate_subtrees, literals, grid_node, code.data);
+  code.source = sdf_functions(root, frame_origin, gate_subtrees, literals, grid_node, code.data, with_ids);
   code.literals = literals.take();
   return code;
 }

@@ -10,13 +10,15 @@ namespace clmarch {
 
 /// Output channels; the order up to WallSteps is also the plane order of the OpenCL output buffer.
 /// WallSteps (the part of steps spent stepping to cell walls under tiling) is not an EXR channel of
-/// the contract. A (coverage: the share of the pixel's samples that hit) and Samples (how many it
+/// the contract. Id is the number of the primitive the centre ray hit (scene/scene.hpp,
+/// primitive_count; kMissId on a miss), written with the normals. A (coverage: the share of the pixel's samples that hit) and Samples (how many it
 /// got) are filled on the host (host/frame/antialias.hpp).
-enum class Channel { R, G, B, Depth, Steps, NX, NY, NZ, WallSteps, A, Samples };
-inline constexpr int kChannelCount = 11;
+enum class Channel { R, G, B, Depth, Steps, NX, NY, NZ, WallSteps, Id, A, Samples };
+inline constexpr int kChannelCount = 12;
 /// Channel names (the EXR's, but for wall_steps), indexed by Channel.
 inline constexpr const char* kChannelNames[kChannelCount] = {"R",   "G",   "B",   "depth",      "steps", "N.x",
-                                                             "N.y", "N.z", "wall_steps", "A",     "samples"};
+                                                             "N.y", "N.z", "wall_steps", "id",    "A",
+                                                             "samples"};
 
 /// Row-major planes, pixel (i, j) at j * width + i, j = 0 the top row. Linear color, depth +inf on
 /// a miss, steps = distance evaluations of the march, N = unit normal (0 on a miss).

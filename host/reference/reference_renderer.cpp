@@ -48,10 +48,11 @@ glm::dvec3 normal_of(const Field& f, const glm::dvec3& p, NormalMethod method, d
   return glm::dvec3(0.0);
 }
 
-/// The material of the tree at a point of its frame.
-Material material_at(const Scene& scene, const glm::dvec3& local) {
-  const SdfSample sample = reference_sample(scene.sdf, local);
-  return Material{sample.color, sample.surface.x, sample.surface.y, sample.surface.z};
+/// The material of the tree at the surface's point (in its frame), and the primitive it is of.
+void set_material(const Scene& scene, SurfacePoint& s) {
+  const SdfSample sample = reference_sample(scene.sdf, s.local);
+  s.material = Material{sample.color, sample.surface.x, sample.surface.y, sample.surface.z};
+  s.primitive = sample.primitive;
 }
 
 /// The surface where a march from world point world_origin along direction ended with a hit.
@@ -60,7 +61,7 @@ SurfacePoint surface_at(const Scene& scene, const MarchEnd& end, const glm::dvec
   s.local = end.local;
   s.world = world_origin + end.depth * direction;
   s.normal = normal_of(scene_field(scene), end.local, scene.render.normal_method, scene.render.normal_epsilon);
-  s.material = material_at(scene, end.local);
+  set_material(scene, s);
   s.steps = end.steps;
   return s;
 }
@@ -146,6 +147,7 @@ RayResult trace_within(const Scene& scene, const std::optional<BoundingSphere>& 
   r.depth = end.depth;
   const SurfacePoint hit = surface_at(scene, end, origin, direction);
   r.normal = hit.normal;
+  r.primitive = hit.primitive;
   r.color = hit_color(scene, hit, direction, end.depth);
   return r;
 }
@@ -183,6 +185,7 @@ FrameBuffers render_reference(const Scene& scene, const std::optional<ConeStarts
         fb.at(Channel::NY, i, j) = static_cast<float>(r.normal.y);
         fb.at(Channel::NZ, i, j) = static_cast<float>(r.normal.z);
         fb.at(Channel::WallSteps, i, j) = static_cast<float>(r.wall_steps);
+        fb.at(Channel::Id, i, j) = r.hit ? static_cast<float>(r.primitive) : kMissId;
       }
       progress.advance();
     }
@@ -231,7 +234,7 @@ FrameBuffers reshade_hits(const Scene& scene, const FrameBuffers& render) {
         // The float normal is unit only to float's rounding, which 1 - (n.h)^2 in the GGX
         // distribution would turn into its whole value at a low roughness (a^2 ~ 1e-7).
         hit.normal = normalize_or_zero(glm::dvec3(render.at(Channel::NX, i, j), render.at(Channel::NY, i, j), render.at(Channel::NZ, i, j)));
-        hit.material = material_at(scene, hit.local);
+        set_material(scene, hit);
         hit.steps = static_cast<int>(render.at(Channel::Steps, i, j));
         const glm::dvec3 color = hit_color(scene, hit, direction, depth);
         fb.at(Channel::R, i, j) = static_cast<float>(color.r);

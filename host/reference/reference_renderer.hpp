@@ -24,6 +24,8 @@ struct RayResult {
   int wall_steps = 0;
   /// Estimated unit normal at the hit; 0 on a miss.
   glm::dvec3 normal{0.0};
+  /// The number of the primitive hit (the id channel; scene/scene.hpp, primitive_count).
+  int primitive = 0;
   /// Final linear color (shaded, with bounces, fog and tone mapping); the sky's on a miss.
   glm::dvec3 color{0.0};
 };

@@ -94,7 +94,14 @@ template <class Op>
 SdfSample fold_children(const Node& node, const glm::dvec3& p, const Material& color, Op op) {
   if (node.children.empty()) malformed(node, "has no children");
   SdfSample acc = sample_node(node.children.front(), p, color);
-  for (std::size_t i = 1; i < node.children.size(); ++i) acc = op(acc, sample_node(node.children[i], p, color));
+  // Each child numbers its own primitives from 0: the later ones follow the earlier children's.
+  int first_primitive = primitive_count(node.children.front());
+  for (std::size_t i = 1; i < node.children.size(); ++i) {
+    SdfSample next = sample_node(node.children[i], p, color);
+    next.primitive += first_primitive;
+    first_primitive += primitive_count(node.children[i]);
+    acc = op(acc, next);
+  }
   return acc;
 }
 
@@ -332,22 +339,25 @@ SdfSample op_intersection(const SdfSample& a, const SdfSample& b) { return b.dis
 
 SdfSample op_subtraction(const SdfSample& a, const SdfSample& b) {
   const SdfSample& kept = a.distance >= -b.distance ? a : b;
-  return {op_subtraction(a.distance, b.distance), kept.color, kept.surface};
+  return {op_subtraction(a.distance, b.distance), kept.color, kept.surface, kept.primitive};
 }
 
 SdfSample op_smooth_union(const SdfSample& a, const SdfSample& b, double k) {
   const double h = smooth_union_weight(a.distance, b.distance, k);
-  return {op_smooth_union(a.distance, b.distance, k), mix(b.color, a.color, h), mix(b.surface, a.surface, h)};
+  return {op_smooth_union(a.distance, b.distance, k), mix(b.color, a.color, h), mix(b.surface, a.surface, h),
+          h >= 0.5 ? a.primitive : b.primitive};
 }
 
 SdfSample op_smooth_intersection(const SdfSample& a, const SdfSample& b, double k) {
   const double h = smooth_intersection_weight(a.distance, b.distance, k);
-  return {op_smooth_intersection(a.distance, b.distance, k), mix(b.color, a.color, h), mix(b.surface, a.surface, h)};
+  return {op_smooth_intersection(a.distance, b.distance, k), mix(b.color, a.color, h), mix(b.surface, a.surface, h),
+          h >= 0.5 ? a.primitive : b.primitive};
 }
 
 SdfSample op_smooth_subtraction(const SdfSample& a, const SdfSample& b, double k) {
   const double h = smooth_subtraction_weight(a.distance, b.distance, k);
-  return {op_smooth_subtraction(a.distance, b.distance, k), mix(a.color, b.color, h), mix(a.surface, b.surface, h)};
+  return {op_smooth_subtraction(a.distance, b.distance, k), mix(a.color, b.color, h), mix(a.surface, b.surface, h),
+          h >= 0.5 ? b.primitive : a.primitive};
 }
 
 }  // namespace clmarch

@@ -15,12 +15,16 @@ struct SdfSample {
   glm::dvec3 color;
   /// metallic, roughness, reflectivity (defaults of Material until the tree walk sets them).
   glm::dvec3 surface{0.0, 0.5, 0.0};
+  /// The primitive whose material it is (its number in the subtree, primitive_count's order): the
+  /// color rules' operand, or the heavier one of a smooth blend (the first at weight 1/2).
+  int primitive = 0;
 };
 
 /// Signed distance of the whole tree at the world point p (throws std::invalid_argument on a
 /// malformed tree: operator without children, a blend radius k <= 0, parameters of the wrong kind).
 double reference_distance(const Node& root, const glm::dvec3& p);
-/// Distance and albedo at p; colors follow the rules of op_union and friends below.
+/// Distance and albedo at p, and the primitive they are of; colors follow the rules of op_union
+/// and friends below.
 SdfSample reference_sample(const Node& root, const glm::dvec3& p);
 
 // Primitives, p in the primitive's local frame: sd_<name>(p, parameters) for each primitive of

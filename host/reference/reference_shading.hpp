@@ -16,6 +16,8 @@ struct SurfacePoint {
   glm::dvec3 world{0.0};
   glm::dvec3 normal{0.0};
   Material material;
+  /// The number of the primitive whose material it is (the id channel).
+  int primitive = 0;
   /// Iterations of the march that found it (step-count occlusion).
   int steps = 0;
 };

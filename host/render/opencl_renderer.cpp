@@ -302,7 +302,8 @@ PointSamples eval_points_opencl(const Scene& scene, const std::vector<glm::dvec3
     ys[i] = static_cast<float>(points[i].y);
     zs[i] = static_cast<float>(points[i].z);
   }
-  std::vector<std::vector<float>> outputs(5, std::vector<float>(n, 0.0f));
+  constexpr int kOutputs = 6;  // distance, color distance, albedo r, g, b, primitive number
+  std::vector<std::vector<float>> outputs(kOutputs, std::vector<float>(n, 0.0f));
   with_device_errors(dp.device, [&] {
     const auto in_flags = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
     cl::Buffer bx(dp.context, in_flags, n * sizeof(float), xs.data());
@@ -313,21 +314,22 @@ PointSamples eval_points_opencl(const Scene& scene, const std::vector<glm::dvec3
     kernel.setArg(0, bx);
     kernel.setArg(1, by);
     kernel.setArg(2, bz);
-    for (int i = 0; i < 5; ++i) {
+    for (int i = 0; i < kOutputs; ++i) {
       out_buffers.emplace_back(dp.context, CL_MEM_WRITE_ONLY, n * sizeof(float));
       kernel.setArg(3 + i, out_buffers.back());
     }
     // eval_points programs spell every literal; their values hold only an operand grid's data.
     const std::optional<cl::Buffer> values = make_scene_values(prepared, scene);
-    set_scene_values_arg(kernel, 8, values);
+    set_scene_values_arg(kernel, 3 + kOutputs, values);
     dp.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(dispatch.global_items),
                                   cl::NDRange(dispatch.local_items));
-    for (int i = 0; i < 5; ++i) dp.queue.enqueueReadBuffer(out_buffers[i], CL_TRUE, 0, n * sizeof(float), outputs[i].data());
+    for (int i = 0; i < kOutputs; ++i) dp.queue.enqueueReadBuffer(out_buffers[i], CL_TRUE, 0, n * sizeof(float), outputs[i].data());
   });
   PointSamples samples;
   samples.distance.assign(outputs[0].begin(), outputs[0].begin() + static_cast<std::ptrdiff_t>(points.size()));
   samples.color_distance.assign(outputs[1].begin(), outputs[1].begin() + static_cast<std::ptrdiff_t>(points.size()));
   for (std::size_t i = 0; i < points.size(); ++i) samples.albedo.emplace_back(outputs[2][i], outputs[3][i], outputs[4][i]);
+  samples.primitive.assign(outputs[5].begin(), outputs[5].begin() + static_cast<std::ptrdiff_t>(points.size()));
   return samples;
 }
 

@@ -106,6 +106,8 @@ struct PointSamples {
   /// Distance as map_color() computes it (must equal distance).
   std::vector<float> color_distance;
   std::vector<glm::vec3> albedo;
+  /// The number of the primitive whose material map_color() gives (the id channel's).
+  std::vector<float> primitive;
 };
 PointSamples eval_points_opencl(const Scene& scene, const std::vector<glm::dvec3>& points, const OpenClOptions& options);
 

@@ -27,6 +27,13 @@ std::optional<NodeKind> node_kind_from_name(std::string_view name) {
   return std::nullopt;
 }
 
+int primitive_count(const Node& node) {
+  if (is_primitive(node.kind)) return 1;
+  int count = 0;
+  for (const Node& child : node.children) count += primitive_count(child);
+  return count;
+}
+
 bool is_primitive(NodeKind kind) {
   switch (kind) {
 #define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind: return true;

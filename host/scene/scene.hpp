@@ -87,6 +87,12 @@ const T& params_of(const Node& node) {
   if (const T* p = std::get_if<T>(&node.params)) return *p;
   throw std::logic_error("a node's parameters are not those of its kind");
 }
+/// The primitives of the subtree: the numbers of the id channel it takes. Primitives are numbered
+/// from 0 depth-first in the order of the scene file (an instance file's where it is instanced);
+/// operators and modifiers take none, and every copy a repeat makes shares its primitive's number.
+int primitive_count(const Node& node);
+/// The id channel's value where a ray meets nothing.
+inline constexpr float kMissId = -1.0f;
 /// The node of a kind with that kind's default parameters (and no children).
 Node node_of_kind(NodeKind kind);
 /// The parameter table of a kind, in the order of its declaration.
