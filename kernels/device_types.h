@@ -27,7 +27,13 @@ typedef cl_float4 float4;
 #define CLMARCH_CHANNEL_WALL_STEPS 8
 /* The number of the primitive a ray hit (host/scene/scene.hpp, primitive_count), -1 on a miss. */
 #define CLMARCH_CHANNEL_ID 9
-#define CLMARCH_CHANNEL_COUNT 10
+/* The shading's layers (WRITE_LAYERS), each r, g, b in three planes from its first: the ambient
+ * light the occlusion leaves, the lights' diffuse and their specular reflection, as they reach
+ * the camera through the fog, before tone mapping (kernels/shading.cl, LightTerms). */
+#define CLMARCH_CHANNEL_AO 10
+#define CLMARCH_CHANNEL_DIFFUSE 13
+#define CLMARCH_CHANNEL_SPECULAR 16
+#define CLMARCH_CHANNEL_COUNT 19
 
 /* Columns of the tile a packet of `lanes` pixels covers (its rows: lanes / columns): 1x1, 2x2,
  * 4x2, 4x4. The host plans its dispatch of tiles by it (host/render/dispatch_plan.hpp). */
@@ -64,6 +70,9 @@ typedef cl_float4 float4;
 /* Floats from a refining pass's sample points' x to their y (kernels/march.cl, sample_packet):
  * kMaxSamples (host/scene/scene.hpp) and a vector's lanes past the last. */
 #define CLMARCH_SAMPLE_POINT_STRIDE (1024 + 16)
+/* float4s a refining pass writes for a run of one pixel's samples: the sum of their colors and
+ * hits, then with the layers the sums of ao, diffuse and specular (kernels/march.cl, store_samples). */
+#define CLMARCH_REFINED_FLOAT4S(layers) ((layers) ? 4 : 1)
 
 typedef struct MarchParams {
   float4 origin;       /* xyz = camera position relative to map_frame_origin (host/scene/camera_model.hpp) */

@@ -197,13 +197,20 @@ SDF_INLINE MarchLimits camera_limits(SceneValues values, const MarchParams* para
 }
 
 #ifdef NEED_SHADING
+/* A term of a hit's color as it reaches the camera through the fog along dir over t: fog is
+ * c -> c f + g, and the term's share of the fogged color is term f = fog(term) - fog(0). */
+SDF_INLINE vec3v fogged_term(SceneValues values, vec3v term, vec3v dir, vfloat t, float camera_height) {
+  return v3_sub(apply_fog(values, term, dir, t, camera_height), apply_fog(values, v3_splat(0.0f), dir, t, camera_height));
+}
+
 /* The shaded, tone-mapped color of packet k's rays (the sky's where they miss), and the normals at
- * their hits (0 where they miss) and with WRITE_IDS the numbers of the primitives hit (-1 where
- * they miss). */
+ * their hits (0 where they miss), with WRITE_IDS the numbers of the primitives hit (-1 where they
+ * miss) and with WRITE_LAYERS the terms of their lit colors through the fog (0 where they miss). */
 SDF_INLINE vec3v packet_color(SceneValues values, const Packet* k, const MarchResult* m, const MarchParams* params,
-                              __constant float4* lights, vec3v* normal, vfloat* id) {
+                              __constant float4* lights, vec3v* normal, vfloat* id, LightTerms* layers) {
   *normal = v3_splat(0.0f);
   *id = (vfloat)(-1.0f);
+  layers->ambient = layers->diffuse = layers->specular = v3_splat(0.0f);
   vec3v color = miss_color(values, k->dir, m->closest);
   if (LANE_ANY(m->hit)) {
     const Hit hit = surface_at(values, m, v3_splat(0.0f), k->dir, params->normal_epsilon);
@@ -211,12 +218,19 @@ SDF_INLINE vec3v packet_color(SceneValues values, const Packet* k, const MarchRe
 #if defined(WRITE_IDS)
     *id = select(*id, hit.id, m->hit);
 #endif
-    vec3v lit = shade(values, &hit, v3_scale(k->dir, -1.0f), m->hit, lights);
+    const LightTerms terms = light_terms(values, &hit, v3_scale(k->dir, -1.0f), m->hit, lights);
+    vec3v lit = lit_color(values, &terms, hit.steps);
 #if defined(REFLECTION_BOUNCES)
     lit = add_reflections(values, lit, hit, k->dir, m->hit, params, lights);
 #endif
     lit = apply_fog(values, lit, k->dir, m->t, params->camera_height);
     color = v3_select(color, lit, m->hit);
+#if defined(WRITE_LAYERS)
+    const float height = params->camera_height;
+    layers->ambient = v3_select(layers->ambient, fogged_term(values, terms.ambient, k->dir, m->t, height), m->hit);
+    layers->diffuse = v3_select(layers->diffuse, fogged_term(values, terms.diffuse, k->dir, m->t, height), m->hit);
+    layers->specular = v3_select(layers->specular, fogged_term(values, terms.specular, k->dir, m->t, height), m->hit);
+#endif
   }
   return tone_map(values, color);
 }
@@ -239,7 +253,19 @@ SDF_INLINE void finish_packet(SceneValues values, const Packet* k, const MarchRe
   vec3v normal = v3_splat(0.0f);
   vfloat id = (vfloat)(-1.0f);
 #ifdef NEED_SHADING
-  const vec3v color = packet_color(values, k, m, params, lights, &normal, &id);
+  LightTerms layers;
+  const vec3v color = packet_color(values, k, m, params, lights, &normal, &id, &layers);
+#if defined(WRITE_LAYERS)
+  STORE_PLANE(CLMARCH_CHANNEL_AO, layers.ambient.x);
+  STORE_PLANE(CLMARCH_CHANNEL_AO + 1, layers.ambient.y);
+  STORE_PLANE(CLMARCH_CHANNEL_AO + 2, layers.ambient.z);
+  STORE_PLANE(CLMARCH_CHANNEL_DIFFUSE, layers.diffuse.x);
+  STORE_PLANE(CLMARCH_CHANNEL_DIFFUSE + 1, layers.diffuse.y);
+  STORE_PLANE(CLMARCH_CHANNEL_DIFFUSE + 2, layers.diffuse.z);
+  STORE_PLANE(CLMARCH_CHANNEL_SPECULAR, layers.specular.x);
+  STORE_PLANE(CLMARCH_CHANNEL_SPECULAR + 1, layers.specular.y);
+  STORE_PLANE(CLMARCH_CHANNEL_SPECULAR + 2, layers.specular.z);
+#endif
 #else
   if (LANE_ANY(m->hit)) {
     normal = v3_select(normal, estimate_normal(values, m->local_point, params->normal_epsilon), m->hit);
@@ -331,45 +357,68 @@ SDF_INLINE Packet sample_packet(const MarchParams* params, int packet, __global 
   return k;
 }
 
+#if defined(WRITE_LAYERS)
+#define REFINED_FLOAT4S CLMARCH_REFINED_FLOAT4S(1)
+#else
+#define REFINED_FLOAT4S CLMARCH_REFINED_FLOAT4S(0)
+#endif
+
 /* Writes what a sample packet's march found: for each pixel whose pairs it holds, the sum of their
- * tone-mapped colors (programs without shading: 0) and how many of them hit, as a float4 at the
- * first of those pairs (a pair that starts the packet or its pixel's samples); the other pairs'
- * slots are left alone: the host adds about a float4 a packet instead of one a sample. */
+ * tone-mapped colors (programs without shading: 0) and how many of them hit, then with
+ * WRITE_LAYERS the sums of their layers, as REFINED_FLOAT4S float4s from the first of those pairs'
+ * slot (a pair that starts the packet or its pixel's samples); the other pairs' slots are left
+ * alone: the host adds about one slot a packet instead of one a sample. */
 SDF_INLINE void store_samples(SceneValues values, const Packet* k, const MarchResult* m, const MarchParams* params,
                               __constant float4* lights, int packet, __global float4* samples) {
   const int pairs = (int)params->sampling.z * ((int)params->sampling.y - 1);
-  float r[LANES], g[LANES], b[LANES], hit[LANES];
+  /* Per lane: r, g, b, hit, then the layers' r, g, b, a float4 each */
+  float lane_sums[REFINED_FLOAT4S * 4][LANES];
 #ifdef NEED_SHADING
   vec3v normal;
   vfloat id;
-  const vec3v color = packet_color(values, k, m, params, lights, &normal, &id);
-  STORE_LANES(color.x, 0, r);
-  STORE_LANES(color.y, 0, g);
-  STORE_LANES(color.z, 0, b);
+  LightTerms layers;
+  const vec3v color = packet_color(values, k, m, params, lights, &normal, &id, &layers);
+  STORE_LANES(color.x, 0, lane_sums[0]);
+  STORE_LANES(color.y, 0, lane_sums[1]);
+  STORE_LANES(color.z, 0, lane_sums[2]);
+#if defined(WRITE_LAYERS)
+  const vec3v terms[3] = {layers.ambient, layers.diffuse, layers.specular};
+  for (int t = 0; t < 3; ++t) {
+    STORE_LANES(terms[t].x, 0, lane_sums[4 + 4 * t]);
+    STORE_LANES(terms[t].y, 0, lane_sums[5 + 4 * t]);
+    STORE_LANES(terms[t].z, 0, lane_sums[6 + 4 * t]);
+    STORE_LANES((vfloat)(0.0f), 0, lane_sums[7 + 4 * t]);
+  }
+#endif
 #else
   (void)values;
   (void)lights;
-  STORE_LANES((vfloat)(0.0f), 0, r);
-  STORE_LANES((vfloat)(0.0f), 0, g);
-  STORE_LANES((vfloat)(0.0f), 0, b);
+  for (int c = 0; c < 3; ++c) STORE_LANES((vfloat)(0.0f), 0, lane_sums[c]);
 #endif
-  STORE_LANES(select((vfloat)(0.0f), (vfloat)(1.0f), m->hit), 0, hit);
+  STORE_LANES(select((vfloat)(0.0f), (vfloat)(1.0f), m->hit), 0, lane_sums[3]);
   const int per_pixel = (int)params->sampling.y - 1;
   const int first = packet * LANES;
   int to_pixel_end = per_pixel - first % per_pixel; /* pairs left of the first lane's pixel */
-  float4 sum = (float4)(0.0f);
+  float4 sum[REFINED_FLOAT4S];
+  for (int s = 0; s < REFINED_FLOAT4S; ++s) sum[s] = (float4)(0.0f);
   int run_start = first;
   for (int lane = 0; lane < LANES && first + lane < pairs; ++lane) {
     if (to_pixel_end == 0) {
-      samples[run_start] = sum;
-      sum = (float4)(0.0f);
+      for (int s = 0; s < REFINED_FLOAT4S; ++s) {
+        samples[run_start * REFINED_FLOAT4S + s] = sum[s];
+        sum[s] = (float4)(0.0f);
+      }
       run_start = first + lane;
       to_pixel_end = per_pixel;
     }
-    sum += (float4)(r[lane], g[lane], b[lane], hit[lane]);
+    for (int s = 0; s < REFINED_FLOAT4S; ++s) {
+      sum[s] += (float4)(lane_sums[4 * s][lane], lane_sums[4 * s + 1][lane], lane_sums[4 * s + 2][lane], lane_sums[4 * s + 3][lane]);
+    }
     --to_pixel_end;
   }
-  if (run_start < pairs) samples[run_start] = sum;
+  if (run_start < pairs) {
+    for (int s = 0; s < REFINED_FLOAT4S; ++s) samples[run_start * REFINED_FLOAT4S + s] = sum[s];
+  }
 }
 
 /* A refining pass's work-item: sample packets item and item + 1 (PACKETS_PER_ITEM = 2, marched

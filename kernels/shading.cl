@@ -48,9 +48,15 @@ SDF_INLINE vfloat normal_occlusion(SceneValues values, vec3v p, vec3v n) {
 }
 #endif
 
+/* One light's reflection off a surface, before its radiance and shadow. */
+typedef struct {
+  vec3v diffuse;
+  vec3v specular;
+} Reflection;
+
 #if defined(SHADING_MODEL_PBR)
-/* Cook-Torrance reflectance times n.l for one light. */
-SDF_INLINE vec3v pbr_light(vec3v n, vec3v l, vec3v v, vec3v albedo, vfloat metallic, vfloat roughness) {
+/* Cook-Torrance reflectance times n.l for one light: the diffuse lobe and the specular one. */
+SDF_INLINE Reflection pbr_light(vec3v n, vec3v l, vec3v v, vec3v albedo, vfloat metallic, vfloat roughness) {
   const vec3v h = v3_normalize(v3_add(l, v));
   const vfloat n_dot_l = fmax(v3_dot(n, l), 0.0f);
   const vfloat n_dot_v = fmax(v3_dot(n, v), 0.0f);
@@ -74,7 +80,8 @@ SDF_INLINE vec3v pbr_light(vec3v n, vec3v l, vec3v v, vec3v albedo, vfloat metal
   const vfloat specular = distribution * geometry / (4.0f * n_dot_v * n_dot_l + 1e-4f);
   const vec3v diffuse_weight = v3_scale(v3_sub(v3_splat(1.0f), fresnel), 1.0f - metallic);
   const vec3v diffuse = v3_scale(v3_mul(diffuse_weight, albedo), M_1_PI_F);
-  return v3_scale(v3_add(diffuse, v3_scale(fresnel, specular)), n_dot_l);
+  const Reflection r = {v3_scale(diffuse, n_dot_l), v3_scale(v3_scale(fresnel, specular), n_dot_l)};
+  return r;
 }
 #else
 /* x^SHADING_SHININESS for x >= 0, as exp2(s log2 x): PoCL 3.1's double16 pow() returns inf for some
@@ -99,12 +106,13 @@ SDF_INLINE vfloat specular_term(SceneValues values, vec3v n, vec3v l, vec3v v) {
 #endif
 }
 
-/* Lambert plus the specular model, times n.l where it applies, for one light. */
-SDF_INLINE vec3v classic_light(SceneValues values, vec3v n, vec3v l, vec3v v, vec3v albedo) {
+/* Lambert, and the specular model where n.l > 0, for one light. */
+SDF_INLINE Reflection classic_light(SceneValues values, vec3v n, vec3v l, vec3v v, vec3v albedo) {
   const vfloat n_dot_l = fmax(v3_dot(n, l), 0.0f);
   const vfloat specular = select((vfloat)(0.0f), specular_term(values, n, l, v), MASK(n_dot_l > 0.0f));
   const vfloat white = SHADING_SPECULAR * specular;
-  return v3_add(v3_scale(albedo, SHADING_DIFFUSE * n_dot_l), v3(white, white, white));
+  const Reflection r = {v3_scale(albedo, SHADING_DIFFUSE * n_dot_l), v3(white, white, white)};
+  return r;
 }
 #endif
 
@@ -120,31 +128,57 @@ SDF_INLINE vec3v apply_step_ao(SceneValues values, vec3v color, vfloat steps) {
 #endif
 }
 
-/* Lit color of the surface, seen along -view (unit). Each light is (xyz position relative to the
- * camera, w = 1) or (xyz unit direction towards the light, w = 0), then its radiance. */
-SDF_INLINE vec3v shade(SceneValues values, const Hit* hit, vec3v view, vint live, __constant float4* lights) {
+/* The terms of the lit color (the --buffers layers ao, diffuse and specular): the ambient light the
+ * occlusion leaves, and the lights' diffuse and specular reflection with their shadows. */
+typedef struct {
+  vec3v ambient;
+  vec3v diffuse;
+  vec3v specular;
+} LightTerms;
+
+/* The terms of the surface's lit color, seen along -view (unit). Each light is (xyz position
+ * relative to the camera, w = 1) or (xyz unit direction towards the light, w = 0), then its
+ * radiance. */
+SDF_INLINE LightTerms light_terms(SceneValues values, const Hit* hit, vec3v view, vint live, __constant float4* lights) {
   vfloat ambient_occlusion = (vfloat)(1.0f);
 #if defined(AO_SAMPLES)
   ambient_occlusion = normal_occlusion(values, hit->point, hit->normal);
 #endif
-  vec3v color = v3_scale(v3_mul(hit->albedo, v3_from(AMBIENT_COLOR)), ambient_occlusion);
+  LightTerms terms;
+  terms.ambient = v3_scale(v3_mul(hit->albedo, v3_from(AMBIENT_COLOR)), ambient_occlusion);
+  terms.diffuse = v3_splat(0.0f);
+  terms.specular = v3_splat(0.0f);
   for (int k = 0; k < LIGHT_COUNT; ++k) {
     const float4 where = lights[CLMARCH_LIGHT_FLOAT4S * k];
     const float4 radiance = lights[CLMARCH_LIGHT_FLOAT4S * k + 1];
     const bool is_point = where.w > 0.5f;
     const vec3v l = is_point ? point_light_direction(hit->relative, where) : v3_from(where);
 #if defined(SHADING_MODEL_PBR)
-    vec3v lit = pbr_light(hit->normal, l, view, hit->albedo, hit->surface.x, hit->surface.y);
+    const Reflection lit = pbr_light(hit->normal, l, view, hit->albedo, hit->surface.x, hit->surface.y);
 #else
-    vec3v lit = classic_light(values, hit->normal, l, view, hit->albedo);
+    const Reflection lit = classic_light(values, hit->normal, l, view, hit->albedo);
 #endif
+    vec3v reaching = v3_from(radiance);
 #if defined(SHADOW_MODE)
     const vfloat t_end = is_point ? v3_length(v3_sub(v3_from(where), hit->relative)) : (vfloat)(SHADOW_MAX_T);
-    lit = v3_scale(lit, shadow_factor(values, hit->point, hit->normal, l, t_end, live & MASK(v3_dot(hit->normal, l) > 0.0f)));
+    reaching = v3_scale(reaching, shadow_factor(values, hit->point, hit->normal, l, t_end, live & MASK(v3_dot(hit->normal, l) > 0.0f)));
 #else
     (void)live;
 #endif
-    color = v3_add(color, v3_mul(lit, v3_from(radiance)));
+    terms.diffuse = v3_add(terms.diffuse, v3_mul(lit.diffuse, reaching));
+    terms.specular = v3_add(terms.specular, v3_mul(lit.specular, reaching));
   }
-  return v3_max0(apply_step_ao(values, color, hit->steps));
+  return terms;
+}
+
+/* The lit color of a hit whose march took steps: its terms, darkened by the step count. */
+SDF_INLINE vec3v lit_color(SceneValues values, const LightTerms* terms, vfloat steps) {
+  const vec3v color = v3_add(v3_add(terms->ambient, terms->diffuse), terms->specular);
+  return v3_max0(apply_step_ao(values, color, steps));
+}
+
+/* Lit color of the surface, seen along -view (unit). */
+SDF_INLINE vec3v shade(SceneValues values, const Hit* hit, vec3v view, vint live, __constant float4* lights) {
+  const LightTerms terms = light_terms(values, hit, view, live, lights);
+  return lit_color(values, &terms, hit->steps);
 }

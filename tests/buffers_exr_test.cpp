@@ -1,5 +1,5 @@
 // The --buffers EXR: its channel names are a contract (R, G, B, depth, steps, N.x, N.y, N.z, then
-// A, Z, samples, id, P.x, P.y, P.z) and its values follow the documented rules (linear color, +inf
+// A, Z, samples, id, the layers ao, diffuse and specular, P.x, P.y, P.z) and its values follow the documented rules (linear color, +inf
 // depth on a miss, unit normals, coverage, the camera in the header).
 #include "support/test_support.hpp"
 
@@ -26,8 +26,9 @@ TEST(BuffersExr, ChannelsAndValuesFollowTheContract) {
     EXPECT_EQ(spec.format, OIIO::TypeDesc::FLOAT);
     std::vector<std::string> names(spec.channelnames.begin(), spec.channelnames.end());
     std::sort(names.begin(), names.end());
-    EXPECT_EQ(names, (std::vector<std::string>{"A", "B", "G", "N.x", "N.y", "N.z", "P.x", "P.y", "P.z", "R", "Z", "depth",
-                                               "id", "samples", "steps"}));
+    EXPECT_EQ(names, (std::vector<std::string>{"A", "B", "G", "N.x", "N.y", "N.z", "P.x", "P.y", "P.z", "R", "Z", "ao.B",
+                                               "ao.G", "ao.R", "depth", "diffuse.B", "diffuse.G", "diffuse.R", "id", "samples",
+                                               "specular.B", "specular.G", "specular.R", "steps"}));
     const auto channel = [&](const char* name) { return spec.channelindex(name); };
     const testing::Image image = testing::read_image(dir / "b.exr");
     // The corner misses the sphere, the centre hits it head-on at distance 4. The corner's ray

@@ -264,7 +264,7 @@ TEST(CheckCli, AFailingCheckExitsOneAndWritesBothRendersAndTheirDifference) {
     EXPECT_EQ(image->width, 48);
     EXPECT_EQ(image->height, 32);
   }
-  ASSERT_EQ(difference.channels, 12) << "the --buffers channels but P: R, G, B, depth, steps, N.x, N.y, N.z, A, Z, samples, id";
+  ASSERT_EQ(difference.channels, 21) << "the --buffers channels but P: R, G, B, depth, steps, N.x, N.y, N.z, A, Z, samples, id, layers";
   // The difference holds |opencl - reference| per channel: here the normals (N.x, N.y, N.z).
   std::vector<int> normal_channels;
   {
@@ -421,6 +421,16 @@ TEST_F(CheckThresholds, ShadingAtHalfAnEightBitStep) {
   };
   EXPECT_FALSE(failed_on(brighten_by(0.9), "shading error")) << brighten_by(0.9).to_text();
   EXPECT_TRUE(failed_on(brighten_by(1.1), "shading error")) << brighten_by(1.1).to_text();
+  // Each layer is held to the same tolerance as the color.
+  for (Channel layer : {Channel::AoB, Channel::DiffuseR, Channel::SpecularG}) {
+    const auto layer_off_by = [&](double multiple) {
+      return perturbed_and_reshaded([&](FrameBuffers& b, int i, int j) {
+        if (hit(i, j)) b.at(layer, i, j) += static_cast<float>(multiple * 0.5 / 255.0);
+      });
+    };
+    EXPECT_FALSE(failed_on(layer_off_by(0.9), "shading error")) << kChannelNames[static_cast<int>(layer)];
+    EXPECT_TRUE(failed_on(layer_off_by(1.1), "shading error")) << kChannelNames[static_cast<int>(layer)];
+  }
 }
 
 // A NaN or an infinity where the contract has a number fails the check, whichever side holds it:

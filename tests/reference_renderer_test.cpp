@@ -9,8 +9,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
+#include <iterator>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -473,9 +475,14 @@ TEST(RenderReference, EveryPixelIsItsRay) {
     for (int i = 0; i < fb.width; ++i) {
       const RayResult r = reference_trace(s, basis.origin, pixel_ray_direction(basis, i, j));
       hits += r.hit;
-      // wall_steps 0 (no tiling); the primitive hit or -1; one ray per pixel: A is the hit, samples 1.
-      const double want[kChannelCount] = {r.color.r, r.color.g, r.color.b, r.depth, double(r.steps), r.normal.x, r.normal.y,
-                                          r.normal.z, 0.0, r.hit ? double(r.primitive) : -1.0, r.hit ? 1.0 : 0.0, 1.0};
+      // wall_steps 0 (no tiling); the primitive hit or -1; the layers; one ray per pixel: A is the
+      // hit, samples 1.
+      const LightTerms& l = r.layers;
+      const double want[kChannelCount] = {r.color.r,   r.color.g,   r.color.b,   r.depth,      double(r.steps),
+                                          r.normal.x,  r.normal.y,  r.normal.z,  0.0,          r.hit ? double(r.primitive) : -1.0,
+                                          l.ambient.r, l.ambient.g, l.ambient.b, l.diffuse.r,  l.diffuse.g,
+                                          l.diffuse.b, l.specular.r, l.specular.g, l.specular.b, r.hit ? 1.0 : 0.0,
+                                          1.0};
       for (int c = 0; c < kChannelCount; ++c) {
         EXPECT_EQ(fb.at(Channel(c), i, j), static_cast<float>(want[c])) << kChannelNames[c] << " at " << i << "," << j;
       }
@@ -506,6 +513,8 @@ TEST(ReshadeHits, TheReferencesOwnHitsKeepTheirColors) {
     for (int j = 0; j < reference.height; ++j) {
       for (int i = 0; i < reference.width; ++i) {
         for (int c = 3; c < kChannelCount; ++c) {
+          // The layers are the shading's, computed again like the color.
+          if (std::find(std::begin(kLayerChannels), std::end(kLayerChannels), Channel(c)) != std::end(kLayerChannels)) continue;
           EXPECT_EQ(reshaded.at(Channel(c), i, j), reference.at(Channel(c), i, j)) << name << " copies " << kChannelNames[c];
         }
         if (!std::isfinite(reference.at(Channel::Depth, i, j))) {
@@ -515,6 +524,7 @@ TEST(ReshadeHits, TheReferencesOwnHitsKeepTheirColors) {
         ++hits;
         float diff = 0.0f;
         for (Channel c : {Channel::R, Channel::G, Channel::B}) diff = std::max(diff, std::abs(reshaded.at(c, i, j) - reference.at(c, i, j)));
+        for (Channel c : kLayerChannels) diff = std::max(diff, std::abs(reshaded.at(c, i, j) - reference.at(c, i, j)));
         changed += diff > 1e-4f;
       }
     }

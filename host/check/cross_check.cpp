@@ -334,7 +334,8 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
                         const FrameBuffers& reshaded) {
   CheckReport r = cross_check(scene, opencl, reference);
   compare_ids(r, opencl, reference);
-  // Both sides shade the same depth, normal and steps, so only float arithmetic separates them,
+  // Both sides shade the same depth, normal and steps, so only float arithmetic separates them (in
+  // the color and in each layer),
   // inside the shading and along its shadow, occlusion and mirror rays: within half a step of 8
   // bits of the color's own size (HDR colors above 1 keep float's relative precision), plus the
   // specular power's rounding (x^shininess multiplies the relative rounding of x by shininess),
@@ -345,21 +346,30 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
   const double power_rounding =
       powered ? kRoundingSteps * kUnitRoundoff * light_radiance(scene) * shading.specular * shading.shininess : 0.0;
   std::vector<double> diffs, ratios;
+  // The color, and each of the layers (ao, diffuse, specular) as a color of its own.
+  const Channel triples[4][3] = {{Channel::R, Channel::G, Channel::B},
+                                 {Channel::AoR, Channel::AoG, Channel::AoB},
+                                 {Channel::DiffuseR, Channel::DiffuseG, Channel::DiffuseB},
+                                 {Channel::SpecularR, Channel::SpecularG, Channel::SpecularB}};
   for (int j = 0; j < opencl.height; ++j) {
     for (int i = 0; i < opencl.width; ++i) {
       // An anti-aliased pixel's color is the mean of its rays, not its centre hit's shading.
       if (!is_hit(opencl, i, j) || opencl.at(Channel::Samples, i, j) > 1.0f) continue;
-      double size = 1.0;
-      for (Channel c : {Channel::R, Channel::G, Channel::B}) size = std::max(size, std::abs(static_cast<double>(reshaded.at(c, i, j))));
-      const double diff = max_color_difference(opencl, reshaded, i, j);
-      diffs.push_back(diff);
-      ratios.push_back(diff / (kColorQuantum * size + power_rounding));
+      for (const auto& triple : triples) {
+        double size = 1.0, diff = 0.0;
+        for (Channel c : triple) {
+          size = std::max(size, std::abs(static_cast<double>(reshaded.at(c, i, j))));
+          diff = std::max(diff, difference(opencl.at(c, i, j), reshaded.at(c, i, j)));
+        }
+        diffs.push_back(diff);
+        ratios.push_back(diff / (kColorQuantum * size + power_rounding));
+      }
     }
   }
   const ErrorSummary summary = summarise(diffs);
   r.shading_max_abs = summary.max;
   r.shading_p99_abs = summary.p99;
-  r.shading_compared = static_cast<int>(diffs.size());
+  r.shading_compared = static_cast<int>(diffs.size() / std::size(triples));
   const double ratio_p99 = summarise(ratios).p99;
   r.tolerances.shading_p99_abs = ratio_p99 > 0.0 ? summary.p99 / ratio_p99 : kColorQuantum + power_rounding;
   if (ratio_p99 > 1.0) {
@@ -419,7 +429,7 @@ std::string CheckReport::to_text() const {
   out += fmt::format("color of misses   p99 abs {:.3g}  ({} pixels compared, hits and misses)\n", miss_color_p99_abs,
                      color_compared);
   if (shading_compared > 0) {
-    out += fmt::format("shading           max abs {:.3g}  p99 abs {:.3g}  ({} hits shaded by both)\n", shading_max_abs,
+    out += fmt::format("shading           max abs {:.3g}  p99 abs {:.3g}  ({} hits shaded by both: color, ao, diffuse, specular)\n", shading_max_abs,
                        shading_p99_abs, shading_compared);
   }
   if (ids_compared > 0) {

@@ -53,9 +53,10 @@ struct CheckReport {
   double miss_color_p99_abs = 0.0;
   /// Pixels whose color the hit and miss criteria compared.
   int color_compared = 0;
-  /// The shading alone, over the pixels the OpenCL render hit: its color against the reference's
-  /// color of the same depth, normal and steps (reshade_hits), so that differences of geometry
-  /// drop out. Compared pixels: 0 when the check ran without the reshaded render.
+  /// The shading alone, over the pixels the OpenCL render hit: its color and each of its layers
+  /// (ao, diffuse, specular) against the reference's of the same depth, normal and steps
+  /// (reshade_hits), so that differences of geometry drop out. Compared pixels: 0 when the check
+  /// ran without the reshaded render.
   double shading_max_abs = 0.0;
   double shading_p99_abs = 0.0;
   int shading_compared = 0;

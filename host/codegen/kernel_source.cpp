@@ -89,6 +89,7 @@ std::string feature_defines(const Scene& scene, const KernelOptions& options) {
   // Shading needs the normal whether or not its planes are written.
   if (outputs.normals) out += "#define WRITE_NORMALS\n";
   if (outputs.ids) out += "#define WRITE_IDS\n";
+  if (outputs.layers) out += "#define WRITE_LAYERS\n";
   if (outputs.normals || outputs.color) {
     out += "#define NEED_NORMALS\n";
     if (scene.render.normal_method == NormalMethod::Tetrahedral) out += "#define NORMAL_TETRAHEDRAL\n";
@@ -155,6 +156,11 @@ std::vector<int> MarchOutputs::planes() const {
   if (normals) planes.insert(planes.end(), {CLMARCH_CHANNEL_NX, CLMARCH_CHANNEL_NY, CLMARCH_CHANNEL_NZ});
   if (wall_steps) planes.push_back(CLMARCH_CHANNEL_WALL_STEPS);
   if (ids) planes.push_back(CLMARCH_CHANNEL_ID);
+  if (layers) {
+    for (int first : {CLMARCH_CHANNEL_AO, CLMARCH_CHANNEL_DIFFUSE, CLMARCH_CHANNEL_SPECULAR}) {
+      planes.insert(planes.end(), {first, first + 1, first + 2});
+    }
+  }
   return planes;
 }
 
@@ -162,6 +168,7 @@ MarchOutputs march_outputs(const Scene& scene, KernelPurpose purpose) {
   MarchOutputs outputs;
   outputs.normals = purpose == KernelPurpose::Normals || purpose == KernelPurpose::Shaded;
   outputs.ids = outputs.normals;
+  outputs.layers = purpose == KernelPurpose::Shaded;
   outputs.color = purpose == KernelPurpose::Shaded || purpose == KernelPurpose::Color;
   outputs.wall_steps = uses_cells_tiling(scene);
   return outputs;

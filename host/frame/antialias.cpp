@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 namespace clmarch {
 namespace {
@@ -77,13 +78,18 @@ std::vector<std::uint8_t> pixels_to_refine(const FrameBuffers& centre, bool adap
   return refine;
 }
 
-SampleSums::SampleSums(const FrameBuffers& centre, std::vector<std::uint8_t> refine)
-    : refine_(std::move(refine)), sums_(4 * refine_.size(), 0.0) {
+SampleSums::SampleSums(const FrameBuffers& centre, std::vector<std::uint8_t> refine, bool with_layers)
+    : refine_(std::move(refine)), averaged_{Channel::R, Channel::G, Channel::B, Channel::A} {
+  if (with_layers) averaged_.insert(averaged_.end(), std::begin(kLayerChannels), std::end(kLayerChannels));
+  sums_.assign(averaged_.size() * refine_.size(), 0.0);
   const std::vector<float>& depth = centre.plane(Channel::Depth);
+  std::vector<float> values(averaged_.size());
   for (std::size_t i = 0; i < refine_.size(); ++i) {
     if (!refine_[i]) continue;
-    add(i, glm::vec3(centre.plane(Channel::R)[i], centre.plane(Channel::G)[i], centre.plane(Channel::B)[i]),
-        std::isfinite(depth[i]));
+    for (std::size_t k = 0; k < averaged_.size(); ++k) {
+      values[k] = averaged_[k] == Channel::A ? (std::isfinite(depth[i]) ? 1.0f : 0.0f) : centre.plane(averaged_[k])[i];
+    }
+    add(i, values.data());
   }
 }
 
@@ -92,10 +98,9 @@ void SampleSums::finish(FrameBuffers& buffers, int count) const {
   const double scale = 1.0 / count;
   for (std::size_t i = 0; i < refine_.size(); ++i) {
     if (!refine_[i]) continue;
-    buffers.plane(Channel::R)[i] = static_cast<float>(sums_[4 * i] * scale);
-    buffers.plane(Channel::G)[i] = static_cast<float>(sums_[4 * i + 1] * scale);
-    buffers.plane(Channel::B)[i] = static_cast<float>(sums_[4 * i + 2] * scale);
-    buffers.plane(Channel::A)[i] = static_cast<float>(sums_[4 * i + 3] * scale);
+    for (std::size_t k = 0; k < averaged_.size(); ++k) {
+      buffers.plane(averaged_[k])[i] = static_cast<float>(sums_[averaged_.size() * i + k] * scale);
+    }
     buffers.plane(Channel::Samples)[i] = static_cast<float>(count);
   }
 }

@@ -34,27 +34,29 @@ struct EdgeThresholds {
 /// a jump over a threshold; without, every pixel.
 std::vector<std::uint8_t> pixels_to_refine(const FrameBuffers& centre, bool adaptive, const EdgeThresholds& thresholds = {});
 
-/// Sums of the samples of the refined pixels, which finish_samples turns into their mean.
+/// Sums of the samples of the refined pixels, which finish turns into their means.
 class SampleSums {
  public:
-  SampleSums(const FrameBuffers& centre, std::vector<std::uint8_t> refine);
-  /// Adds samples of pixel (row-major index) i: the sum of their colors, and how many of them hit
-  /// (one sample: its color, and 1 or 0).
-  void add(std::size_t i, const glm::vec3& colors, float hits) {
-    sums_[4 * i] += colors.r;
-    sums_[4 * i + 1] += colors.g;
-    sums_[4 * i + 2] += colors.b;
-    sums_[4 * i + 3] += hits;
+  /// with_layers: the shading's layers (kLayerChannels) are averaged with the color.
+  SampleSums(const FrameBuffers& centre, std::vector<std::uint8_t> refine, bool with_layers);
+  /// How many values a sample adds: r, g, b and its hit (1 or 0), then with the layers those of
+  /// kLayerChannels in their order.
+  std::size_t values_per_sample() const { return averaged_.size(); }
+  /// Adds samples of pixel (row-major index) i: values_per_sample() values, each the sum over them.
+  void add(std::size_t i, const float* values) {
+    for (std::size_t k = 0; k < averaged_.size(); ++k) sums_[averaged_.size() * i + k] += values[k];
   }
   const std::vector<std::uint8_t>& refine() const { return refine_; }
-  /// Writes into buffers (the centre render) R, G, B and A as the means of count samples of each
-  /// refined pixel, the centre's included, and Samples; other pixels keep the centre's color, get
-  /// A = 1 on a hit and 0 on a miss, and Samples = 1.
+  /// Writes into buffers (the centre render) R, G, B, A and the layers as the means of count
+  /// samples of each refined pixel, the centre's included, and Samples; other pixels keep the
+  /// centre's values, get A = 1 on a hit and 0 on a miss, and Samples = 1.
   void finish(FrameBuffers& buffers, int count) const;
 
  private:
   std::vector<std::uint8_t> refine_;
-  /// r, g, b, hits per pixel; 0 for pixels not refined.
+  /// The channels whose means are taken, in the order of add's values; A's is the hits'.
+  std::vector<Channel> averaged_;
+  /// Their sums per pixel; 0 for pixels not refined.
   std::vector<double> sums_;
 };
 

@@ -2,6 +2,8 @@
 // (part of the contract: R, G, B, depth, steps, N.x, N.y, N.z).
 #pragma once
 
+#include "common/cancellation.hpp"
+
 #include <array>
 #include <cstddef>
 #include <vector>
@@ -13,12 +15,22 @@ namespace clmarch {
 /// the contract. Id is the number of the primitive the centre ray hit (scene/scene.hpp,
 /// primitive_count; kMissId on a miss), written with the normals. A (coverage: the share of the pixel's samples that hit) and Samples (how many it
 /// got) are filled on the host (host/frame/antialias.hpp).
-enum class Channel { R, G, B, Depth, Steps, NX, NY, NZ, WallSteps, Id, A, Samples };
-inline constexpr int kChannelCount = 12;
+enum class Channel {
+  R, G, B, Depth, Steps, NX, NY, NZ, WallSteps, Id,
+  AoR, AoG, AoB, DiffuseR, DiffuseG, DiffuseB, SpecularR, SpecularG, SpecularB,
+  A, Samples
+};
+inline constexpr int kChannelCount = 21;
 /// Channel names (the EXR's, but for wall_steps), indexed by Channel.
-inline constexpr const char* kChannelNames[kChannelCount] = {"R",   "G",   "B",   "depth",      "steps", "N.x",
-                                                             "N.y", "N.z", "wall_steps", "id",    "A",
-                                                             "samples"};
+inline constexpr const char* kChannelNames[kChannelCount] = {
+    "R",    "G",    "B",    "depth",     "steps",     "N.x",       "N.y",        "N.z",        "wall_steps", "id",
+    "ao.R", "ao.G", "ao.B", "diffuse.R", "diffuse.G", "diffuse.B", "specular.R", "specular.G", "specular.B", "A",
+    "samples"};
+/// The shading's layers (ao, diffuse, specular; r, g, b each): the terms of a hit's lit color
+/// (kernels/shading.cl, LightTerms), written by shaded renders with the normals, 0 elsewhere.
+inline constexpr Channel kLayerChannels[] = {Channel::AoR,      Channel::AoG,      Channel::AoB,
+                                             Channel::DiffuseR, Channel::DiffuseG, Channel::DiffuseB,
+                                             Channel::SpecularR, Channel::SpecularG, Channel::SpecularB};
 
 /// Row-major planes, pixel (i, j) at j * width + i, j = 0 the top row. Linear color, depth +inf on
 /// a miss, steps = distance evaluations of the march, N = unit normal (0 on a miss).
@@ -28,8 +40,13 @@ struct FrameBuffers {
   std::array<std::vector<float>, kChannelCount> planes;
 
   FrameBuffers() = default;
+  /// Throws Cancelled between planes once Ctrl-C was pressed: a large image's 21 planes take
+  /// seconds to allocate (2 GB at 4096 x 6144).
   FrameBuffers(int w, int h) : width(w), height(h) {
-    for (auto& plane : planes) plane.assign(static_cast<std::size_t>(w) * h, 0.0f);
+    for (auto& plane : planes) {
+      throw_if_cancelled();
+      plane.assign(static_cast<std::size_t>(w) * h, 0.0f);
+    }
   }
   std::vector<float>& plane(Channel c) { return planes[static_cast<int>(c)]; }
   const std::vector<float>& plane(Channel c) const { return planes[static_cast<int>(c)]; }

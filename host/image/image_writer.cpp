@@ -131,13 +131,14 @@ void write_color_image(StagedFiles& files, const std::filesystem::path& path, co
 namespace {
 
 /// The EXR's channels of every render: the contract's eight, then A, Z (depth, by the name
-/// compositors look for), samples and id.
+/// compositors look for), samples, id and the shading's layers (0 where a view draws something else).
 std::vector<NamedPlane> buffer_planes(const FrameBuffers& buffers) {
   std::vector<NamedPlane> planes = named(buffers, {Channel::R, Channel::G, Channel::B, Channel::Depth, Channel::Steps,
                                                    Channel::NX, Channel::NY, Channel::NZ, Channel::A});
   planes.push_back({&buffers.plane(Channel::Depth), "Z"});
   planes.push_back({&buffers.plane(Channel::Samples), "samples"});
   planes.push_back({&buffers.plane(Channel::Id), "id"});
+  for (Channel layer : kLayerChannels) planes.push_back({&buffers.plane(layer), kChannelNames[static_cast<int>(layer)]});
   return planes;
 }
 

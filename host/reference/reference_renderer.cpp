@@ -104,11 +104,29 @@ glm::dvec3 march_frame_origin(const Scene& scene, const glm::dvec3& origin) {
   return uses_cells_tiling(scene) ? origin - scene.camera.position + camera_origin_in_frame(scene) : origin;
 }
 
-/// The color of a camera ray's hit at depth: shading, mirror bounces, fog and tone mapping.
-glm::dvec3 hit_color(const Scene& scene, const SurfacePoint& hit, const glm::dvec3& direction, double depth) {
-  glm::dvec3 color = reference_shade(scene, hit, direction);
+/// What a camera ray's hit shows: its color, and the terms of its lit color as they reach the camera.
+struct HitColor {
+  glm::dvec3 color;
+  LightTerms layers;
+};
+
+/// The color of a camera ray's hit at depth (shading, mirror bounces, fog and tone mapping), and
+/// its layers: each term of the lit color through the fog, which is affine in the color (c f + g),
+/// as fog(term) - fog(0).
+HitColor hit_color(const Scene& scene, const SurfacePoint& hit, const glm::dvec3& direction, double depth) {
+  const LightTerms terms = reference_light_terms(scene, hit, direction);
+  glm::dvec3 color = reference_lit_color(scene, terms, hit.steps);
   if (scene.shading.reflection_bounces > 0) color = add_reflections(scene, color, hit, direction);
-  return reference_tone_map(scene, reference_fog(scene, color, direction, depth));
+  const glm::dvec3 fog_alone = reference_fog(scene, glm::dvec3(0.0), direction, depth);
+  const auto fogged = [&](const glm::dvec3& term) { return reference_fog(scene, term, direction, depth) - fog_alone; };
+  return {reference_tone_map(scene, reference_fog(scene, color, direction, depth)),
+          {fogged(terms.ambient), fogged(terms.diffuse), fogged(terms.specular)}};
+}
+
+/// Writes the layers of a ray into the buffers' layer channels at pixel (i, j).
+void store_layers(FrameBuffers& fb, int i, int j, const LightTerms& layers) {
+  const glm::dvec3 terms[3] = {layers.ambient, layers.diffuse, layers.specular};
+  for (int k = 0; k < 9; ++k) fb.at(kLayerChannels[k], i, j) = static_cast<float>(terms[k / 3][k % 3]);
 }
 
 // The trace of a camera ray clipped to bounds (camera_ray_bounds(scene), computed once per image),
@@ -148,7 +166,9 @@ RayResult trace_within(const Scene& scene, const std::optional<BoundingSphere>& 
   const SurfacePoint hit = surface_at(scene, end, origin, direction);
   r.normal = hit.normal;
   r.primitive = hit.primitive;
-  r.color = hit_color(scene, hit, direction, end.depth);
+  const HitColor seen = hit_color(scene, hit, direction, end.depth);
+  r.color = seen.color;
+  r.layers = seen.layers;
   return r;
 }
 
@@ -186,6 +206,7 @@ FrameBuffers render_reference(const Scene& scene, const std::optional<ConeStarts
         fb.at(Channel::NZ, i, j) = static_cast<float>(r.normal.z);
         fb.at(Channel::WallSteps, i, j) = static_cast<float>(r.wall_steps);
         fb.at(Channel::Id, i, j) = r.hit ? static_cast<float>(r.primitive) : kMissId;
+        store_layers(fb, i, j, r.layers);
       }
       progress.advance();
     }
@@ -197,7 +218,7 @@ FrameBuffers render_reference(const Scene& scene, const std::optional<ConeStarts
   // Anti-aliasing: the pixels the centre rays show edges at get the other samples, marched like
   // the device's refining passes without the cones' starts (made for the centre rays).
   const int count = scene.render.samples;
-  SampleSums sums(fb, pixels_to_refine(fb, scene.render.adaptive));
+  SampleSums sums(fb, pixels_to_refine(fb, scene.render.adaptive), true);
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
     for (int j = rows.begin(); j != rows.end(); ++j) {
       throw_if_cancelled();
@@ -207,7 +228,11 @@ FrameBuffers render_reference(const Scene& scene, const std::optional<ConeStarts
         for (int k = 1; k < count; ++k) {
           const glm::dvec2 point = sample_point(k, count);
           const RayResult r = trace_within(scene, bounds, basis.origin, camera_ray_direction(basis, i + point.x, j + point.y));
-          sums.add(at, glm::vec3(r.color), r.hit ? 1.0f : 0.0f);
+          const glm::dvec3 terms[3] = {r.layers.ambient, r.layers.diffuse, r.layers.specular};
+          float values[13] = {static_cast<float>(r.color.r), static_cast<float>(r.color.g), static_cast<float>(r.color.b),
+                              r.hit ? 1.0f : 0.0f};
+          for (int k = 0; k < 9; ++k) values[4 + k] = static_cast<float>(terms[k / 3][k % 3]);
+          sums.add(at, values);
         }
       }
     }
@@ -236,10 +261,11 @@ FrameBuffers reshade_hits(const Scene& scene, const FrameBuffers& render) {
         hit.normal = normalize_or_zero(glm::dvec3(render.at(Channel::NX, i, j), render.at(Channel::NY, i, j), render.at(Channel::NZ, i, j)));
         set_material(scene, hit);
         hit.steps = static_cast<int>(render.at(Channel::Steps, i, j));
-        const glm::dvec3 color = hit_color(scene, hit, direction, depth);
-        fb.at(Channel::R, i, j) = static_cast<float>(color.r);
-        fb.at(Channel::G, i, j) = static_cast<float>(color.g);
-        fb.at(Channel::B, i, j) = static_cast<float>(color.b);
+        const HitColor seen = hit_color(scene, hit, direction, depth);
+        fb.at(Channel::R, i, j) = static_cast<float>(seen.color.r);
+        fb.at(Channel::G, i, j) = static_cast<float>(seen.color.g);
+        fb.at(Channel::B, i, j) = static_cast<float>(seen.color.b);
+        store_layers(fb, i, j, seen.layers);
       }
     }
   });

@@ -4,6 +4,7 @@
 
 #include "frame/frame_buffers.hpp"
 #include "reference/reference_cones.hpp"
+#include "reference/reference_shading.hpp"
 #include "scene/scene.hpp"
 
 #include <glm/glm.hpp>
@@ -28,6 +29,9 @@ struct RayResult {
   int primitive = 0;
   /// Final linear color (shaded, with bounces, fog and tone mapping); the sky's on a miss.
   glm::dvec3 color{0.0};
+  /// The terms of the hit's lit color as they reach the camera through the fog (the layers); 0
+  /// on a miss.
+  LightTerms layers;
 };
 
 /// Normal at p from finite differences of the field with step h.

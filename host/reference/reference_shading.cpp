@@ -19,9 +19,15 @@ double specular_term(ShadingModel model, const glm::dvec3& n, const glm::dvec3& 
   return 0.0;
 }
 
+// One light's reflection off a surface, before its radiance and shadow.
+struct Reflection {
+  glm::dvec3 diffuse;
+  glm::dvec3 specular;
+};
+
 // Cook-Torrance: GGX distribution, Smith-Schlick geometry with k = (r + 1)^2 / 8, Fresnel-Schlick
-// from F0 = mix(0.04, albedo, metallic); times n.l.
-glm::dvec3 pbr_light(const glm::dvec3& n, const glm::dvec3& l, const glm::dvec3& v, const Material& m) {
+// from F0 = mix(0.04, albedo, metallic); the diffuse and specular lobes times n.l.
+Reflection pbr_light(const glm::dvec3& n, const glm::dvec3& l, const glm::dvec3& v, const Material& m) {
   const glm::dvec3 h = normalize_or_zero(l + v);
   const double n_dot_l = std::max(glm::dot(n, l), 0.0);
   const double n_dot_v = std::max(glm::dot(n, v), 0.0);
@@ -36,13 +42,13 @@ glm::dvec3 pbr_light(const glm::dvec3& n, const glm::dvec3& l, const glm::dvec3&
   const glm::dvec3 fresnel = f0 + (1.0 - f0) * std::pow(1.0 - h_dot_v, 5.0);
   const double specular = distribution * geometry / (4.0 * n_dot_v * n_dot_l + 1e-4);
   const glm::dvec3 diffuse = (1.0 - fresnel) * (1.0 - m.metallic) * m.albedo / M_PI;
-  return (diffuse + fresnel * specular) * n_dot_l;
+  return {diffuse * n_dot_l, fresnel * specular * n_dot_l};
 }
 
-glm::dvec3 classic_light(const Shading& sh, const glm::dvec3& n, const glm::dvec3& l, const glm::dvec3& v, const Material& m) {
+Reflection classic_light(const Shading& sh, const glm::dvec3& n, const glm::dvec3& l, const glm::dvec3& v, const Material& m) {
   const double n_dot_l = std::max(glm::dot(n, l), 0.0);
   const double specular = n_dot_l > 0.0 ? specular_term(sh.model, n, l, v, sh.shininess) : 0.0;
-  return m.albedo * (sh.diffuse * n_dot_l) + glm::dvec3(sh.specular * specular);
+  return {m.albedo * (sh.diffuse * n_dot_l), glm::dvec3(sh.specular * specular)};
 }
 
 // Light reaching the surface from direction l over distance t_end (Inigo Quilez's shadows).
@@ -75,22 +81,35 @@ glm::dvec3 normalize_or_zero(const glm::dvec3& v) {
   return length > 0.0 ? v / length : glm::dvec3(0.0);
 }
 
-glm::dvec3 reference_shade(const Scene& scene, const SurfacePoint& s, const glm::dvec3& direction) {
+LightTerms reference_light_terms(const Scene& scene, const SurfacePoint& s, const glm::dvec3& direction) {
   const Shading& sh = scene.shading;
   const glm::dvec3 v = -direction;
   const double occlusion = sh.ambient_occlusion ? normal_occlusion(scene, s) : 1.0;
-  glm::dvec3 color = s.material.albedo * sh.ambient * occlusion;
+  LightTerms terms;
+  terms.ambient = s.material.albedo * sh.ambient * occlusion;
   for (const Light& light : scene.lights) {
     const bool point = light.kind == LightKind::Point;
     const glm::dvec3 l = point ? normalize_or_zero(light.position - s.world) : light.direction;
-    glm::dvec3 lit = sh.model == ShadingModel::Pbr ? pbr_light(s.normal, l, v, s.material) : classic_light(sh, s.normal, l, v, s.material);
+    const Reflection lit = sh.model == ShadingModel::Pbr ? pbr_light(s.normal, l, v, s.material) : classic_light(sh, s.normal, l, v, s.material);
+    glm::dvec3 reaching = light.color * light.intensity;
     if (sh.shadows && glm::dot(s.normal, l) > 0.0) {
-      lit *= shadow_factor(scene, s, l, point ? glm::length(light.position - s.world) : sh.shadows->max_t);
+      reaching *= shadow_factor(scene, s, l, point ? glm::length(light.position - s.world) : sh.shadows->max_t);
     }
-    color += lit * light.color * light.intensity;
+    terms.diffuse += lit.diffuse * reaching;
+    terms.specular += lit.specular * reaching;
   }
-  if (sh.step_ao > 0.0) color -= static_cast<double>(s.steps) * s.steps / sh.step_ao;
+  return terms;
+}
+
+glm::dvec3 reference_lit_color(const Scene& scene, const LightTerms& terms, int steps) {
+  glm::dvec3 color = terms.ambient + terms.diffuse + terms.specular;
+  const double step_ao = scene.shading.step_ao;
+  if (step_ao > 0.0) color -= static_cast<double>(steps) * steps / step_ao;
   return glm::max(color, 0.0);
+}
+
+glm::dvec3 reference_shade(const Scene& scene, const SurfacePoint& s, const glm::dvec3& direction) {
+  return reference_lit_color(scene, reference_light_terms(scene, s, direction), s.steps);
 }
 
 glm::dvec3 reference_miss_color(const Scene& scene, const glm::dvec3& d, double closest) {

@@ -25,6 +25,18 @@ struct SurfacePoint {
 /// Unit vector along v; a zero vector stays zero (as in the kernels) instead of becoming NaN.
 glm::dvec3 normalize_or_zero(const glm::dvec3& v);
 
+/// The terms of a hit's lit color (the --buffers layers ao, diffuse and specular): the ambient
+/// light the occlusion leaves, and the lights' diffuse and specular reflection with their shadows.
+struct LightTerms {
+  glm::dvec3 ambient{0.0};
+  glm::dvec3 diffuse{0.0};
+  glm::dvec3 specular{0.0};
+};
+
+/// The terms of the lit color at a surface point seen along the unit direction.
+LightTerms reference_light_terms(const Scene& scene, const SurfacePoint& surface, const glm::dvec3& direction);
+/// Their sum, darkened by the step count of the march that found the point, clamped at 0.
+glm::dvec3 reference_lit_color(const Scene& scene, const LightTerms& terms, int steps);
 /// Direct light, ambient and occlusion at a surface point seen along the unit direction, clamped at 0.
 glm::dvec3 reference_shade(const Scene& scene, const SurfacePoint& surface, const glm::dvec3& direction);
 

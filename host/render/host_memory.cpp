@@ -9,14 +9,15 @@ namespace clmarch {
 namespace {
 
 /// Channels of the --buffers EXR (image_writer.cpp), which the writer interleaves into one copy.
-constexpr std::uint64_t kWrittenChannels = 15;
+constexpr std::uint64_t kWrittenChannels = 24;
 
 }  // namespace
 
 std::uint64_t host_bytes_per_pixel(int samples) {
   const std::uint64_t frame = 2 * kChannelCount * sizeof(float) + 3 * kWrittenChannels * sizeof(float);
-  // SampleSums' four doubles and its flag (the refining pass's buffers are of a fixed size).
-  const std::uint64_t antialiasing = 4 * sizeof(double) + 1;
+  // SampleSums' doubles (color, hits and the layers) and its flag (the refining pass's buffers are
+  // of a fixed size).
+  const std::uint64_t antialiasing = 13 * sizeof(double) + 1;
   return samples > 1 ? frame + antialiasing : frame;
 }
 

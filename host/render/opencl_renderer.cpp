@@ -33,7 +33,7 @@ std::uint64_t plane_total(const std::vector<float>& plane) {
 
 /// (pixel, sample) pairs a refining dispatch marches at most (kernels/march.cl, sample_packet):
 /// enough that PoCL's cost a dispatch is small beside them, few enough that the buffers stay small
-/// (4 MiB of results).
+/// (4 MiB of results, 16 with the shading's layers).
 constexpr std::size_t kRefinePairs = std::size_t{1} << 18;
 
 /// The refining pass's inputs and output besides the march's own (kernels/march.cl, refine_item).
@@ -43,8 +43,11 @@ struct AntialiasBuffers {
   /// The sample points of render.samples (sample_point), as floats: x, then y from
   /// CLMARCH_SAMPLE_POINT_STRIDE.
   cl::Buffer sample_points;
-  /// Sums of colors and hits, at the first pair of each pixel in each packet.
+  /// Sums of colors and hits (and layers), at the first pair of each pixel in each packet:
+  /// float4s float4s a pair (CLMARCH_REFINED_FLOAT4S).
   cl::Buffer refined_samples;
+  int float4s = 1;
+  bool layers = false;
 };
 
 struct OpenClRenderer::State {
@@ -87,9 +90,12 @@ OpenClRenderer::OpenClRenderer(const Scene& scene, const OpenClOptions& options)
     const int next_arg = bind_march_inputs(s.kernel, s.out, s.lights, s.values, s.cones);
     if (uses_antialiasing(scene, options.purpose)) {
       static_assert(kMaxSamples + 16 <= CLMARCH_SAMPLE_POINT_STRIDE, "every sample point and a vector's lanes past it");
+      const bool layers = march_outputs(scene, options.purpose).layers;
+      const int float4s = CLMARCH_REFINED_FLOAT4S(layers);
       s.antialias = AntialiasBuffers{cl::Buffer(dp.context, CL_MEM_READ_ONLY, kRefinePairs * sizeof(cl_int)),
                                      cl::Buffer(dp.context, CL_MEM_READ_ONLY, 2 * CLMARCH_SAMPLE_POINT_STRIDE * sizeof(float)),
-                                     cl::Buffer(dp.context, CL_MEM_WRITE_ONLY, kRefinePairs * sizeof(cl_float4))};
+                                     cl::Buffer(dp.context, CL_MEM_WRITE_ONLY, kRefinePairs * float4s * sizeof(cl_float4)),
+                                     float4s, layers};
       s.kernel.setArg(next_arg, s.antialias->refine_pixels);
       s.kernel.setArg(next_arg + 1, s.antialias->sample_points);
       s.kernel.setArg(next_arg + 2, s.antialias->refined_samples);
@@ -136,7 +142,7 @@ double refine_samples(const RenderSettings& render, PreparedProgram& prepared, c
                       const AntialiasBuffers& antialias, MarchParams params, const Dispatch& dispatch, int band_first_row,
                       int end_row, FrameBuffers& buffers) {
   const int count = render.samples;
-  SampleSums sums(buffers, pixels_to_refine(buffers, render.adaptive));
+  SampleSums sums(buffers, pixels_to_refine(buffers, render.adaptive), antialias.layers);
   const std::vector<std::uint8_t>& refine = sums.refine();
   DeviceProgram& dp = prepared.program;
   std::vector<float> points(2 * CLMARCH_SAMPLE_POINT_STRIDE, 0.0f);
@@ -155,7 +161,9 @@ double refine_samples(const RenderSettings& render, PreparedProgram& prepared, c
   const std::size_t lanes = static_cast<std::size_t>(prepared.lanes);
   std::vector<cl_int> pixels;
   pixels.reserve(batch_pixels);
-  std::vector<cl_float4> samples(batch_pixels * per_pixel);
+  const std::size_t float4s = static_cast<std::size_t>(antialias.float4s);
+  std::vector<cl_float4> samples(batch_pixels * per_pixel * float4s);
+  std::vector<float> values(sums.values_per_sample());
   double kernel_ms = 0.0;
   const auto run_batch = [&] {
     throw_if_cancelled();
@@ -168,17 +176,20 @@ double refine_samples(const RenderSettings& render, PreparedProgram& prepared, c
     const std::size_t global = (items + dispatch.local_items - 1) / dispatch.local_items * dispatch.local_items;
     cl::Event done;
     dp.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global), cl::NDRange(dispatch.local_items), nullptr, &done);
-    dp.queue.enqueueReadBuffer(antialias.refined_samples, CL_FALSE, 0, pairs * sizeof(cl_float4), samples.data());
+    dp.queue.enqueueReadBuffer(antialias.refined_samples, CL_FALSE, 0, pairs * float4s * sizeof(cl_float4), samples.data());
     {
       const BlockingCall uninterruptible_wait;
       dp.queue.finish();
     }
     kernel_ms += event_milliseconds(done);
-    // A packet's sums of one pixel lie at the first of its pairs there (kernels/march.cl, store_samples).
+    // A packet's sums of one pixel lie at the first of its pairs there (kernels/march.cl,
+    // store_samples): color and hits, then each layer's r, g, b (and a 0).
     for (std::size_t pair = 0; pair < pairs; ++pair) {
       if (pair % lanes != 0 && pair % per_pixel != 0) continue;
-      const cl_float4& sum = samples[pair];
-      sums.add(static_cast<std::size_t>(pixels[pair / per_pixel]), glm::vec3(sum.s[0], sum.s[1], sum.s[2]), sum.s[3]);
+      const cl_float4* sum = &samples[pair * float4s];
+      std::copy(sum[0].s, sum[0].s + 4, values.begin());
+      for (std::size_t layer = 1; layer < float4s; ++layer) std::copy(sum[layer].s, sum[layer].s + 3, values.begin() + 1 + 3 * layer);
+      sums.add(static_cast<std::size_t>(pixels[pair / per_pixel]), values.data());
     }
     pixels.clear();
   };
