@@ -93,6 +93,12 @@ TEST(OpenClRenderer, ColorProgramEqualsTheShadedOneWithoutNormalPlanes) {
   EXPECT_FALSE(zero(a.plane(Channel::NY)));
   EXPECT_EQ(generate_kernel_source(scene, {KernelPurpose::Color, 16}).find("#define WRITE_NORMALS"), std::string::npos);
   EXPECT_NE(generate_kernel_source(scene, {KernelPurpose::Shaded, 16}).find("#define WRITE_NORMALS"), std::string::npos);
+  // The id and the layers are the --buffers program's alone: the shaded kernel that bench times
+  // writes no more planes than it did before them.
+  for (const char* define : {"#define WRITE_IDS", "#define WRITE_LAYERS"}) {
+    EXPECT_EQ(generate_kernel_source(scene, {KernelPurpose::Shaded, 16}).find(define), std::string::npos) << define;
+    EXPECT_NE(generate_kernel_source(scene, {KernelPurpose::Buffers, 16}).find(define), std::string::npos) << define;
+  }
 }
 
 TEST(OpenClRenderer, CpuWorkItemsMarchPairsOfPacketsExceptUnderTheCellsTiling) {

@@ -56,7 +56,8 @@ class ShippedScene : public ::testing::TestWithParam<std::string> {};
 TEST_P(ShippedScene, BuildsWithoutWarnings) {
   const Scene scene = load_small(GetParam());
   const DeviceEntry device = select_device(std::nullopt);
-  for (KernelPurpose purpose : {KernelPurpose::DepthSteps, KernelPurpose::Normals, KernelPurpose::Shaded, KernelPurpose::EvalPoints}) {
+  for (KernelPurpose purpose : {KernelPurpose::DepthSteps, KernelPurpose::Normals, KernelPurpose::Shaded, KernelPurpose::Buffers,
+                                KernelPurpose::EvalPoints}) {
     for (int lanes : {1, 16}) {
       const DeviceProgram program = build_device_program(device, generate_kernel_source(scene, {purpose, lanes}));
       EXPECT_EQ(testing::compiler_warnings(program.build_log), "")

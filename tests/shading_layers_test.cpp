@@ -33,6 +33,13 @@ std::string lit_scene(const std::string& model) {
       model);
 }
 
+/// The program of a --buffers render, which writes the layers.
+OpenClOptions buffers_program() {
+  OpenClOptions options;
+  options.purpose = KernelPurpose::Buffers;
+  return options;
+}
+
 /// The sum of the three layers' channel c (0, 1, 2: r, g, b) at pixel (i, j), and of their sizes.
 struct LayerSum {
   double sum = 0.0;
@@ -80,6 +87,7 @@ TEST(ShadingLayers, SumToTheColorOnBothBackendsAlsoAntiAliased) {
       for (int lanes : {1, 16}) {
         OpenClOptions options;
         options.lanes = lanes;
+        options.purpose = KernelPurpose::Buffers;
         const FrameBuffers device = render_opencl(scene, options).buffers;
         EXPECT_GT(expect_layers_sum_to_the_color(device, what + fmt::format(", lanes {}", lanes)), 1.0) << what << ": highlights";
       }
@@ -90,7 +98,7 @@ TEST(ShadingLayers, SumToTheColorOnBothBackendsAlsoAntiAliased) {
 
 TEST(ShadingLayers, LambertHasNoSpecularLayer) {
   const Scene scene = scene_from_yaml(lit_scene("model: lambert"));
-  const FrameBuffers device = render_opencl(scene, OpenClOptions{}).buffers;
+  const FrameBuffers device = render_opencl(scene, buffers_program()).buffers;
   double ao = 0.0, diffuse = 0.0;
   for (int j = 0; j < device.height; ++j) {
     for (int i = 0; i < device.width; ++i) {
@@ -115,8 +123,8 @@ TEST(ShadingLayers, FogScalesEachLayerByWhatItLeaves) {
   Scene foggy = clear;
   foggy.shading.fog = Fog{glm::dvec3(0.7, 0.8, 0.9), density};
   for (const bool reference : {false, true}) {
-    const FrameBuffers a = reference ? render_reference(clear) : render_opencl(clear, OpenClOptions{}).buffers;
-    const FrameBuffers b = reference ? render_reference(foggy) : render_opencl(foggy, OpenClOptions{}).buffers;
+    const FrameBuffers a = reference ? render_reference(clear) : render_opencl(clear, buffers_program()).buffers;
+    const FrameBuffers b = reference ? render_reference(foggy) : render_opencl(foggy, buffers_program()).buffers;
     int hits = 0;
     for (int j = 0; j < a.height; ++j) {
       for (int i = 0; i < a.width; ++i) {

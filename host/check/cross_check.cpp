@@ -333,7 +333,7 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
 CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const FrameBuffers& reference,
                         const FrameBuffers& reshaded) {
   CheckReport r = cross_check(scene, opencl, reference);
-  compare_ids(r, opencl, reference);
+  if (opencl.has_ids && reference.has_ids) compare_ids(r, opencl, reference);
   // Both sides shade the same depth, normal and steps, so only float arithmetic separates them (in
   // the color and in each layer),
   // inside the shading and along its shadow, occlusion and mirror rays: within half a step of 8
@@ -356,6 +356,7 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
       // An anti-aliased pixel's color is the mean of its rays, not its centre hit's shading.
       if (!is_hit(opencl, i, j) || opencl.at(Channel::Samples, i, j) > 1.0f) continue;
       for (const auto& triple : triples) {
+        if (&triple != &triples[0] && !(opencl.has_layers && reshaded.has_layers)) break;
         double size = 1.0, diff = 0.0;
         for (Channel c : triple) {
           size = std::max(size, std::abs(static_cast<double>(reshaded.at(c, i, j))));

@@ -47,7 +47,7 @@ int run_check_command(const CheckCommandOptions& options) {
   }
   const Scene scene = load_scene_with_options(options.scene);
   OpenClOptions cl = opencl_options(options.scene);
-  cl.purpose = KernelPurpose::Shaded;
+  cl.purpose = KernelPurpose::Buffers;
   const RenderResult opencl = render_opencl(scene, cl);
   const FrameBuffers reference = render_reference(scene);
   const CheckReport report = cross_check(scene, opencl.buffers, reference, reshade_hits(scene, opencl.buffers));

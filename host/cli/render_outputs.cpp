@@ -15,9 +15,9 @@ namespace clmarch {
 
 KernelPurpose purpose_for(const Scene& scene, bool want_buffers) {
   switch (scene.shading.view) {
-    case View::Shaded: return want_buffers ? KernelPurpose::Shaded : KernelPurpose::Color;
+    case View::Shaded: return want_buffers ? KernelPurpose::Buffers : KernelPurpose::Color;
     // The samples a pixel gets follow its color's edges: the shaded program decides them.
-    case View::Samples: return want_buffers ? KernelPurpose::Shaded : KernelPurpose::Color;
+    case View::Samples: return want_buffers ? KernelPurpose::Buffers : KernelPurpose::Color;
     case View::Normals: return KernelPurpose::Normals;
     case View::Depth:
     case View::Steps: return want_buffers ? KernelPurpose::Normals : KernelPurpose::DepthSteps;

@@ -166,10 +166,12 @@ std::vector<int> MarchOutputs::planes() const {
 
 MarchOutputs march_outputs(const Scene& scene, KernelPurpose purpose) {
   MarchOutputs outputs;
-  outputs.normals = purpose == KernelPurpose::Normals || purpose == KernelPurpose::Shaded;
-  outputs.ids = outputs.normals;
-  outputs.layers = purpose == KernelPurpose::Shaded;
-  outputs.color = purpose == KernelPurpose::Shaded || purpose == KernelPurpose::Color;
+  const bool buffers = purpose == KernelPurpose::Buffers;
+  outputs.normals = purpose == KernelPurpose::Normals || purpose == KernelPurpose::Shaded || buffers;
+  // A --buffers render's: the debug views' (Normals) and the shaded one's.
+  outputs.ids = purpose == KernelPurpose::Normals || buffers;
+  outputs.layers = buffers;
+  outputs.color = purpose == KernelPurpose::Shaded || purpose == KernelPurpose::Color || buffers;
   outputs.wall_steps = uses_cells_tiling(scene);
   return outputs;
 }

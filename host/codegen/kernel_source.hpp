@@ -18,6 +18,9 @@ enum class KernelPurpose {
   Normals,
   /// The march kernel with normals and the lit color.
   Shaded,
+  /// Everything the --buffers EXR holds: the normals, the lit color, the primitive hit and the
+  /// shading's layers.
+  Buffers,
   /// The lit color without the normal planes (a color image alone: the shading still computes
   /// normals, the kernel does not store them).
   Color,

@@ -37,6 +37,9 @@ inline constexpr Channel kLayerChannels[] = {Channel::AoR,      Channel::AoG,   
 struct FrameBuffers {
   int width = 0;
   int height = 0;
+  /// Whether the render filled Id, and the layers (programs without them leave them 0).
+  bool has_ids = false;
+  bool has_layers = false;
   std::array<std::vector<float>, kChannelCount> planes;
 
   FrameBuffers() = default;

@@ -188,6 +188,7 @@ FrameBuffers render_reference(const Scene& scene, const std::optional<ConeStarts
   const CameraBasis basis = camera_basis(scene.camera, width, height);
   const std::optional<BoundingSphere> bounds = camera_ray_bounds(scene);
   FrameBuffers fb(width, height);
+  fb.has_ids = fb.has_layers = true;
   ProgressLine progress("reference rows", height, scene.render.width);
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
     for (int j = rows.begin(); j != rows.end(); ++j) {

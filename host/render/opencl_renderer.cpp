@@ -55,6 +55,8 @@ struct OpenClRenderer::State {
   /// hundreds of megabytes, and a copy of it set the process's peak memory).
   RenderSettings render;
   OpenClOptions options;
+  /// The planes the program writes.
+  MarchOutputs outputs;
   bool rendered = false;
   PreparedProgram prepared;
   Dispatch dispatch;
@@ -74,6 +76,7 @@ OpenClRenderer::OpenClRenderer(const Scene& scene, const OpenClOptions& options)
   State& s = *state_;
   s.render = scene.render;
   s.options = options;
+  s.outputs = march_outputs(scene, options.purpose);
   s.prepared = prepare_program(scene, options, options.purpose);
   DeviceProgram& dp = s.prepared.program;
   const std::size_t chunk_limit = options.max_chunk_pixels ? options.max_chunk_pixels : chunk_pixels_for(dp.device);
@@ -90,7 +93,7 @@ OpenClRenderer::OpenClRenderer(const Scene& scene, const OpenClOptions& options)
     const int next_arg = bind_march_inputs(s.kernel, s.out, s.lights, s.values, s.cones);
     if (uses_antialiasing(scene, options.purpose)) {
       static_assert(kMaxSamples + 16 <= CLMARCH_SAMPLE_POINT_STRIDE, "every sample point and a vector's lanes past it");
-      const bool layers = march_outputs(scene, options.purpose).layers;
+      const bool layers = s.outputs.layers;
       const int float4s = CLMARCH_REFINED_FLOAT4S(layers);
       s.antialias = AntialiasBuffers{cl::Buffer(dp.context, CL_MEM_READ_ONLY, kRefinePairs * sizeof(cl_int)),
                                      cl::Buffer(dp.context, CL_MEM_READ_ONLY, 2 * CLMARCH_SAMPLE_POINT_STRIDE * sizeof(float)),
@@ -234,6 +237,8 @@ RenderResult OpenClRenderer::render_rows(int band_first_row, int band_rows) {
   }
   RenderResult result;
   result.buffers = FrameBuffers(width, band_rows);
+  result.buffers.has_ids = s.outputs.ids;
+  result.buffers.has_layers = s.outputs.layers;
   const std::size_t chunk_count = (static_cast<std::size_t>(band_rows) + dispatch.chunk_rows - 1) / dispatch.chunk_rows;
   ProgressLine progress("OpenCL chunks", static_cast<long long>(chunk_count),
                         static_cast<double>(pixels) / static_cast<double>(chunk_count));

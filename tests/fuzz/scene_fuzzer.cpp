@@ -71,7 +71,7 @@ void run_one(const std::string& text) {
     return;  // rejected with a message: what bad input should get
   }
   for (KernelPurpose purpose : {KernelPurpose::DepthSteps, KernelPurpose::Normals, KernelPurpose::Shaded,
-                                KernelPurpose::EvalPoints}) {
+                                KernelPurpose::Buffers, KernelPurpose::EvalPoints}) {
     for (int lanes : {1, 16}) {
       check_generated_literals(generate_kernel_source(scene, {purpose, lanes}));
     }
