@@ -421,6 +421,16 @@ TEST_F(CheckThresholds, ShadingAtHalfAnEightBitStep) {
   };
   EXPECT_FALSE(failed_on(brighten_by(0.9), "shading error")) << brighten_by(0.9).to_text();
   EXPECT_TRUE(failed_on(brighten_by(1.1), "shading error")) << brighten_by(1.1).to_text();
+  // Every hit shaded by one ray counts once, with its layers or without them (a render of the
+  // shaded program, which writes none).
+  int single_ray_hits = 0;
+  for (int j = 0; j < reference_.height; ++j) {
+    for (int i = 0; i < reference_.width; ++i) single_ray_hits += hit(i, j);
+  }
+  FrameBuffers without_layers = reference_;
+  without_layers.has_layers = false;
+  EXPECT_EQ(cross_check(scene_, reference_, reference_, reshade_hits(scene_, reference_)).shading_compared, single_ray_hits);
+  EXPECT_EQ(cross_check(scene_, without_layers, reference_, reshade_hits(scene_, without_layers)).shading_compared, single_ray_hits);
   // Each layer is held to the same tolerance as the color.
   for (Channel layer : {Channel::AoB, Channel::DiffuseR, Channel::SpecularG}) {
     const auto layer_off_by = [&](double multiple) {
