@@ -55,7 +55,7 @@ __kernel void coarse_cones(const MarchParams params, __global float* starts, __g
   const float slope = fmax(params.hit_cone_slope, (float)REAL_EPSILON);
   const float floor_threshold = params.epsilon + COARSE_MARGIN;
 
-  const vec3v origin = v3_from(params.origin);
+  const vec3v origin = camera_origin(&params);
   vfloat t = (vfloat)(t_first);
   vfloat steps = (vfloat)(0.0f);
   vint active = MASK(block < blocks_x * blocks_y) & MASK(t < (vfloat)(t_last));

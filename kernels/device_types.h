@@ -1,17 +1,24 @@
 /* Everything that crosses from the host to the device: one definition, included by the C++ host
  * and by the OpenCL C kernels. Fields are 4-byte scalars and float4s with explicit padding, so the
- * layout is the same on both sides (never glm::vec3 against OpenCL float3). */
+ * layout is the same on both sides (never glm::vec3 against OpenCL float3); the camera's doubles
+ * come last, at an 8-byte boundary. */
 #ifndef CLMARCH_DEVICE_TYPES_H
 #define CLMARCH_DEVICE_TYPES_H
 
 #ifndef __OPENCL_VERSION__
 #include <CL/cl_platform.h>
+
+#include <stddef.h>
 typedef cl_float4 float4;
 #define CLMARCH_INT cl_int
 #define CLMARCH_FLOAT cl_float
+#define CLMARCH_DOUBLE cl_double
 #else
 #define CLMARCH_INT int
 #define CLMARCH_FLOAT float
+/* 8 bytes the host wrote as a double: read with as_double() (double programs only, which enable
+ * cl_khr_fp64; a float program never reads them and so needs no double type). */
+#define CLMARCH_DOUBLE long
 #endif
 
 /* Planes of the output buffer, in the order of the --buffers EXR channels. */
@@ -74,6 +81,14 @@ typedef cl_float4 float4;
  * hits, then with the layers the sums of ao, diffuse and specular (kernels/march.cl, store_samples). */
 #define CLMARCH_REFINED_FLOAT4S(layers) ((layers) ? 4 : 1)
 
+/* Where each camera vector starts in MarchParams.camera_double: three doubles x, y, z. */
+#define CLMARCH_CAMERA_ORIGIN 0
+#define CLMARCH_CAMERA_FORWARD 3
+#define CLMARCH_CAMERA_RIGHT 6
+#define CLMARCH_CAMERA_UP 9
+#define CLMARCH_CAMERA_ORIGIN_IN_CELL 12
+#define CLMARCH_CAMERA_DOUBLES 16
+
 typedef struct MarchParams {
   float4 origin;       /* xyz = camera position relative to map_frame_origin (host/scene/camera_model.hpp) */
   float4 forward;      /* xyz = f, unit */
@@ -105,10 +120,16 @@ typedef struct MarchParams {
      (host/render/live_tiles.cpp); the others miss it. */
   CLMARCH_INT live_columns[2];
   CLMARCH_INT live_rows[2];
+  /* origin, forward, right_extent, up_extent and origin_in_cell as the host's doubles
+     (CLMARCH_CAMERA_*; the last double is padding): what double programs (render.precision: double)
+     build their rays from, where float's rounding of the camera would move a deep zoom's view by
+     pixels. */
+  CLMARCH_DOUBLE camera_double[CLMARCH_CAMERA_DOUBLES];
 } MarchParams;
 
 #ifndef __OPENCL_VERSION__
-static_assert(sizeof(MarchParams) == 8 * 16 + 16 * 4, "MarchParams layout must match OpenCL C");
+static_assert(sizeof(MarchParams) == 8 * 16 + 16 * 4 + CLMARCH_CAMERA_DOUBLES * 8, "MarchParams layout must match OpenCL C");
+static_assert(offsetof(MarchParams, camera_double) % 8 == 0, "doubles at 8-byte boundaries, as OpenCL C aligns them");
 #endif
 
 #endif

@@ -468,11 +468,7 @@ __kernel void march(const MarchParams params, __global float* out, __constant fl
 #else
   const MarchRecord record = {0};
 #endif
-#if defined(TILING_CELLS)
-  const vec3v origin = v3_from(params.origin_in_cell);
-#else
-  const vec3v origin = v3_from(params.origin);
-#endif
+  const vec3v origin = camera_origin(&params);
 #if !defined(COARSE_PASS)
   __global const float* coarse_starts = 0;
 #endif

@@ -41,9 +41,12 @@ SDF_INLINE vfloat sd_bound(vec3v p, float4 center, float radius, float inverse_g
  * child fits inside the cell. */
 SDF_INLINE vfloat op_repeat_axis(vfloat x, float period) { return x - period * floor(x / period + 0.5f); }
 
-/* Crum's displacement texture amplitude * sin(f x) sin(f y) sin(f z). */
-SDF_INLINE vfloat displacement(vec3v p, float amplitude, float frequency) {
-  return amplitude * vsin(frequency * p.x) * vsin(frequency * p.y) * vsin(frequency * p.z);
+/* Crum's displacement texture amplitude * sin(f x) sin(f y) sin(f z) of the absolute point p +
+ * offset, as sin(f p + phase) with phase = f offset mod 2 pi taken on the host in double
+ * (host/codegen/sdf_codegen.cpp), so that far from the origin the texture keeps the precision of
+ * the small p of map()'s frame rather than float's spacing of the absolute point. */
+SDF_INLINE vfloat displacement(vec3v p, float4 phase, float amplitude, float frequency) {
+  return amplitude * vsin(frequency * p.x + phase.x) * vsin(frequency * p.y + phase.y) * vsin(frequency * p.z + phase.z);
 }
 
 /* Polar repetition about the y axis (Inigo Quilez's and Mercury's pModPolar): p turned by the

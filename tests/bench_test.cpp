@@ -154,7 +154,7 @@ TEST(Bench, JsonHasEveryFigureAndTheyAreConsistent) {
       run_clmarch({"bench", testing::source_path("scenes/torus.yaml").string(), "--size", "64x36", "--repeat", "2", "--json"});
   ASSERT_EQ(r.exit_code, kExitOk) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
-  for (const char* key : {"scene", "device", "lanes", "width", "height", "repeat", "build_ms", "kernel_ms", "depth_kernel_ms",
+  for (const char* key : {"scene", "device", "lanes", "precision", "width", "height", "repeat", "build_ms", "kernel_ms", "depth_kernel_ms",
                           "rays_per_s", "steps_per_pixel", "evals_per_s", "ceiling_evals_per_s", "ceiling_kernel_ms",
                           "ceiling_points", "ceiling_samples", "ceiling_pixel_stride", "lane_use", "ceiling_ratio", "depth_to_shaded_ratio", "reference_ms",
                           "opencl_to_reference_ratio", "output_floor_ms", "output_floor_share", "output_floor_planes"}) {

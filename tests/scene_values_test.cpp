@@ -75,7 +75,9 @@ TEST(SdfCode, EverySlotReadsTheLiteralItReplaces) {
 
 // Only what depends on t varies, in map and map_color alike: the sphere's centre x and radius, the
 // four entries of the box's matrix that a rotation about y changes (the other five are 0 or 1 at
-// every angle), the torus's three inverse scales and the scale of its distance; in map_color the
+// every angle), the torus's three inverse scales, the scale of its distance, the x of its pivot
+// (its bound's centre, 1.5 scale, rounded to float) and its centre's x from that pivot (what the
+// rounding left); in map_color the
 // sphere's red; in the shading the background's red, the ambient light's three components and the
 // fog's density.
 TEST(VaryingLiterals, OnlyWhatTheTimeChangesVaries) {
@@ -86,7 +88,7 @@ TEST(VaryingLiterals, OnlyWhatTheTimeChangesVaries) {
   const auto count = [&](double v) {
     return std::count(values.begin(), values.end(), static_cast<float>(v));
   };
-  EXPECT_EQ(values.size(), 2u * (2u + 4u + 3u + 1u) + 1u + 5u);
+  EXPECT_EQ(values.size(), 2u * (2u + 4u + 3u + 1u + 2u) + 1u + 5u);
   EXPECT_EQ(count(std::cos(0.2)), 2);
   EXPECT_EQ(count(0.5 + 0.1 * std::sin(0.6)), 2);
   EXPECT_EQ(count(0.5 + 0.4 * std::sin(0.2)), 1);
@@ -95,6 +97,7 @@ TEST(VaryingLiterals, OnlyWhatTheTimeChangesVaries) {
   EXPECT_EQ(count(0.2 + 0.1 * std::sin(0.2)), 1);
   EXPECT_EQ(count(0.1 + 0.05 * std::cos(0.2)), 3);
   EXPECT_EQ(count(0.05 + 0.02 * std::sin(0.2)), 1);
+  EXPECT_EQ(count(1.5 * (1.0 + 0.2 * std::sin(0.2))), 2);
 }
 
 TEST(VaryingLiterals, AShapeSeenOnceHasNoSlots) {

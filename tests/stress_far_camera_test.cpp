@@ -15,6 +15,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <iostream>
@@ -185,20 +186,22 @@ TEST(FarCamera, PlainMarchKeepsTheOriginsAccuracyOnEveryAxis) {
 
 /// Renders the scene whose sdf (a YAML block under "sdf:", indented by two) sdf_at writes for a
 /// function placing points relative to an offset, at the origin and 10^3 + 500 away (frame origin
-/// 1472 on x), and expects the cross-check against the double reference to pass at both.
+/// 1472 on x), in float and in double (render.precision), and expects the cross-check against the
+/// double reference to pass at both.
 void expect_checks_near_and_far(const std::function<std::string(const std::function<std::string(double, double, double)>&,
                                                                 const glm::dvec3&)>& sdf_at) {
-  for (const glm::dvec3 offset : {glm::dvec3(0.0), glm::dvec3(1500.0, -1200.0, 900.0)}) {
-    SCOPED_TRACE(fmt::format("offset ({}, {}, {})", offset.x, offset.y, offset.z));
+  for (const auto& [offset, precision] : {std::pair{glm::dvec3(0.0), "float"}, std::pair{glm::dvec3(1500.0, -1200.0, 900.0), "float"},
+                                          std::pair{glm::dvec3(0.0), "double"}, std::pair{glm::dvec3(1500.0, -1200.0, 900.0), "double"}}) {
+    SCOPED_TRACE(fmt::format("offset ({}, {}, {}), {}", offset.x, offset.y, offset.z, precision));
     const auto at = [&](double x, double y, double z) {
       return fmt::format("[{}, {}, {}]", x + offset.x, y + offset.y, z + offset.z);
     };
     const std::string yaml = fmt::format(
         "camera: {{position: {}, look_at: {}, fov: 50}}\n"
-        "render: {{width: 64, height: 36, epsilon: 1.0e-4, max_steps: 400, max_distance: 40}}\n"
+        "render: {{width: 64, height: 36, epsilon: 1.0e-4, max_steps: 400, max_distance: 40, precision: {}}}\n"
         "sdf:\n{}"
         "lights: [{{directional: {{direction: [1, 2, 1.5]}}}}]\n",
-        at(4, 3, 6), at(0, 0.3, 0), sdf_at(at, offset));
+        at(4, 3, 6), at(0, 0.3, 0), precision, sdf_at(at, offset));
     const Scene scene = testing::scene_from_yaml(yaml);
     EXPECT_EQ(map_frame_origin(scene), glm::round(scene.camera.position / kMapFrameGrid) * kMapFrameGrid);
     const FrameBuffers opencl = render_checked(scene, KernelPurpose::Shaded);
@@ -267,6 +270,99 @@ TEST(FarCamera, DisplacementTakesTheAbsolutePoint) {
   const CheckReport report = cross_check(scene, opencl, render_reference(scene), reshade_hits(scene, opencl));
   EXPECT_TRUE(report.passed()) << report.to_text();
   EXPECT_GT(report.both_hit, 64 * 36 / 2);
+}
+
+// A model authored far from the origin and translated home (issue 26): a transformed node's
+// subtree is measured from its bound's centre, the translation folded into its positions in
+// double, so 10^5 and 10^6 away (on two axes) the model renders as the one authored at home: the
+// same pixels hit, depths and normals within float's rounding near the origin, and the check
+// passes. With the translation applied in float in the kernel (p - translate, then the centres
+// 10^6 away), 5 % of the pixels were wrong and the check failed.
+TEST(FarCamera, ModelAuthoredFarAndTranslatedHomeRendersAsAtHome) {
+  const auto model = [](double x, double z) {
+    return fmt::format(
+        "camera: {{position: [0, 1, 5], look_at: [0, 0, 0], fov: 50}}\n"
+        "render: {{width: 64, height: 36, epsilon: 1.0e-4, max_steps: 400, max_distance: 40}}\n"
+        "sdf:\n"
+        "  union:\n"
+        "    translate: [{}, 0, {}]\n"
+        "    children:\n"
+        "      - sphere: {{center: [{}, 0, {}], radius: 1}}\n"
+        "      - box: {{center: [{}, 0, {}], half_size: [0.5, 0.5, 0.5]}}\n"
+        "lights: [{{directional: {{direction: [1, 2, 1.5]}}}}]\n",
+        -x, -z, x, z, x + 1.5, z);
+  };
+  const Scene home = testing::scene_from_yaml(model(0.0, 0.0));
+  const FrameBuffers at_home = render_checked(home, KernelPurpose::Shaded);
+  for (const auto& [x, z] : {std::pair{1e5, 0.0}, std::pair{1e6, 1e6}}) {
+    SCOPED_TRACE(fmt::format("authored at ({}, 0, {})", x, z));
+    const Scene far = testing::scene_from_yaml(model(x, z));
+    const FrameBuffers opencl = render_checked(far, KernelPurpose::Shaded);
+    const CheckReport report = cross_check(far, opencl, render_reference(far), reshade_hits(far, opencl));
+    EXPECT_TRUE(report.passed()) << report.to_text();
+    // Float's rounding of the points near the origin (|p| < 8): 16 roundings of coordinates of that size.
+    const double rounding = 16.0 * 0x1p-24 * 8.0;
+    int both_hit = 0;
+    for (int j = 0; j < opencl.height; ++j) {
+      for (int i = 0; i < opencl.width; ++i) {
+        const float t = opencl.at(Channel::Depth, i, j), t_home = at_home.at(Channel::Depth, i, j);
+        ASSERT_EQ(std::isfinite(t), std::isfinite(t_home)) << i << ", " << j;
+        if (!std::isfinite(t)) continue;
+        ++both_hit;
+        EXPECT_NEAR(t, t_home, rounding) << i << ", " << j;
+        const glm::dvec3 n(opencl.at(Channel::NX, i, j), opencl.at(Channel::NY, i, j), opencl.at(Channel::NZ, i, j));
+        const glm::dvec3 n_home(at_home.at(Channel::NX, i, j), at_home.at(Channel::NY, i, j), at_home.at(Channel::NZ, i, j));
+        // Normals of points at most `rounding` apart, from taps h = render.normal_epsilon apart.
+        EXPECT_LE(std::acos(std::clamp(glm::dot(n, n_home), -1.0, 1.0)), std::sqrt(3.0) * 2.0 * rounding / 1e-3) << i << ", " << j;
+      }
+    }
+    EXPECT_GT(both_hit, 64 * 36 / 10);
+  }
+}
+
+// The displacement texture's phase f * offset is reduced mod 2 pi on the host in double (issue 26):
+// 10^5 away, where float's spacing of the absolute point is 0.008 (its texture turned the normals
+// by tens of degrees), the displaced sphere passes the check with the tolerance of the map frame.
+// Fails with the phase taken in float (the absolute point added back in the kernel).
+TEST(FarCamera, DisplacementFarAwayKeepsTheFramesPrecision) {
+  const std::string yaml =
+      "camera: {position: [100000, -100000, 100002.2], look_at: [100000, -100000, 100000], fov: 50}\n"
+      "render: {width: 64, height: 36, epsilon: 1.0e-4, max_steps: 400, max_distance: 40}\n"
+      "sdf: {displace: {amplitude: 0.2, frequency: 3, children: [{sphere: {center: [100000, -100000, 100000], radius: 1}}]}}\n"
+      "lights: [{directional: {direction: [1, 2, 1.5]}}]\n";
+  const Scene scene = testing::scene_from_yaml(yaml);
+  const FrameBuffers opencl = render_checked(scene, KernelPurpose::Shaded);
+  const CheckReport report = cross_check(scene, opencl, render_reference(scene), reshade_hits(scene, opencl));
+  EXPECT_TRUE(report.passed()) << report.to_text();
+  EXPECT_GT(report.both_hit, 64 * 36 / 2);
+}
+
+// The check measures rounding by the coordinates the kernel computes with, those of the map frame
+// near the camera (issue 26): 10^5 away its normal tolerance is that of a camera within 32 of its
+// frame origin (sqrt(3) 16u (32 + t) / h = 3.5 degrees here), so normals turned by ten degrees
+// fail it, where a tolerance of the world coordinates' size (16u 10^5 / h, past pi) passed any.
+TEST(FarCamera, TheCheckSeesTurnedNormalsFarAway) {
+  const Scene scene = testing::scene_from_yaml(plain_yaml(glm::dvec3(1e5, 0.0, 0.0)));
+  const FrameBuffers opencl = render_checked(scene, KernelPurpose::Shaded);
+  const FrameBuffers reference = render_reference(scene);
+  const CheckReport report = cross_check(scene, opencl, reference);
+  EXPECT_TRUE(report.passed()) << report.to_text();
+  FrameBuffers turned = opencl;
+  const double angle = 10.0 * M_PI / 180.0;
+  for (int j = 0; j < turned.height; ++j) {
+    for (int i = 0; i < turned.width; ++i) {
+      const glm::dvec3 n(turned.at(Channel::NX, i, j), turned.at(Channel::NY, i, j), turned.at(Channel::NZ, i, j));
+      if (!std::isfinite(turned.at(Channel::Depth, i, j))) continue;
+      const glm::dvec3 across = glm::normalize(glm::cross(n, std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
+      const glm::dvec3 m = std::cos(angle) * n + std::sin(angle) * across;
+      turned.at(Channel::NX, i, j) = static_cast<float>(m.x);
+      turned.at(Channel::NY, i, j) = static_cast<float>(m.y);
+      turned.at(Channel::NZ, i, j) = static_cast<float>(m.z);
+    }
+  }
+  const CheckReport turned_report = cross_check(scene, turned, reference);
+  EXPECT_FALSE(turned_report.passed());
+  EXPECT_NE(turned_report.to_text().find("normal angle error p99"), std::string::npos) << turned_report.to_text();
 }
 
 // Under the cells tiling the kernel only ever sees the camera's offset in its cell (computed in

@@ -48,6 +48,7 @@ BenchReport run_bench(const Scene& scene, const OpenClOptions& options, const Be
   r.shaded_ms = median(shaded_ms);
   r.device = last_shaded.stats.device;
   r.lanes = last_shaded.stats.lanes;
+  r.precision = last_shaded.stats.precision;
   r.rays_per_s = pixels / (r.shaded_ms * 1e-3);
 
   // Only the march (and the coarse cone pass, if any: one evaluation per block and step) runs in the
@@ -81,6 +82,7 @@ nlohmann::json BenchReport::to_json() const {
   const auto or_null = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
   return {{"device", device},
           {"lanes", lanes},
+          {"precision", kPrecisionNames[static_cast<int>(precision)]},
           {"width", width},
           {"height", height},
           {"repeat", repeat},
@@ -106,7 +108,8 @@ nlohmann::json BenchReport::to_json() const {
 }
 
 std::string BenchReport::to_text() const {
-  std::string out = fmt::format("{}x{} on {} ({} lanes), median of {} runs\n", width, height, device, lanes, repeat);
+  std::string out = fmt::format("{}x{} on {} ({} lanes, {}), median of {} runs\n", width, height, device, lanes,
+                                kPrecisionNames[static_cast<int>(precision)], repeat);
   out += fmt::format("  shaded kernel      {:9.2f} ms   {:.3g} rays/s\n", shaded_ms, rays_per_s);
   out += fmt::format("  depth-only kernel  {:9.2f} ms   {:.2f} of the shaded time\n", depth_ms, depth_to_shaded);
   out += fmt::format("  march steps        {:9.2f} per pixel\n", steps_per_pixel);

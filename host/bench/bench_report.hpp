@@ -23,6 +23,7 @@ struct BenchSettings {
 struct BenchReport {
   std::string device;
   int lanes = 1;
+  Precision precision = Precision::Float;
   int width = 0;
   int height = 0;
   int repeat = 0;

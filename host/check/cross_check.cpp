@@ -2,6 +2,8 @@
 // settings; docs/accuracy.md gives the reasoning behind each.
 #include "check/cross_check.hpp"
 
+#include "codegen/kernel_source.hpp"
+#include "codegen/sdf_codegen.hpp"
 #include "prune/operand_grid.hpp"
 #include "scene/camera_model.hpp"
 
@@ -13,20 +15,50 @@
 namespace clmarch {
 namespace {
 
-/// Float unit roundoff.
-constexpr double kUnitRoundoff = 0x1p-24;
 /// Rounding steps between a ray parameter and a distance value: the position o + t*d, the
 /// direction's normalisation and the distance function each round a few times.
 constexpr double kRoundingSteps = 16.0;
-/// The kernel's hit threshold is never below 2^-23 t, float's spacing of t at most (a smaller step
-/// would leave t + d == t: kernels/march_loop.cl); the double reference has no such floor.
-constexpr double kFloatSpacingOfT = 0x1p-23;
 /// Below this |cos| between ray and normal a ray is grazing; its depth bound stops growing.
 constexpr double kGrazingCosine = 0.1;
 /// Colors are delivered in 8 bits: half a step is the smallest difference that can show.
 constexpr double kColorQuantum = 0.5 / 255.0;
 /// Share of pixels whose figure may exceed its tolerance (the p99 criteria).
 constexpr double kQuantile = 0.99;
+
+/// Depths are stored as floats in both renders' buffers whatever the arithmetic: the true depths
+/// differ by at most the buffers' difference plus one float rounding of each, 2 u_float t. In
+/// float programs the 16 roundings of the arithmetic cover it; in double it is what bounds how far
+/// apart the two hit points may be (docs/accuracy.md).
+constexpr double kDepthBufferRounding = 2.0 * 0x1p-24;
+
+/// The unit roundoff of the OpenCL render's arithmetic (render.precision): float's or double's.
+double unit_roundoff(const Scene& scene) { return scene.render.precision == Precision::Double ? 0x1p-53 : 0x1p-24; }
+
+/// The size of the coordinates the OpenCL render computes with, whose rounding the tolerances allow
+/// for: the camera's distance from the map frame origin, where map() keeps every position relative
+/// to it (host/codegen/sdf_codegen.cpp); from the world origin where map() takes absolute points
+/// or the mod tiling wraps world positions; the cell's diagonal under the cells tiling, whose march
+/// runs inside the camera's cell.
+double coordinate_size(const Scene& scene, const CameraBasis& basis) {
+  if (scene.tiling && scene.tiling->method == TilingMethod::Cells) return glm::length(scene.tiling->cell);
+  if (scene.tiling || takes_absolute_points(scene.sdf)) return glm::length(basis.origin);
+  return glm::length(basis.origin - map_frame_origin(scene));
+}
+
+/// How far the program's scene is from the reference's where the program computes in double: its
+/// literals are floats (host/codegen/sdf_codegen.hpp), each off by at most delta, which moves a
+/// coordinate of a point p by delta (1 + |p|) at most through one transform's row or offset,
+/// sqrt(3) that over the three: here delta (1 + size) with the coordinates' size, per unit of
+/// size. An operand grid keeps its operands' numbers in float in its data, whose rounding is
+/// bounded by float's unit roundoff. 0 for float programs, whose rounding covers their literals.
+double literal_rounding(const Scene& scene) {
+  if (scene.render.precision != Precision::Double) return 0.0;
+  if (grid_union(scene) != nullptr) return std::sqrt(3.0) * 0x1p-24;
+  return std::sqrt(3.0) * march_scene_code(scene).literal_rounding;
+}
+
+/// The name of the OpenCL render's arithmetic, for messages.
+const char* precision_name(const Scene& scene) { return kPrecisionNames[static_cast<int>(scene.render.precision)]; }
 /// Hit/miss flips away from edges need a ray whose closest approach sits within rounding of
 /// epsilon, or a step budget that ends within one step of a hit: 1 pixel in 1000 at most.
 constexpr double kInteriorMismatchShare = 0.001;
@@ -200,7 +232,12 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
   const double eps = scene.render.epsilon;
   const double cone_slope = hit_cone_slope(scene.render, scene.camera);
   const double normal_h = scene.render.normal_epsilon;
-  const double origin_size = glm::length(basis.origin);
+  const double origin_size = coordinate_size(scene, basis);
+  const double unit = unit_roundoff(scene);
+  const double literal_error = literal_rounding(scene);
+  // The kernel's hit threshold is never below REAL_EPSILON t = 2u t, the spacing of t at most (a
+  // smaller step would leave t + d == t: kernels/march_loop.cl); the double reference has no floor.
+  const double spacing_of_t = 2.0 * unit;
   r.steps_one_sided = grid_union(scene) != nullptr;
   const double color_slope = color_per_radian(scene);
   const double glow_slope = color_per_closest_approach(scene.shading);
@@ -243,7 +280,8 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
         if (edge || (glow_slope > 0.0 && step_diff != 0.0)) continue;
         const double steps = reference.at(Channel::Steps, i, j);
         const double closest_rounding =
-            (kRoundingSteps + steps) * kUnitRoundoff * (origin_size + scene.render.max_distance);
+            (kRoundingSteps + steps) * unit * (origin_size + scene.render.max_distance) +
+            literal_error * (1.0 + origin_size + scene.render.max_distance);
         const double diff = max_color_difference(opencl, reference, i, j);
         miss_color_abs.push_back(diff);
         miss_color_tol.push_back(diff / (glow_slope * closest_rounding + kColorQuantum));
@@ -255,10 +293,11 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
       const glm::dvec3 dir = pixel_ray_direction(basis, i, j);
       const glm::dvec3 n_ref = normal_at(reference, i, j);
       const double cosine = std::max(std::abs(glm::dot(dir, n_ref)), kGrazingCosine);
-      const double rounding = kRoundingSteps * kUnitRoundoff * (origin_size + t_ref);
+      const double rounding = kRoundingSteps * unit * (origin_size + t_ref) + literal_error * (1.0 + origin_size + t_ref) +
+                              kDepthBufferRounding * t_ref;
       // Both marches stop within threshold / cos short of the surface; the threshold is epsilon, or
       // the pixel cone's radius at that depth, and never below float's spacing of t.
-      const double threshold = std::max({eps, cone_slope * t_ref, kFloatSpacingOfT * t_ref});
+      const double threshold = std::max({eps, cone_slope * t_ref, spacing_of_t * t_ref});
       const double depth_tolerance = threshold / cosine + rounding;
       depth_abs.push_back(dt);
       depth_rel.push_back(dt / std::max(t_ref, 1e-30));
@@ -267,6 +306,8 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
       // Finite differences of a 1-Lipschitz field move by at most the shift of the point: the
       // normal estimates of points dt apart differ by at most sqrt(3) (dt + rounding) / h.
       const double normal_tolerance = std::sqrt(3.0) * (dt + rounding) / normal_h;
+      // Angles lie in [0, pi]: a tolerance past pi would pass any normal, and checks nothing.
+      r.normal_tolerance_past_pi += normal_tolerance >= M_PI;
       const double angle = angle_between(normal_at(opencl, i, j), n_ref);
       normal_deg.push_back(angle * 180.0 / M_PI);
       normal_tol.push_back(angle / normal_tolerance);
@@ -299,6 +340,15 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
   t.color_p99_abs = r.color_p99_abs / std::max(color_ratio_p99, 1e-300);
   t.miss_color_p99_abs = r.miss_color_p99_abs / std::max(miss_color_ratio_p99, 1e-300);
 
+  // A criterion whose tolerance outgrows its quantity's range passes whatever the render holds: where
+  // that is so at more pixels than the p99 leaves out, the scene is beyond the precision's reach.
+  if (r.normal_tolerance_past_pi > (1.0 - kQuantile) * r.both_hit) {
+    r.failures.push_back(fmt::format(
+        "the normal tolerance exceeds pi at {} of {} pixels both hit, so it checks nothing there: {}'s rounding of coordinates "
+        "of size {:.3g} is too coarse for render.normal_epsilon {:g}; the scene is beyond {}'s reach{}",
+        r.normal_tolerance_past_pi, r.both_hit, precision_name(scene), origin_size, normal_h,
+        precision_name(scene), scene.render.precision == Precision::Float ? " (render it with render.precision: double)" : ""));
+  }
   if (r.non_finite_opencl + r.non_finite_reference > 0) {
     r.failures.push_back(fmt::format("{} OpenCL and {} reference pixels hold a NaN or an infinity (color, a hit's "
                                      "normal, or a NaN depth)", r.non_finite_opencl, r.non_finite_reference));
@@ -344,7 +394,7 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
   const Shading& shading = scene.shading;
   const bool powered = shading.model == ShadingModel::Phong || shading.model == ShadingModel::BlinnPhong;
   const double power_rounding =
-      powered ? kRoundingSteps * kUnitRoundoff * light_radiance(scene) * shading.specular * shading.shininess : 0.0;
+      powered ? kRoundingSteps * unit_roundoff(scene) * light_radiance(scene) * shading.specular * shading.shininess : 0.0;
   std::vector<double> diffs, ratios;
   int pixels_compared = 0;
   // The color, and each of the layers (ao, diffuse, specular) as a color of its own where both
@@ -396,6 +446,7 @@ nlohmann::json CheckReport::to_json() const {
           {"depth_in_tolerances", summary(depth_in_tolerances)},
           {"steps_diff", {{"mean", steps_diff_mean}, {"max", steps_diff_max}}},
           {"normal_angle_deg_p99", normal_angle_p99},
+          {"normal_tolerance_past_pi", normal_tolerance_past_pi},
           {"color",
            {{"max_abs", color_max_abs},
             {"p99_abs", color_p99_abs},

@@ -44,6 +44,9 @@ struct CheckReport {
   bool steps_one_sided = false;
   /// Degrees, over pixels both hit.
   double normal_angle_p99 = 0.0;
+  /// Pixels both hit whose normal tolerance is pi or more (it would pass any normal): more than the
+  /// 1 % the p99 leaves out fail the check, the scene being beyond the precision's reach.
+  int normal_tolerance_past_pi = 0;
   double color_max_abs = 0.0;
   /// Over the pixels both hit with equal steps.
   double color_p99_abs = 0.0;

@@ -70,6 +70,8 @@ int default_lanes(const DeviceEntry& device) { return device.is_gpu ? 1 : 16; }
 
 bool DeviceEntry::is_pocl() const { return platform_name == "Portable Computing Language"; }
 
+bool DeviceEntry::has_fp64() const { return device.getInfo<CL_DEVICE_EXTENSIONS>().find("cl_khr_fp64") != std::string::npos; }
+
 bool allows_fp_contraction(const DeviceEntry& device) { return device.is_pocl(); }
 
 std::size_t default_local_size(const DeviceEntry& device) { return device.is_gpu ? 64 : 8; }

@@ -20,6 +20,8 @@ struct DeviceEntry {
   bool is_cpu = false;
   /// Whether the platform is PoCL (its kernel cache and compiler behaviour are known).
   bool is_pocl() const;
+  /// Whether the device has cl_khr_fp64 (double programs: render.precision: double).
+  bool has_fp64() const;
 
   /// "NAME (PLATFORM)", for messages and --stats.
   std::string label() const;

@@ -7,18 +7,16 @@
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
 #include "common/log.hpp"
+#include "render/prepared_program.hpp"
 #include "scene/scene_bounds.hpp"
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <string>
 
 namespace clmarch {
 namespace {
-
-bool has_fp64(const DeviceEntry& device) {
-  return device.device.getInfo<CL_DEVICE_EXTENSIONS>().find("cl_khr_fp64") != std::string::npos;
-}
 
 /// True when the case renders with march settings and a program equal to scene's with options
 /// (automatic settings compared by what they chose: coarse_pass=none on a scene whose auto runs
@@ -71,14 +69,21 @@ int run_bench_sweep(const BenchCommandOptions& options) {
     };
     SweepCase c{combination, with_sets(scene_sets(combination)), with_sets(picture_sets(combination)),
                 with_kernel_settings(base_options, combination), false};
+    // One precision for the program and the check's tolerances: the swept one, else the scene's.
+    const bool sweeps_precision = std::any_of(combination.begin(), combination.end(), [](const auto& kv) { return kv.first == "precision"; });
+    if (sweeps_precision) {
+      c.scene.render.precision = c.options.variant.precision;
+    } else {
+      c.options.variant = scene_variant(c.scene, c.options.variant);
+    }
     if (options.one_at_a_time && !cases.empty() && repeats_base(c, base, base_options, device)) continue;
     c.is_defaults = same_settings(c, defaults, default_options, device);
     cases.push_back(std::move(c));
   }
   for (const SweepCase& c : cases) {
     if (c.options.variant.precision != Precision::Double) continue;
-    if (!has_fp64(device)) throw InputError(fmt::format("--sweep precision=double: {} has no cl_khr_fp64", device.label()));
-    if (c.options.lanes.value_or(default_lanes(device)) == 1) {
+    if (!device.has_fp64()) throw InputError(fmt::format("--sweep precision=double: {} has no cl_khr_fp64", device.label()));
+    if (program_lanes(c.options.lanes, default_lanes(device), Precision::Double) == 1) {
       throw InputError(fmt::format("--sweep: {} ({})", kDoubleNeedsVectorLanes, combination_label(c.combination)));
     }
   }

@@ -39,7 +39,7 @@ void write_outputs(const FrameFiles& files, const Scene& scene, FrameBuffers& bu
 
 nlohmann::json stats_json(const RenderCommandOptions& options, const Scene& scene, const RenderStats& s) {
   return {{"backend", options.backend}, {"device", s.device},         {"lanes", s.lanes},
-          {"width", scene.render.width}, {"height", scene.render.height}, {"build_ms", s.build_ms},
+          {"precision", options.backend == "reference" ? "double" : kPrecisionNames[static_cast<int>(s.precision)]}, {"width", scene.render.width}, {"height", scene.render.height}, {"build_ms", s.build_ms},
           {"kernel_ms", s.kernel_ms},  {"steps", s.steps},            {"rays_per_s", s.rays_per_s},
           {"chunks", s.chunks}, {"surface_steps", s.steps - s.wall_steps}, {"wall_steps", s.wall_steps},
           {"coarse_steps", s.coarse_steps}};

@@ -227,6 +227,7 @@ SdfCode scene_code(const Scene& scene, bool with_shading, bool with_ids) {
   SdfCode code;
   code.source = sdf_functions(scene.sdf, map_frame_origin(scene), scene.render.subtree_bounds == SceneBounds::Sphere, literals,
                               grid_union(scene), code.data, with_ids);
+  code.literal_rounding = literals.distance_rounding();
   // Recorded whether or not the program shades, so that a literal's index is the same in every program.
   const std::string shading = shading_value_defines(scene, literals);
   if (with_shading) code.source += shading;

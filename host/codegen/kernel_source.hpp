@@ -31,10 +31,6 @@ enum class KernelPurpose {
   Ceiling,
 };
 
-/// The arithmetic of the lanes: float, or double (needs cl_khr_fp64). Buffers stay float.
-enum class Precision { Float, Double };
-inline constexpr const char* kPrecisionNames[] = {"float", "double"};
-
 /// Arithmetic variants of one program, which `clmarch bench --sweep` compares (docs/accuracy.md).
 struct KernelVariant {
   Precision precision = Precision::Float;

@@ -15,6 +15,7 @@
 
 #include <glm/gtc/matrix_access.hpp>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -168,7 +169,7 @@ class SdfEmitter {
     // The node's first primitive number, which its operators' children change while they emit.
     const int first_id = first_id_;
     const Material color = material_of(node, inherited);
-    const auto [local_p, local_offset] = emit_transform(node.transform, p, offset);
+    const auto [local_p, local_offset] = emit_transform(node, p, offset);
     Value value = is_primitive(node.kind) ? emit_primitive(node, local_p, color, local_offset)
                                           : emit_operator(node, local_p, color, local_offset);
     if (node.transform.scale != 1.0) {
@@ -234,23 +235,34 @@ class SdfEmitter {
   std::string blend_radius(const Node& node) { return is_smooth_operator(node.kind) ? lit_.f(smooth_k(node)) : std::string(); }
   void line(const std::string& text) { body_ += "  " + indent_ + text + "\n"; }
 
-  /// The node's frame: the point and offset its subtree sees.
-  std::pair<std::string, glm::dvec3> emit_transform(const Transform& transform, const std::string& p,
-                                                    const glm::dvec3& offset) {
+  /// The node's frame: the point and offset its subtree sees. The subtree's points are measured
+  /// from a pivot of its own frame, its bound's centre: with C = translate + s R pivot that centre
+  /// in the parent frame, p_local - pivot = L (p + offset - C). C - offset and pivot are formed here
+  /// in double, so the kernel's point stays as small as the subtree, and a model authored far from
+  /// the origin and translated home keeps the precision of one authored at home (issue 26).
+  std::pair<std::string, glm::dvec3> emit_transform(const Node& node, const std::string& p, const glm::dvec3& offset) {
+    const Transform& transform = node.transform;
     if (transform.is_identity()) return {p, offset};
     // localFromWorld = S^-1 R^T (p - translate)
     const glm::dmat3 local_from_world = glm::transpose(transform.world_from_local_rotation()) / transform.scale;
     const glm::dvec3 r0 = glm::row(local_from_world, 0), r1 = glm::row(local_from_world, 1),
                      r2 = glm::row(local_from_world, 2);
+    const std::optional<BoundingSphere> bound = local_bounds(node);
+    const glm::dvec3 centre =
+        transform.translate + transform.world_from_local_rotation() * (transform.scale * (bound ? bound->center : glm::dvec3(0.0)));
+    // C - offset rounded to float, as the kernel holds it, and the pivot taken from that C: then the
+    // kernel's subtraction is exact, and the rounding only moves the pivot, which the subtree's
+    // positions, measured from it in double, follow.
+    const glm::dvec3 kernel_centre = glm::dvec3(glm::vec3(centre - offset));
     const std::string q = fresh("p");
-    // p + offset - translate = p - (translate - offset): the offset ends here.
     line(fmt::format("vec3v {} = v3_transform(v3_sub({}, v3_from({})), {}, {}, {}, {}, {}, {}, {}, {}, {});", q, p,
-                     lit_.f4(transform.translate - offset), lit_.f(r0.x), lit_.f(r0.y), lit_.f(r0.z), lit_.f(r1.x),
-                     lit_.f(r1.y), lit_.f(r1.z), lit_.f(r2.x), lit_.f(r2.y), lit_.f(r2.z)));
-    return {q, glm::dvec3(0.0)};
+                     lit_.f4(kernel_centre), lit_.f(r0.x), lit_.f(r0.y), lit_.f(r0.z), lit_.f(r1.x), lit_.f(r1.y),
+                     lit_.f(r1.z), lit_.f(r2.x), lit_.f(r2.y), lit_.f(r2.z)));
+    return {q, local_from_world * (kernel_centre + offset - transform.translate)};
   }
 
-  /// p + offset as a point of the kernel, for fields of absolute coordinates (noise, displacement).
+  /// p + offset as a point of the kernel: the absolute point for terrain noise (which hashes absolute
+  /// lattice coordinates), the point relative to its axis for the polar repetition.
   std::string absolute_point(const std::string& p, const glm::dvec3& offset) {
     if (offset == glm::dvec3(0.0)) return p;
     const std::string q = fresh("p");
@@ -411,10 +423,14 @@ class SdfEmitter {
 
   Value emit_displace(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
     const Value child = emit(node.children.front(), p, color, offset);
-    const std::string at = absolute_point(p, offset);
+    const Displace& displace = params_of<Displace>(node);
+    // The texture of the absolute point p + offset: f (p + offset) = f p + phase, the phase reduced
+    // mod 2 pi here in double, so the kernel's sines take only the small p in float.
+    glm::dvec3 phase;
+    for (int axis = 0; axis < 3; ++axis) phase[axis] = std::fmod(displace.frequency * offset[axis], 2.0 * std::numbers::pi);
     Value out{fresh("d"), child.color, child.surface, child.id};
-    line(fmt::format("vfloat {} = ({} + displacement({}, {}, {})) * {};  /* displace */", out.distance, child.distance, at,
-                     lit_.f(params_of<Displace>(node).amplitude), lit_.f(params_of<Displace>(node).frequency),
+    line(fmt::format("vfloat {} = ({} + displacement({}, {}, {}, {})) * {};  /* displace */", out.distance, child.distance, p,
+                     lit_.f4(phase), lit_.f(displace.amplitude), lit_.f(displace.frequency),
                      lit_.f(1.0 / displacement_lipschitz(node))));
     return out;
   }
@@ -730,6 +746,7 @@ std::string Literals::f(double value) {
                                  value, std::numeric_limits<float>::max()));
   }
   values_.push_back(static_cast<float>(value));
+  rounding_ = std::max(rounding_, std::abs(static_cast<double>(values_.back()) - value));
   return fmt::format("@{}@", values_.size() - 1);
 }
 
@@ -745,6 +762,7 @@ std::string sdf_functions(const Node& root, const glm::dvec3& frame_origin, bool
   grid.node = grid_node;
   SdfEmitter distance_only(false, gate_subtrees, literals, &grid);
   const SdfEmitter::Value d = distance_only.emit(root, "p", Material{}, frame_origin);
+  literals.end_distance();
   SdfEmitter with_color(true, gate_subtrees, literals, &grid, IdNumbering{with_ids, ""});
   const SdfEmitter::Value dc = with_color.emit(root, "p", Material{}, frame_origin);
   data = std::move(grid.data);
@@ -773,11 +791,17 @@ std::string sdf_functions(const Node& root, const glm::dvec3& frame_origin, bool
       with_ids ? fmt::format("  *id = {};\n", dc.id) : std::string(), dc.distance);
 }
 
+bool takes_absolute_points(const Node& root) {
+  if (root.kind == NodeKind::Terrain) return true;
+  return std::any_of(root.children.begin(), root.children.end(), takes_absolute_points);
+}
+
 SdfCode generate_sdf_code(const Node& root, const glm::dvec3& frame_origin, bool gate_subtrees, const Node* grid_node,
                           bool with_ids) {
   Literals literals;
   SdfCode code;
   code.source = sdf_functions(root, frame_origin, gate_subtrees, literals, grid_node, code.data, with_ids);
+  code.literal_rounding = literals.distance_rounding();
   code.literals = literals.take();
   return code;
 }

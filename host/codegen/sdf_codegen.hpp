@@ -23,6 +23,10 @@ struct SdfCode {
   std::string source;
   /// Every float literal of the code, rounded to float, by index.
   std::vector<float> literals;
+  /// The largest |float(x) - x| of the distance function's literals: how far the program's
+  /// geometry is from the scene's where it computes in double (render.precision; the literals stay
+  /// float).
+  double literal_rounding = 0.0;
   /// The operand grid's data, which the code reads after the values of its slots (SCENE_DATA);
   /// null without a grid. Shared with the grid's cache, not copied: a million operands' grid is
   /// half a gigabyte.
@@ -38,15 +42,26 @@ class Literals {
   std::string f4(const glm::dvec3& v);
   /// The values by index; leaves this empty.
   std::vector<float> take() { return std::move(values_); }
+  /// Marks the values written so far as the distance function's (map(), which comes first).
+  void end_distance() { distance_rounding_ = rounding_; }
+  /// The largest |float(x) - x| of the distance function's values (end_distance).
+  double distance_rounding() const { return distance_rounding_; }
 
  private:
   std::vector<float> values_;
+  double rounding_ = 0.0;
+  double distance_rounding_ = 0.0;
 };
 
 /// map and map_color for this tree, their literals written to literals and the operand grid's data
 /// to data (see generate_sdf_code).
 std::string sdf_functions(const Node& root, const glm::dvec3& frame_origin, bool gate_subtrees, Literals& literals,
                           const Node* grid_node, std::shared_ptr<const std::vector<float>>& data, bool with_ids);
+
+/// Whether the generated map() of this tree takes absolute world points somewhere (the point plus
+/// the map frame origin, in float: terrain noise, absolute_point), so
+/// that far from the origin its accuracy is the world coordinates' rather than the frame's.
+bool takes_absolute_points(const Node& root);
 
 /// The code of map and map_color for this tree, taking points relative to the world point
 /// frame_origin (its positions are baked relative to it, in double). With gate_subtrees, unions

@@ -23,6 +23,11 @@ cl_float4 to_cl(const glm::dvec3& v) {
   return out;
 }
 
+/// Writes v's x, y, z to the camera doubles from first on (CLMARCH_CAMERA_*).
+void set_camera_double(MarchParams& params, int first, const glm::dvec3& v) {
+  for (int axis = 0; axis < 3; ++axis) params.camera_double[first + axis] = v[axis];
+}
+
 }  // namespace
 
 MarchParams march_params(const Scene& scene, const Dispatch& dispatch) {
@@ -34,6 +39,10 @@ MarchParams march_params(const Scene& scene, const Dispatch& dispatch) {
   params.forward = to_cl(basis.forward);
   params.right_extent = to_cl(basis.right_extent);
   params.up_extent = to_cl(basis.up_extent);
+  set_camera_double(params, CLMARCH_CAMERA_ORIGIN, basis.origin - map_frame_origin(scene));
+  set_camera_double(params, CLMARCH_CAMERA_FORWARD, basis.forward);
+  set_camera_double(params, CLMARCH_CAMERA_RIGHT, basis.right_extent);
+  set_camera_double(params, CLMARCH_CAMERA_UP, basis.up_extent);
   params.width = width;
   params.height = height;
   params.chunk_rows = dispatch.chunk_rows;
@@ -42,7 +51,11 @@ MarchParams march_params(const Scene& scene, const Dispatch& dispatch) {
   params.epsilon = static_cast<float>(scene.render.epsilon);
   params.max_distance = static_cast<float>(scene.render.max_distance);
   params.normal_epsilon = static_cast<float>(scene.render.normal_epsilon);
-  if (scene.tiling) params.origin_in_cell = to_cl(offset_in_cell(scene.camera.position, scene.tiling->cell));
+  if (scene.tiling) {
+    const glm::dvec3 in_cell = offset_in_cell(scene.camera.position, scene.tiling->cell);
+    params.origin_in_cell = to_cl(in_cell);
+    set_camera_double(params, CLMARCH_CAMERA_ORIGIN_IN_CELL, in_cell);
+  }
   params.camera_height = static_cast<float>(scene.camera.position.y);
   params.over_relaxation = static_cast<float>(camera_over_relaxation(scene));
   params.hit_cone_slope = static_cast<float>(hit_cone_slope(scene.render, scene.camera));

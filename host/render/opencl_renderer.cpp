@@ -114,7 +114,7 @@ bool OpenClRenderer::can_render(const Scene& scene, const OpenClOptions& options
   if (scene.render.width != s.render.width || scene.render.height != s.render.height) return false;
   if (options.device != mine.device || options.lanes != mine.lanes || options.purpose != mine.purpose ||
       !(options.variant == mine.variant) || options.max_chunk_pixels != mine.max_chunk_pixels ||
-      options.value_slots != mine.value_slots) {
+      options.value_slots != mine.value_slots || !(scene_variant(scene, options.variant) == s.prepared.kernel_options.variant)) {
     return false;
   }
   return generate_kernel_source(scene, s.prepared.kernel_options) == s.prepared.source;
@@ -290,6 +290,7 @@ RenderResult OpenClRenderer::render_rows(int band_first_row, int band_rows) {
   RenderStats& stats = result.stats;
   stats.device = dp.device.label();
   stats.lanes = s.prepared.lanes;
+  stats.precision = s.prepared.kernel_options.variant.precision;
   if (!s.rendered) {
     stats.build_ms = dp.build_ms + first_enqueue_ms.value_or(0.0);
     log_verbose(fmt::format("first dispatch waited {:.0f} ms beyond its kernels (the driver's compile for the "

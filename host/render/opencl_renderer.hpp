@@ -40,6 +40,8 @@ struct OpenClOptions {
 struct RenderStats {
   std::string device;
   int lanes = 1;
+  /// The program's arithmetic (render.precision, or a sweep's precision).
+  Precision precision = Precision::Float;
   double build_ms = 0.0;
   /// From the profiling events of the march kernel (and of the coarse cone pass).
   double kernel_ms = 0.0;

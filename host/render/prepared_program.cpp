@@ -2,18 +2,44 @@
 #include "render/prepared_program.hpp"
 
 #include "codegen/kernel_source.hpp"
+#include "common/errors.hpp"
+
+#include <fmt/format.h>
 
 namespace clmarch {
 
+KernelVariant scene_variant(const Scene& scene, KernelVariant variant) {
+  if (scene.render.precision == Precision::Double) variant.precision = Precision::Double;
+  return variant;
+}
+
+int program_lanes(std::optional<int> asked, int device_default, Precision precision) {
+  if (asked) return *asked;
+  return precision == Precision::Double && device_default == 1 ? 4 : device_default;
+}
+
+void check_precision_support(const Scene& scene, const KernelOptions& options, const std::string& device, bool has_fp64) {
+  if (options.variant.precision != Precision::Double) return;
+  const char* asked_by = scene.render.precision == Precision::Double ? "render.precision: double" : "precision=double";
+  if (!has_fp64) {
+    throw InputError(fmt::format("{}: {} needs a device with cl_khr_fp64 (double arithmetic), which {} lacks; choose another "
+                                 "device (clmarch devices) or render.precision: float",
+                                 scene.source_name, asked_by, device));
+  }
+  if (options.lanes == 1) throw InputError(fmt::format("{}: {}: {}", scene.source_name, asked_by, kDoubleNeedsVectorLanes));
+}
+
 PreparedProgram prepare_program(const Scene& scene, const OpenClOptions& options, KernelPurpose purpose) {
   const DeviceEntry device = select_device(options.device);
-  KernelOptions kernel_options{purpose, options.lanes.value_or(default_lanes(device)), options.variant};
+  const KernelVariant variant = scene_variant(scene, options.variant);
+  KernelOptions kernel_options{purpose, program_lanes(options.lanes, default_lanes(device), variant.precision), variant};
+  check_precision_support(scene, kernel_options, device.label(), device.has_fp64());
   kernel_options.fp_contraction = allows_fp_contraction(device);
   const bool march = purpose != KernelPurpose::EvalPoints;
   if (march) kernel_options.value_slots = options.value_slots;
   const std::string source = generate_kernel_source(scene, kernel_options);
   if (options.before_build) options.before_build(source);
-  return {build_device_program(device, source, kernel_build_options(options.variant)), kernel_options.lanes,
+  return {build_device_program(device, source, kernel_build_options(variant)), kernel_options.lanes,
           march ? packets_per_item(scene, kernel_options.lanes) : 1,
           march ? march_outputs(scene, purpose).planes() : std::vector<int>{}, source, kernel_options};
 }

@@ -143,6 +143,12 @@ inline constexpr const char* kCoarsePassNames[] = {"none", "cone", "auto"};
 enum class Pruning { Auto, None, Grid };
 inline constexpr const char* kPruningNames[] = {"auto", "none", "grid"};
 
+/// The arithmetic of the march, the distance function and the shading on the device: float, or
+/// double (render.precision; cl_khr_fp64), for views finer than float's spacing (deep zooms).
+/// Buffers stay float either way.
+enum class Precision { Float, Double };
+inline constexpr const char* kPrecisionNames[] = {"float", "double"};
+
 /// The most samples per pixel render.samples allows.
 inline constexpr int kMaxSamples = 1024;
 
@@ -177,6 +183,7 @@ struct RenderSettings {
   int samples = 1;
   /// With samples > 1: only pixels whose neighbourhood shows an edge get more than the centre ray.
   bool adaptive = true;
+  Precision precision = Precision::Float;
 
   bool operator==(const RenderSettings&) const = default;
 };

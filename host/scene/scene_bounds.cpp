@@ -168,11 +168,17 @@ std::optional<BoundingSphere> operator_bounds(const Node& node) {
 
 }  // namespace
 
-std::optional<BoundingSphere> node_bounds(const Node& node) {
+std::optional<BoundingSphere> local_bounds(const Node& node) {
   std::optional<BoundingSphere> b = is_primitive(node.kind) ? primitive_bounds(node.params) : operator_bounds(node);
   if (!b) return std::nullopt;
   // The polynomial smooth minimum and maximum undershoot the hard ones by at most k / 4.
   if (is_smooth_operator(node.kind)) b->radius += b->gain * smooth_k(node) / 4.0;
+  return b;
+}
+
+std::optional<BoundingSphere> node_bounds(const Node& node) {
+  std::optional<BoundingSphere> b = local_bounds(node);
+  if (!b) return std::nullopt;
   // p_parent = translate + R (scale p_local); the field is scale * f(p_local) * step_factor.
   b->center = node.transform.translate + node.transform.world_from_local_rotation() * (node.transform.scale * b->center);
   b->radius *= node.transform.scale;

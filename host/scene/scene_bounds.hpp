@@ -20,6 +20,8 @@ struct BoundingSphere {
 
 /// The bound of node's field; nothing for unbounded fields (plane, terrain, repeat).
 std::optional<BoundingSphere> node_bounds(const Node& node);
+/// The same in the node's own frame, before its transform, step_factor and scale.
+std::optional<BoundingSphere> local_bounds(const Node& node);
 
 /// The sphere camera rays are clipped to: the tree's bound grown by the largest threshold a camera
 /// ray can hit with, the glow radius (misses near the surface glow) and a margin for float rounding.

@@ -81,7 +81,7 @@ class SceneReader {
     RenderSettings render;
     yaml_.expect_map(node, "render", {"width", "height", "max_steps", "epsilon", "max_distance", "normal_method", "normal_epsilon",
                                       "over_relaxation", "hit_threshold", "cone_factor", "bounds", "subtree_bounds",
-                                      "coarse_pass", "pruning", "samples", "adaptive"});
+                                      "coarse_pass", "pruning", "samples", "adaptive", "precision"});
     const Range side = Range::closed(1, kMaxImageSide);
     if (node["width"]) render.width = yaml_.integer(node["width"], "render.width", side);
     if (node["height"]) render.height = yaml_.integer(node["height"], "render.height", side);
@@ -104,6 +104,7 @@ class SceneReader {
     }
     if (node["samples"]) render.samples = yaml_.integer(node["samples"], "render.samples", Range::closed(1, kMaxSamples));
     if (node["adaptive"]) render.adaptive = yaml_.boolean(node["adaptive"], "render.adaptive");
+    if (node["precision"]) render.precision = static_cast<Precision>(yaml_.choice(node["precision"], "render.precision", kPrecisionNames));
     if (!image_size_fits(render.width, render.height)) {
       yaml_.fail(node, fmt::format("render.width x render.height = {} x {} exceeds {} pixels (got {}, expected at most {})",
                                    render.width, render.height, kMaxPixels,
