@@ -40,7 +40,10 @@ typedef cl_float4 float4;
 #define CLMARCH_CHANNEL_AO 10
 #define CLMARCH_CHANNEL_DIFFUSE 13
 #define CLMARCH_CHANNEL_SPECULAR 16
-#define CLMARCH_CHANNEL_COUNT 19
+/* The depth's remainder past its float, t - (float)t, in double programs' --buffers (WRITE_DEPTH_LO):
+ * depth + depth.lo, added in double, is the depth the march found. */
+#define CLMARCH_CHANNEL_DEPTH_LO 19
+#define CLMARCH_CHANNEL_COUNT 20
 
 /* Columns of the tile a packet of `lanes` pixels covers (its rows: lanes / columns): 1x1, 2x2,
  * 4x2, 4x4. The host plans its dispatch of tiles by it (host/render/dispatch_plan.hpp). */

@@ -73,6 +73,7 @@ typedef mask1 vint;
 #define LANE_Y 0
 #define TO_VFLOAT(x) convert_real(x)
 #define STORE_LANES(v, base, ptr) ((ptr)[base] = (float)(v))
+#define ROUNDED_TO_FLOAT(v) ((real)(float)(v))
 #define STORE_INT_LANES(v, base, ptr) ((ptr)[base] = (int)(v))
 #define LOAD_LANES(base, ptr) convert_real((ptr)[base])
 #elif LANES == 4
@@ -87,6 +88,7 @@ typedef mask4 vint;
 #define VSTORE_LANES vstore4
 #define VLOAD_LANES vload4
 #define STORE_LANES(v, base, ptr) vstore4(convert_float4(v), 0, (ptr) + (base))
+#define ROUNDED_TO_FLOAT(v) convert_real4(convert_float4(v))
 #define STORE_INT_LANES(v, base, ptr) vstore4(convert_int4(v), 0, (ptr) + (base))
 #define LOAD_LANES(base, ptr) convert_real4(vload4(0, (ptr) + (base)))
 #elif LANES == 8
@@ -101,6 +103,7 @@ typedef mask8 vint;
 #define VSTORE_LANES vstore8
 #define VLOAD_LANES vload8
 #define STORE_LANES(v, base, ptr) vstore8(convert_float8(v), 0, (ptr) + (base))
+#define ROUNDED_TO_FLOAT(v) convert_real8(convert_float8(v))
 #define STORE_INT_LANES(v, base, ptr) vstore8(convert_int8(v), 0, (ptr) + (base))
 #define LOAD_LANES(base, ptr) convert_real8(vload8(0, (ptr) + (base)))
 #elif LANES == 16
@@ -115,6 +118,7 @@ typedef mask16 vint;
 #define VSTORE_LANES vstore16
 #define VLOAD_LANES vload16
 #define STORE_LANES(v, base, ptr) vstore16(convert_float16(v), 0, (ptr) + (base))
+#define ROUNDED_TO_FLOAT(v) convert_real16(convert_float16(v))
 #define STORE_INT_LANES(v, base, ptr) vstore16(convert_int16(v), 0, (ptr) + (base))
 #define LOAD_LANES(base, ptr) convert_real16(vload16(0, (ptr) + (base)))
 #else

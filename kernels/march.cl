@@ -244,6 +244,9 @@ SDF_INLINE void finish_packet(SceneValues values, const Packet* k, const MarchRe
   const int at = k->row0 * params->width + k->x0;
 #define STORE_PLANE(channel, v) store_tile((v), at, params->width, k->columns, k->rows, out + (channel) * stride)
   STORE_PLANE(CLMARCH_CHANNEL_DEPTH, select((vfloat)(INFINITY), m->t, m->hit));
+#if defined(WRITE_DEPTH_LO)
+  STORE_PLANE(CLMARCH_CHANNEL_DEPTH_LO, select((vfloat)(0.0f), m->t - ROUNDED_TO_FLOAT(m->t), m->hit));
+#endif
   STORE_PLANE(CLMARCH_CHANNEL_STEPS, m->steps);
 #if defined(TILING_CELLS)
   STORE_PLANE(CLMARCH_CHANNEL_WALL_STEPS, m->wall_steps);

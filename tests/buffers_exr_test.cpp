@@ -13,6 +13,36 @@
 namespace clmarch {
 namespace {
 
+// render.precision: double adds depth.lo (issue 26): depth + depth.lo in double is the double
+// depth. 1e-4 from a unit sphere, the float depth holds the hit to 1e-12 (half its spacing) and
+// the pair to the march's epsilon, 1e-14, on both backends.
+TEST(BuffersExr, DoubleRendersAddTheDepthsRemainder) {
+  testing::TempDir dir;
+  std::ofstream(dir / "scene.yaml") << "sdf: {sphere: {radius: 1}}\ncamera: {position: [0, 0, 1.0001], look_at: [0, 0, 0], fov: 0.001}\n"
+                                       "render: {width: 8, height: 6, precision: double, epsilon: 1.0e-14, normal_epsilon: 1.0e-9}\n";
+  for (const char* backend : {"opencl", "reference"}) {
+    SCOPED_TRACE(backend);
+    const auto result = testing::run_clmarch({"render", (dir / "scene.yaml").string(), "--backend", backend, "-o",
+                                              (dir / "c.exr").string(), "--buffers", (dir / "b.exr").string()});
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    auto in = OIIO::ImageInput::open((dir / "b.exr").string());
+    ASSERT_TRUE(in);
+    const int lo = in->spec().channelindex("depth.lo"), depth = in->spec().channelindex("depth");
+    ASSERT_GE(lo, 0) << "no depth.lo channel";
+    const testing::Image image = testing::read_image(dir / "b.exr");
+    // Pixel (4, 3)'s ray is 3e-8 radians off the axis: its hit is 1e-4 away to 1e-15.
+    const double t = static_cast<double>(image.at(4, 3, depth)) + image.at(4, 3, lo);
+    EXPECT_NEAR(t, 1e-4, 2e-14);
+    EXPECT_NE(image.at(4, 3, lo), 0.0f);
+  }
+  std::ofstream(dir / "scene.yaml") << "sdf: {sphere: {radius: 1}}\ncamera: {position: [0, 0, 5]}\nrender: {width: 8, height: 6}\n";
+  ASSERT_EQ(testing::run_clmarch({"render", (dir / "scene.yaml").string(), "-o", (dir / "c.exr").string(), "--buffers",
+                                  (dir / "b.exr").string()}).exit_code, 0);
+  auto in = OIIO::ImageInput::open((dir / "b.exr").string());
+  ASSERT_TRUE(in);
+  EXPECT_LT(in->spec().channelindex("depth.lo"), 0) << "float renders keep their 24 channels";
+}
+
 TEST(BuffersExr, ChannelsAndValuesFollowTheContract) {
   testing::TempDir dir;
   std::ofstream(dir / "scene.yaml") << "sdf: {sphere: {radius: 1}}\ncamera: {position: [0, 0, 5]}\nrender: {width: 32, height: 24}\n";

@@ -45,6 +45,8 @@ void render_image_in_tiles(const RenderCommandOptions& options, const Scene& sce
   std::mutex gathered;
   if (world.rank == 0) {
     whole = FrameBuffers(width, height);
+    // Each tile's depth.lo is written where a double render writes its buffers, and only read then.
+    whole.has_depth_lo = scene.render.precision == Precision::Double;
     totals.resize(static_cast<std::size_t>(world.size));
     progress.emplace("tiles", tiles, static_cast<double>(width) * tile_rows);
   }

@@ -90,6 +90,7 @@ std::string feature_defines(const Scene& scene, const KernelOptions& options) {
   if (outputs.normals) out += "#define WRITE_NORMALS\n";
   if (outputs.ids) out += "#define WRITE_IDS\n";
   if (outputs.layers) out += "#define WRITE_LAYERS\n";
+  if (outputs.depth_lo) out += "#define WRITE_DEPTH_LO\n";
   if (outputs.normals || outputs.color) {
     out += "#define NEED_NORMALS\n";
     if (scene.render.normal_method == NormalMethod::Tetrahedral) out += "#define NORMAL_TETRAHEDRAL\n";
@@ -156,6 +157,7 @@ std::vector<int> MarchOutputs::planes() const {
   if (normals) planes.insert(planes.end(), {CLMARCH_CHANNEL_NX, CLMARCH_CHANNEL_NY, CLMARCH_CHANNEL_NZ});
   if (wall_steps) planes.push_back(CLMARCH_CHANNEL_WALL_STEPS);
   if (ids) planes.push_back(CLMARCH_CHANNEL_ID);
+  if (depth_lo) planes.push_back(CLMARCH_CHANNEL_DEPTH_LO);
   if (layers) {
     for (int first : {CLMARCH_CHANNEL_AO, CLMARCH_CHANNEL_DIFFUSE, CLMARCH_CHANNEL_SPECULAR}) {
       planes.insert(planes.end(), {first, first + 1, first + 2});
@@ -171,6 +173,7 @@ MarchOutputs march_outputs(const Scene& scene, KernelPurpose purpose) {
   // A --buffers render's: the debug views' (Normals) and the shaded one's.
   outputs.ids = purpose == KernelPurpose::Normals || buffers;
   outputs.layers = buffers;
+  outputs.depth_lo = buffers && scene.render.precision == Precision::Double;
   outputs.color = purpose == KernelPurpose::Shaded || purpose == KernelPurpose::Color || buffers;
   outputs.wall_steps = uses_cells_tiling(scene);
   return outputs;

@@ -67,6 +67,7 @@ struct MarchOutputs {
   bool wall_steps = false;  ///< the cells tiling: wall steps
   bool ids = false;         ///< WRITE_IDS: the primitive hit (with the normals)
   bool layers = false;      ///< WRITE_LAYERS: ao, diffuse and specular (with the normals and the color)
+  bool depth_lo = false;    ///< WRITE_DEPTH_LO: depth.lo (double programs' --buffers)
 
   /// The planes the kernel writes for every pixel of a dispatch; the others it never touches.
   std::vector<int> planes() const;

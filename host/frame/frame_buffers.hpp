@@ -17,15 +17,15 @@ namespace clmarch {
 /// got) are filled on the host (host/frame/antialias.hpp).
 enum class Channel {
   R, G, B, Depth, Steps, NX, NY, NZ, WallSteps, Id,
-  AoR, AoG, AoB, DiffuseR, DiffuseG, DiffuseB, SpecularR, SpecularG, SpecularB,
+  AoR, AoG, AoB, DiffuseR, DiffuseG, DiffuseB, SpecularR, SpecularG, SpecularB, DepthLo,
   A, Samples
 };
-inline constexpr int kChannelCount = 21;
+inline constexpr int kChannelCount = 22;
 /// Channel names (the EXR's, but for wall_steps), indexed by Channel.
 inline constexpr const char* kChannelNames[kChannelCount] = {
     "R",    "G",    "B",    "depth",     "steps",     "N.x",       "N.y",        "N.z",        "wall_steps", "id",
-    "ao.R", "ao.G", "ao.B", "diffuse.R", "diffuse.G", "diffuse.B", "specular.R", "specular.G", "specular.B", "A",
-    "samples"};
+    "ao.R", "ao.G", "ao.B", "diffuse.R", "diffuse.G", "diffuse.B", "specular.R", "specular.G", "specular.B", "depth.lo",
+    "A",    "samples"};
 /// The shading's layers (ao, diffuse, specular; r, g, b each): the terms of a hit's lit color
 /// (kernels/shading.cl, LightTerms), written by shaded renders with the normals, 0 elsewhere.
 inline constexpr Channel kLayerChannels[] = {Channel::AoR,      Channel::AoG,      Channel::AoB,
@@ -40,6 +40,9 @@ struct FrameBuffers {
   /// Whether the render filled Id, and the layers (programs without them leave them 0).
   bool has_ids = false;
   bool has_layers = false;
+  /// Whether the render filled DepthLo: depth + depth.lo in double is the depth of a double render
+  /// (render.precision: double, the --buffers program and the reference).
+  bool has_depth_lo = false;
   std::array<std::vector<float>, kChannelCount> planes;
 
   FrameBuffers() = default;

@@ -131,7 +131,8 @@ void write_color_image(StagedFiles& files, const std::filesystem::path& path, co
 namespace {
 
 /// The EXR's channels of every render: the contract's eight, then A, Z (depth, by the name
-/// compositors look for), samples, id and the shading's layers (0 where a view draws something else).
+/// compositors look for), samples, id and the shading's layers (0 where a view draws something else),
+/// and depth.lo where the render was in double.
 std::vector<NamedPlane> buffer_planes(const FrameBuffers& buffers) {
   std::vector<NamedPlane> planes = named(buffers, {Channel::R, Channel::G, Channel::B, Channel::Depth, Channel::Steps,
                                                    Channel::NX, Channel::NY, Channel::NZ, Channel::A});
@@ -139,6 +140,7 @@ std::vector<NamedPlane> buffer_planes(const FrameBuffers& buffers) {
   planes.push_back({&buffers.plane(Channel::Samples), "samples"});
   planes.push_back({&buffers.plane(Channel::Id), "id"});
   for (Channel layer : kLayerChannels) planes.push_back({&buffers.plane(layer), kChannelNames[static_cast<int>(layer)]});
+  if (buffers.has_depth_lo) planes.push_back({&buffers.plane(Channel::DepthLo), "depth.lo"});
   return planes;
 }
 
@@ -188,7 +190,8 @@ void write_buffers_exr(StagedFiles& files, const std::filesystem::path& path, co
     for (int i = 0; i < buffers.width; ++i) {
       const std::size_t at = static_cast<std::size_t>(j) * buffers.width + i;
       if (!std::isfinite(depth[at])) continue;
-      const glm::dvec3 p = basis.origin + static_cast<double>(depth[at]) * pixel_ray_direction(basis, i, j);
+      const double t = static_cast<double>(depth[at]) + (buffers.has_depth_lo ? buffers.plane(Channel::DepthLo)[at] : 0.0);
+      const glm::dvec3 p = basis.origin + t * pixel_ray_direction(basis, i, j);
       for (int axis = 0; axis < 3; ++axis) position[axis][at] = static_cast<float>(p[axis]);
     }
   }

@@ -189,6 +189,7 @@ FrameBuffers render_reference(const Scene& scene, const std::optional<ConeStarts
   const std::optional<BoundingSphere> bounds = camera_ray_bounds(scene);
   FrameBuffers fb(width, height);
   fb.has_ids = fb.has_layers = true;
+  fb.has_depth_lo = scene.render.precision == Precision::Double;
   ProgressLine progress("reference rows", height, scene.render.width);
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
     for (int j = rows.begin(); j != rows.end(); ++j) {
@@ -201,6 +202,7 @@ FrameBuffers render_reference(const Scene& scene, const std::optional<ConeStarts
         fb.at(Channel::G, i, j) = static_cast<float>(r.color.g);
         fb.at(Channel::B, i, j) = static_cast<float>(r.color.b);
         fb.at(Channel::Depth, i, j) = static_cast<float>(r.depth);
+        if (fb.has_depth_lo && r.hit) fb.at(Channel::DepthLo, i, j) = static_cast<float>(r.depth - static_cast<float>(r.depth));
         fb.at(Channel::Steps, i, j) = static_cast<float>(r.steps);
         fb.at(Channel::NX, i, j) = static_cast<float>(r.normal.x);
         fb.at(Channel::NY, i, j) = static_cast<float>(r.normal.y);

@@ -239,6 +239,7 @@ RenderResult OpenClRenderer::render_rows(int band_first_row, int band_rows) {
   result.buffers = FrameBuffers(width, band_rows);
   result.buffers.has_ids = s.outputs.ids;
   result.buffers.has_layers = s.outputs.layers;
+  result.buffers.has_depth_lo = s.outputs.depth_lo;
   const std::size_t chunk_count = (static_cast<std::size_t>(band_rows) + dispatch.chunk_rows - 1) / dispatch.chunk_rows;
   ProgressLine progress("OpenCL chunks", static_cast<long long>(chunk_count),
                         static_cast<double>(pixels) / static_cast<double>(chunk_count));
