@@ -43,7 +43,16 @@ typedef cl_float4 float4;
 /* The depth's remainder past its float, t - (float)t, in double programs' --buffers (WRITE_DEPTH_LO):
  * depth + depth.lo, added in double, is the depth the march found. */
 #define CLMARCH_CHANNEL_DEPTH_LO 19
-#define CLMARCH_CHANNEL_COUNT 20
+/* How each centre ray ended (CLMARCH_RAY_*), with WRITE_STATUS: --buffers, debug views, --stats. */
+#define CLMARCH_CHANNEL_STATUS 20
+#define CLMARCH_CHANNEL_COUNT 21
+
+/* The status channel's values: a ray hit; missed (left the scene's bounding sphere, or never met
+ * it); ran out of render.max_steps before either; or missed by reaching render.max_distance. */
+#define CLMARCH_RAY_MISS 0
+#define CLMARCH_RAY_HIT 1
+#define CLMARCH_RAY_OUT_OF_STEPS 2
+#define CLMARCH_RAY_OUT_OF_DISTANCE 3
 
 /* Columns of the tile a packet of `lanes` pixels covers (its rows: lanes / columns): 1x1, 2x2,
  * 4x2, 4x4. The host plans its dispatch of tiles by it (host/render/dispatch_plan.hpp). */

@@ -247,6 +247,12 @@ SDF_INLINE void finish_packet(SceneValues values, const Packet* k, const MarchRe
 #if defined(WRITE_DEPTH_LO)
   STORE_PLANE(CLMARCH_CHANNEL_DEPTH_LO, select((vfloat)(0.0f), m->t - ROUNDED_TO_FLOAT(m->t), m->hit));
 #endif
+#if defined(WRITE_STATUS)
+  /* A lane that did not march ends where it starts (0 outside the bounding sphere). */
+  const vfloat past_end = select((vfloat)(CLMARCH_RAY_MISS), (vfloat)(CLMARCH_RAY_OUT_OF_DISTANCE), MASK(m->t >= params->max_distance));
+  const vfloat status = select(select(past_end, (vfloat)(CLMARCH_RAY_OUT_OF_STEPS), m->exhausted), (vfloat)(CLMARCH_RAY_HIT), m->hit);
+  STORE_PLANE(CLMARCH_CHANNEL_STATUS, status);
+#endif
   STORE_PLANE(CLMARCH_CHANNEL_STEPS, m->steps);
 #if defined(TILING_CELLS)
   STORE_PLANE(CLMARCH_CHANNEL_WALL_STEPS, m->wall_steps);

@@ -10,6 +10,7 @@ typedef struct {
   vfloat steps;      /* every iteration: distance steps and wall steps */
   vfloat wall_steps; /* iterations that stepped to a cell wall (tiling) */
   vint hit;
+  vint exhausted;    /* lanes the step budget stopped: neither hit nor past their end */
   vec3v local_point; /* the hit point in the frame map() is written in (a cell's, under tiling) */
   vfloat closest;    /* smallest distance met on the way */
   vfloat penumbra;   /* soft shadows: light reaching the start point, 1 when unoccluded */
@@ -77,6 +78,7 @@ SDF_INLINE MarchResult march_result_init(vfloat t_start) {
   m.steps = (vfloat)(0.0f);
   m.wall_steps = (vfloat)(0.0f);
   m.hit = (vint)(0);
+  m.exhausted = (vint)(0);
   m.closest = (vfloat)(INFINITY);
   m.penumbra = (vfloat)(1.0f);
   return m;
@@ -159,6 +161,7 @@ SDF_INLINE void plain_march_step(PlainMarch* s) {
 
 SDF_INLINE MarchResult plain_march_end(PlainMarch* s) {
   MarchResult m = s->m;
+  m.exhausted = s->active;
   m.local_point = v3_add(s->origin, v3_scale(s->dir, m.t));
 #if defined(TILING_MOD)
   m.local_point = wrap_to_cell(m.local_point);

@@ -75,6 +75,7 @@ SDF_INLINE MarchResult march_cells(vec3v origin, vec3v dir, vint live, vfloat t_
     relaxing &= active;
   }
   m.t = t_entry + s;
+  m.exhausted = active;
   m.local_point = v3_add(entry, v3_scale(dir, s));
   return m;
 }

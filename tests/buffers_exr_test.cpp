@@ -58,7 +58,7 @@ TEST(BuffersExr, ChannelsAndValuesFollowTheContract) {
     std::sort(names.begin(), names.end());
     EXPECT_EQ(names, (std::vector<std::string>{"A", "B", "G", "N.x", "N.y", "N.z", "P.x", "P.y", "P.z", "R", "Z", "ao.B",
                                                "ao.G", "ao.R", "depth", "diffuse.B", "diffuse.G", "diffuse.R", "id", "samples",
-                                               "specular.B", "specular.G", "specular.R", "steps"}));
+                                               "specular.B", "specular.G", "specular.R", "status", "steps"}));
     const auto channel = [&](const char* name) { return spec.channelindex(name); };
     const testing::Image image = testing::read_image(dir / "b.exr");
     // The corner misses the sphere, the centre hits it head-on at distance 4. The corner's ray
@@ -78,6 +78,9 @@ TEST(BuffersExr, ChannelsAndValuesFollowTheContract) {
     EXPECT_EQ(image.at(16, 12, channel("Z")), image.at(16, 12, channel("depth")));
     EXPECT_TRUE(std::isinf(image.at(0, 0, channel("Z"))));
     EXPECT_EQ(image.at(16, 12, channel("samples")), 1.0f);
+    // The centre ray hit; the corner's missed the scene's bounding sphere (the status channel).
+    EXPECT_EQ(image.at(16, 12, channel("status")), 1.0f);
+    EXPECT_EQ(image.at(0, 0, channel("status")), 0.0f);
     // The scene's one primitive is number 0; a miss is -1.
     EXPECT_EQ(image.at(16, 12, channel("id")), 0.0f);
     EXPECT_EQ(image.at(0, 0, channel("id")), -1.0f);

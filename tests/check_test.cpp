@@ -264,7 +264,8 @@ TEST(CheckCli, AFailingCheckExitsOneAndWritesBothRendersAndTheirDifference) {
     EXPECT_EQ(image->width, 48);
     EXPECT_EQ(image->height, 32);
   }
-  ASSERT_EQ(difference.channels, 21) << "the --buffers channels but P: R, G, B, depth, steps, N.x, N.y, N.z, A, Z, samples, id, layers";
+  ASSERT_EQ(difference.channels, 22)
+      << "the --buffers channels but P: R, G, B, depth, steps, N.x, N.y, N.z, A, Z, samples, id, status, layers";
   // The difference holds |opencl - reference| per channel: here the normals (N.x, N.y, N.z).
   std::vector<int> normal_channels;
   {

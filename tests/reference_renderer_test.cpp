@@ -476,13 +476,13 @@ TEST(RenderReference, EveryPixelIsItsRay) {
       const RayResult r = reference_trace(s, basis.origin, pixel_ray_direction(basis, i, j));
       hits += r.hit;
       // wall_steps 0 (no tiling); the primitive hit or -1; the layers; depth.lo 0 (a float
-      // render); one ray per pixel: A is the hit, samples 1.
+      // render); its status; one ray per pixel: A is the hit, samples 1.
       const LightTerms& l = r.layers;
       const double want[kChannelCount] = {r.color.r,   r.color.g,   r.color.b,   r.depth,      double(r.steps),
                                           r.normal.x,  r.normal.y,  r.normal.z,  0.0,          r.hit ? double(r.primitive) : -1.0,
                                           l.ambient.r, l.ambient.g, l.ambient.b, l.diffuse.r,  l.diffuse.g,
                                           l.diffuse.b, l.specular.r, l.specular.g, l.specular.b, 0.0,
-                                          r.hit ? 1.0 : 0.0, 1.0};
+                                          double(r.status), r.hit ? 1.0 : 0.0, 1.0};
       for (int c = 0; c < kChannelCount; ++c) {
         EXPECT_EQ(fb.at(Channel(c), i, j), static_cast<float>(want[c])) << kChannelNames[c] << " at " << i << "," << j;
       }

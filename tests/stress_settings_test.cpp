@@ -134,7 +134,11 @@ TEST(StepBudget, EveryBudgetEndsEveryPixelByTheRule) {
         budget));
     const FrameBuffers opencl = render_checked(scene, KernelPurpose::Normals);
     const FrameBuffers reference = render_reference(scene);
-    int differing = 0, hits = 0;
+    EXPECT_EQ(invariant_violation(reference, budget, false), "") << "reference";
+    int differing = 0, hits = 0, marched = 0;
+    for (int j = 0; j < 27; ++j) {
+      for (int i = 0; i < 48; ++i) marched += opencl.at(Channel::Steps, i, j) > 0.0f;
+    }
     for (int j = 0; j < 27; ++j) {
       for (int i = 0; i < 48; ++i) {
         const bool hit = std::isfinite(opencl.at(Channel::Depth, i, j));
@@ -142,8 +146,22 @@ TEST(StepBudget, EveryBudgetEndsEveryPixelByTheRule) {
         if (hit != std::isfinite(reference.at(Channel::Depth, i, j))) ++differing;
       }
     }
+    // The rays out of steps, counted on both sides: with one step every ray that marched is out of
+    // steps unless that step left the scene's bounding sphere (the first step from 3.9 away cannot
+    // reach max_distance 20), and both sides decide alike.
+    const std::uint64_t out_opencl = opencl.rays_with_status(RayStatus::OutOfSteps);
+    const std::uint64_t out_reference = reference.rays_with_status(RayStatus::OutOfSteps);
+    EXPECT_LE(std::max(out_opencl, out_reference) - std::min(out_opencl, out_reference), static_cast<std::uint64_t>(48 * 27 / 50));
     if (budget == 1) {
       EXPECT_EQ(hits, 0) << "one step from outside cannot arrive";
+      EXPECT_EQ(out_opencl, out_reference);
+      EXPECT_GT(out_opencl, static_cast<std::uint64_t>(marched / 2));
+      EXPECT_EQ(opencl.rays_with_status(RayStatus::OutOfDistance), 0u);
+      EXPECT_EQ(opencl.rays_with_status(RayStatus::OutOfSteps) + opencl.rays_with_status(RayStatus::Miss),
+                static_cast<std::uint64_t>(48 * 27));
+    }
+    if (budget == 64) {
+      EXPECT_LT(out_opencl, static_cast<std::uint64_t>(marched - hits));
     }
     if (budget == 64) {
       EXPECT_GT(hits, 48 * 27 / 10);

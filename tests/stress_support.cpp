@@ -32,6 +32,16 @@ std::string invariant_violation(const FrameBuffers& b, int max_steps, bool shade
       const double length = glm::length(n);
       if (!std::isfinite(depth) && length != 0.0) return where("a miss with a normal");
       if (std::isfinite(depth) && length != 0.0 && std::abs(length - 1.0) > 1e-4) return where(fmt::format("|normal| {}", length));
+      // How the ray ended agrees with what it left: a hit, or a miss whose budget ran out at
+      // exactly max_steps (issue 26's status channel).
+      if (b.has_status) {
+        const float status = b.at(Channel::Status, i, j);
+        if (!(status >= 0.0f && status <= 3.0f && status == std::floor(status))) return where(fmt::format("status {}", status));
+        if ((status == static_cast<float>(RayStatus::Hit)) != std::isfinite(depth)) return where(fmt::format("status {} at depth {}", status, depth));
+        if (status == static_cast<float>(RayStatus::OutOfSteps) && steps != static_cast<float>(max_steps)) {
+          return where(fmt::format("out of steps after {} of {}", steps, max_steps));
+        }
+      }
       if (shaded) {
         for (Channel c : {Channel::R, Channel::G, Channel::B}) {
           const float v = b.at(c, i, j);

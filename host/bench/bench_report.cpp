@@ -24,7 +24,7 @@ BenchReport run_bench(const Scene& scene, const OpenClOptions& options, const Be
   OpenClOptions depth = options;
   depth.purpose = KernelPurpose::DepthSteps;
   CeilingKernel ceiling(scene, options);
-  r.output_floor_planes = static_cast<int>(march_outputs(scene, KernelPurpose::DepthSteps).planes().size());
+  r.output_floor_planes = static_cast<int>(march_outputs(scene, KernelPurpose::DepthSteps, false).planes().size());
   OutputFloorKernel output_floor(options, depth_frame_floats(scene));
   OpenClRenderer shaded_renderer(scene, shaded);
   OpenClRenderer depth_renderer(scene, depth);

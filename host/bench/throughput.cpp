@@ -143,7 +143,7 @@ double CeilingKernel::run_ms() {
 }
 
 std::size_t depth_frame_floats(const Scene& scene) {
-  return march_outputs(scene, KernelPurpose::DepthSteps).planes().size() * scene.render.width * scene.render.height;
+  return march_outputs(scene, KernelPurpose::DepthSteps, false).planes().size() * scene.render.width * scene.render.height;
 }
 
 OutputFloorKernel::OutputFloorKernel(const OpenClOptions& options, std::size_t floats)

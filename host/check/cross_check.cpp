@@ -228,6 +228,8 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
   CheckReport r;
   const int w = reference.width, h = reference.height;
   r.pixels = w * h;
+  r.out_of_steps_opencl = opencl.rays_with_status(RayStatus::OutOfSteps);
+  r.out_of_steps_reference = reference.rays_with_status(RayStatus::OutOfSteps);
   const CameraBasis basis = camera_basis(scene.camera, w, h);
   const double eps = scene.render.epsilon;
   const double cone_slope = hit_cone_slope(scene.render, scene.camera);
@@ -439,6 +441,7 @@ nlohmann::json CheckReport::to_json() const {
   return {{"passed", passed()},
           {"pixels", pixels},
           {"both_hit", both_hit},
+          {"out_of_steps", {{"opencl", out_of_steps_opencl}, {"reference", out_of_steps_reference}}},
           {"mask_mismatch", {{"silhouette", mask_mismatch_silhouette}, {"interior", mask_mismatch_interior}}},
           {"depth_abs", summary(depth_abs)},
           {"depth_rel", summary(depth_rel)},
@@ -470,6 +473,8 @@ nlohmann::json CheckReport::to_json() const {
 std::string CheckReport::to_text() const {
   std::string out;
   out += fmt::format("pixels            {} ({} hit on both sides)\n", pixels, both_hit);
+  out += fmt::format("out of steps      OpenCL {}, reference {} (rays neither hit nor past their end: reported, not checked)\n",
+                     out_of_steps_opencl, out_of_steps_reference);
   out += fmt::format("hit-mask mismatch silhouette {} (max {}), interior {} (max {})\n", mask_mismatch_silhouette,
                      tolerances.mask_mismatch_silhouette, mask_mismatch_interior, tolerances.mask_mismatch_interior);
   out += fmt::format("depth abs         p50 {:.3g}  p99 {:.3g}  max {:.3g}\n", depth_abs.p50, depth_abs.p99, depth_abs.max);

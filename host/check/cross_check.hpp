@@ -24,6 +24,10 @@ struct ErrorSummary {
 struct CheckReport {
   int pixels = 0;
   int both_hit = 0;
+  /// Rays that ran out of render.max_steps on each side (the status channel; not a criterion:
+  /// where the step counts differ by one a ray may run out on one side only).
+  std::uint64_t out_of_steps_opencl = 0;
+  std::uint64_t out_of_steps_reference = 0;
   /// Pixels where exactly one side hits, next to a hit/miss edge in either image, or elsewhere.
   int mask_mismatch_silhouette = 0;
   int mask_mismatch_interior = 0;

@@ -147,6 +147,8 @@ RenderResult render_scene(const RenderCommandOptions& options, const Scene& scen
     result.stats.kernel_ms = ms;
     for (float s : result.buffers.plane(Channel::Steps)) result.stats.steps += static_cast<std::uint64_t>(s);
     for (float s : result.buffers.plane(Channel::WallSteps)) result.stats.wall_steps += static_cast<std::uint64_t>(s);
+    result.stats.out_of_steps = result.buffers.rays_with_status(RayStatus::OutOfSteps);
+    result.stats.out_of_distance = result.buffers.rays_with_status(RayStatus::OutOfDistance);
     if (cones) {
       for (int s : cones->steps) result.stats.coarse_steps += static_cast<std::uint64_t>(s);
     }
@@ -154,6 +156,7 @@ RenderResult render_scene(const RenderCommandOptions& options, const Scene& scen
     return result;
   }
   OpenClOptions cl = opencl_options(options.scene);
+  cl.ray_status = options.stats;
   cl.purpose = purpose_for(scene, !files.buffers.empty());
   if (!files.dump_kernel.empty()) {
     cl.before_build = [path = files.dump_kernel](const std::string& source) { write_file_atomically(path, source); };

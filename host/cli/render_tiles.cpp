@@ -74,6 +74,8 @@ void render_image_in_tiles(const RenderCommandOptions& options, const Scene& sce
     s.steps += figures.stats.steps;
     s.wall_steps += figures.stats.wall_steps;
     s.coarse_steps += figures.stats.coarse_steps;
+    s.out_of_steps += figures.stats.out_of_steps;
+    s.out_of_distance += figures.stats.out_of_distance;
     progress->count();
   };
   const UnitName name = [&](int tile) {
@@ -83,6 +85,7 @@ void render_image_in_tiles(const RenderCommandOptions& options, const Scene& sce
   const std::unique_ptr<WorkQueue> queue = make_work_queue(tiles, sink, name);
 
   OpenClOptions cl = opencl_options(options.scene);
+  cl.ray_status = options.stats;
   cl.purpose = purpose_for(scene, !files.buffers.empty());
   if (world.rank == 0 && !files.dump_kernel.empty()) {
     cl.before_build = [path = files.dump_kernel](const std::string& source) { write_file_atomically(path, source); };

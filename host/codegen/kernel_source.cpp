@@ -85,12 +85,13 @@ std::string feature_defines(const Scene& scene, const KernelOptions& options) {
   if (options.variant.precision == Precision::Double) out += "#define DOUBLE_PRECISION\n";
   if (options.variant.native_math) out += "#define NATIVE_MATH\n";
   if (!options.fp_contraction) out += "#define NO_FP_CONTRACT\n";
-  const MarchOutputs outputs = march_outputs(scene, options.purpose);
+  const MarchOutputs outputs = march_outputs(scene, options.purpose, options.ray_status);
   // Shading needs the normal whether or not its planes are written.
   if (outputs.normals) out += "#define WRITE_NORMALS\n";
   if (outputs.ids) out += "#define WRITE_IDS\n";
   if (outputs.layers) out += "#define WRITE_LAYERS\n";
   if (outputs.depth_lo) out += "#define WRITE_DEPTH_LO\n";
+  if (outputs.status) out += "#define WRITE_STATUS\n";
   if (outputs.normals || outputs.color) {
     out += "#define NEED_NORMALS\n";
     if (scene.render.normal_method == NormalMethod::Tetrahedral) out += "#define NORMAL_TETRAHEDRAL\n";
@@ -127,7 +128,7 @@ SdfCode eval_points_scene_code(const Scene& scene) {
 /// The scene's code as a program built with options has it.
 SdfCode program_scene_code(const Scene& scene, const KernelOptions& options) {
   if (options.purpose == KernelPurpose::EvalPoints) return eval_points_scene_code(scene);
-  const MarchOutputs outputs = march_outputs(scene, options.purpose);
+  const MarchOutputs outputs = march_outputs(scene, options.purpose, options.ray_status);
   return march_scene_code(scene, outputs.color, outputs.ids);
 }
 
@@ -153,6 +154,7 @@ std::string kernel_file(std::string_view name) {
 
 std::vector<int> MarchOutputs::planes() const {
   std::vector<int> planes = {CLMARCH_CHANNEL_DEPTH, CLMARCH_CHANNEL_STEPS};
+  if (status) planes.push_back(CLMARCH_CHANNEL_STATUS);
   if (color) planes.insert(planes.end(), {CLMARCH_CHANNEL_R, CLMARCH_CHANNEL_G, CLMARCH_CHANNEL_B});
   if (normals) planes.insert(planes.end(), {CLMARCH_CHANNEL_NX, CLMARCH_CHANNEL_NY, CLMARCH_CHANNEL_NZ});
   if (wall_steps) planes.push_back(CLMARCH_CHANNEL_WALL_STEPS);
@@ -166,7 +168,7 @@ std::vector<int> MarchOutputs::planes() const {
   return planes;
 }
 
-MarchOutputs march_outputs(const Scene& scene, KernelPurpose purpose) {
+MarchOutputs march_outputs(const Scene& scene, KernelPurpose purpose, bool ray_status) {
   MarchOutputs outputs;
   const bool buffers = purpose == KernelPurpose::Buffers;
   outputs.normals = purpose == KernelPurpose::Normals || purpose == KernelPurpose::Shaded || buffers;
@@ -174,6 +176,9 @@ MarchOutputs march_outputs(const Scene& scene, KernelPurpose purpose) {
   outputs.ids = purpose == KernelPurpose::Normals || buffers;
   outputs.layers = buffers;
   outputs.depth_lo = buffers && scene.render.precision == Precision::Double;
+  // Not in the timed programs (bench's Shaded and DepthSteps) unless asked: one more plane costs
+  // the store-bound torus 5 % (1280x720 on PoCL).
+  outputs.status = ray_status || buffers || purpose == KernelPurpose::Normals;
   outputs.color = purpose == KernelPurpose::Shaded || purpose == KernelPurpose::Color || buffers;
   outputs.wall_steps = uses_cells_tiling(scene);
   return outputs;
@@ -212,7 +217,7 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
   src += kernel_file("march_loop.cl");
   if (uses_cells_tiling(scene)) src += kernel_file("tiling.cl");
   if (uses_cone_pass(scene)) src += kernel_file("coarse.cl");
-  const MarchOutputs outputs = march_outputs(scene, options.purpose);
+  const MarchOutputs outputs = march_outputs(scene, options.purpose, options.ray_status);
   if (outputs.normals || outputs.color) src += kernel_file("normals.cl");
   if (outputs.color) {
     src += kernel_file("shading.cl");

@@ -57,6 +57,8 @@ struct KernelOptions {
   /// Literals of march_scene_code(scene) that the program reads from its scene_values buffer
   /// (animations: VaryingLiterals); march programs only.
   ValueSlots value_slots;
+  /// The status plane in every march program (march_outputs).
+  bool ray_status = false;
 };
 
 /// What a march program computes beyond depth and steps, and so which planes of the output buffer
@@ -68,11 +70,14 @@ struct MarchOutputs {
   bool ids = false;         ///< WRITE_IDS: the primitive hit (with the normals)
   bool layers = false;      ///< WRITE_LAYERS: ao, diffuse and specular (with the normals and the color)
   bool depth_lo = false;    ///< WRITE_DEPTH_LO: depth.lo (double programs' --buffers)
+  bool status = false;      ///< WRITE_STATUS: how each ray ended (--buffers, debug views, --stats)
 
   /// The planes the kernel writes for every pixel of a dispatch; the others it never touches.
   std::vector<int> planes() const;
 };
-MarchOutputs march_outputs(const Scene& scene, KernelPurpose purpose);
+/// ray_status: the status plane also in programs that do not otherwise write it (Shaded, Color,
+/// DepthSteps; render --stats counts the rays out of steps), at the cost of one more plane.
+MarchOutputs march_outputs(const Scene& scene, KernelPurpose purpose, bool ray_status);
 
 /// Whether the march program of purpose anti-aliases (ANTIALIAS: render.samples > 1; not the
 /// benchmark's ceiling): its camera rays cross their pixels at MarchParams::sample, and it takes

@@ -72,6 +72,8 @@ struct Report {
   std::uint64_t steps = 0;
   std::uint64_t wall_steps = 0;
   std::uint64_t coarse_steps = 0;
+  std::uint64_t out_of_steps = 0;
+  std::uint64_t out_of_distance = 0;
   char device[256] = {};
   char host[128] = {};
 };
@@ -103,6 +105,8 @@ Report report_of(int kind, int unit, const UnitFigures* figures, std::size_t pay
     r.steps = s.steps;
     r.wall_steps = s.wall_steps;
     r.coarse_steps = s.coarse_steps;
+    r.out_of_steps = s.out_of_steps;
+    r.out_of_distance = s.out_of_distance;
     copy_text(r.device, s.device);
   }
   return r;
@@ -122,6 +126,8 @@ UnitFigures figures_of(const Report& r) {
   s.steps = r.steps;
   s.wall_steps = r.wall_steps;
   s.coarse_steps = r.coarse_steps;
+  s.out_of_steps = r.out_of_steps;
+  s.out_of_distance = r.out_of_distance;
   return f;
 }
 

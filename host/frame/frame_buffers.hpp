@@ -3,9 +3,12 @@
 #pragma once
 
 #include "common/cancellation.hpp"
+#include "device_types.h"
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace clmarch {
@@ -17,15 +20,24 @@ namespace clmarch {
 /// got) are filled on the host (host/frame/antialias.hpp).
 enum class Channel {
   R, G, B, Depth, Steps, NX, NY, NZ, WallSteps, Id,
-  AoR, AoG, AoB, DiffuseR, DiffuseG, DiffuseB, SpecularR, SpecularG, SpecularB, DepthLo,
+  AoR, AoG, AoB, DiffuseR, DiffuseG, DiffuseB, SpecularR, SpecularG, SpecularB, DepthLo, Status,
   A, Samples
 };
-inline constexpr int kChannelCount = 22;
+inline constexpr int kChannelCount = 23;
 /// Channel names (the EXR's, but for wall_steps), indexed by Channel.
 inline constexpr const char* kChannelNames[kChannelCount] = {
     "R",    "G",    "B",    "depth",     "steps",     "N.x",       "N.y",        "N.z",        "wall_steps", "id",
     "ao.R", "ao.G", "ao.B", "diffuse.R", "diffuse.G", "diffuse.B", "specular.R", "specular.G", "specular.B", "depth.lo",
-    "A",    "samples"};
+    "status", "A",  "samples"};
+/// How a centre ray ended, the status channel's values (CLMARCH_RAY_* in kernels/device_types.h).
+enum class RayStatus {
+  Miss = CLMARCH_RAY_MISS,
+  Hit = CLMARCH_RAY_HIT,
+  OutOfSteps = CLMARCH_RAY_OUT_OF_STEPS,
+  OutOfDistance = CLMARCH_RAY_OUT_OF_DISTANCE
+};
+inline constexpr const char* kRayStatusNames[] = {"miss", "hit", "out_of_steps", "out_of_distance"};
+
 /// The shading's layers (ao, diffuse, specular; r, g, b each): the terms of a hit's lit color
 /// (kernels/shading.cl, LightTerms), written by shaded renders with the normals, 0 elsewhere.
 inline constexpr Channel kLayerChannels[] = {Channel::AoR,      Channel::AoG,      Channel::AoB,
@@ -43,6 +55,8 @@ struct FrameBuffers {
   /// Whether the render filled DepthLo: depth + depth.lo in double is the depth of a double render
   /// (render.precision: double, the --buffers program and the reference).
   bool has_depth_lo = false;
+  /// Whether the render filled Status (the reference always; OpenCL programs with WRITE_STATUS).
+  bool has_status = false;
   std::array<std::vector<float>, kChannelCount> planes;
 
   FrameBuffers() = default;
@@ -58,6 +72,12 @@ struct FrameBuffers {
   const std::vector<float>& plane(Channel c) const { return planes[static_cast<int>(c)]; }
   float& at(Channel c, int i, int j) { return plane(c)[static_cast<std::size_t>(j) * width + i]; }
   float at(Channel c, int i, int j) const { return plane(c)[static_cast<std::size_t>(j) * width + i]; }
+  /// The pixels whose centre ray ended so (the status channel).
+  std::uint64_t rays_with_status(RayStatus status) const {
+    const float value = static_cast<float>(status);
+    const std::vector<float>& p = plane(Channel::Status);
+    return static_cast<std::uint64_t>(std::count(p.begin(), p.end(), value));
+  }
 };
 
 }  // namespace clmarch

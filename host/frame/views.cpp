@@ -16,6 +16,16 @@ void set_gray(FrameBuffers& b, std::size_t i, float v) {
 
 }  // namespace
 
+std::array<float, 3> status_color(RayStatus status) {
+  switch (status) {
+    case RayStatus::Miss: return {0.0f, 0.0f, 0.0f};
+    case RayStatus::Hit: return {0.5f, 0.5f, 0.5f};
+    case RayStatus::OutOfSteps: return {1.0f, 0.0f, 1.0f};
+    case RayStatus::OutOfDistance: return {0.0f, 0.0f, 0.5f};
+  }
+  return {0.0f, 0.0f, 0.0f};
+}
+
 void apply_view(FrameBuffers& buffers, View view, const RenderSettings& settings) {
   const std::size_t pixels = buffers.plane(Channel::Depth).size();
   const auto& depth = buffers.plane(Channel::Depth);
@@ -52,6 +62,14 @@ void apply_view(FrameBuffers& buffers, View view, const RenderSettings& settings
     case View::Samples:
       for (std::size_t i = 0; i < pixels; ++i) {
         set_gray(buffers, i, buffers.plane(Channel::Samples)[i] / static_cast<float>(settings.samples));
+      }
+      return;
+    case View::Status:
+      for (std::size_t i = 0; i < pixels; ++i) {
+        const std::array<float, 3> color = status_color(static_cast<RayStatus>(buffers.plane(Channel::Status)[i]));
+        buffers.plane(Channel::R)[i] = color[0];
+        buffers.plane(Channel::G)[i] = color[1];
+        buffers.plane(Channel::B)[i] = color[2];
       }
       return;
   }

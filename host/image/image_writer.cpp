@@ -131,7 +131,7 @@ void write_color_image(StagedFiles& files, const std::filesystem::path& path, co
 namespace {
 
 /// The EXR's channels of every render: the contract's eight, then A, Z (depth, by the name
-/// compositors look for), samples, id and the shading's layers (0 where a view draws something else),
+/// compositors look for), samples, id, status and the shading's layers (0 where a view draws something else),
 /// and depth.lo where the render was in double.
 std::vector<NamedPlane> buffer_planes(const FrameBuffers& buffers) {
   std::vector<NamedPlane> planes = named(buffers, {Channel::R, Channel::G, Channel::B, Channel::Depth, Channel::Steps,
@@ -139,6 +139,7 @@ std::vector<NamedPlane> buffer_planes(const FrameBuffers& buffers) {
   planes.push_back({&buffers.plane(Channel::Depth), "Z"});
   planes.push_back({&buffers.plane(Channel::Samples), "samples"});
   planes.push_back({&buffers.plane(Channel::Id), "id"});
+  planes.push_back({&buffers.plane(Channel::Status), "status"});
   for (Channel layer : kLayerChannels) planes.push_back({&buffers.plane(layer), kChannelNames[static_cast<int>(layer)]});
   if (buffers.has_depth_lo) planes.push_back({&buffers.plane(Channel::DepthLo), "depth.lo"});
   return planes;

@@ -60,6 +60,7 @@ MarchEnd march_plain(const Field& field, const glm::dvec3& origin, const glm::dv
     if (t >= t_end) break;
   }
   end.depth = t;
+  end.exhausted = !end.hit && t < t_end;
   end.local = origin + t * direction;
   return end;
 }
@@ -114,6 +115,7 @@ MarchEnd march_cells(const Scene& scene, const glm::dvec3& origin, const glm::dv
     if (t_entry + s >= t_end) break;
   }
   end.depth = t_entry + s;
+  end.exhausted = !end.hit && end.depth < t_end;
   end.local = entry + s * direction;
   return end;
 }

@@ -41,6 +41,8 @@ struct MarchEnd {
   glm::dvec3 local{0.0};
   int steps = 0;
   int wall_steps = 0;
+  /// Whether the step budget stopped the march: neither a hit nor past t_end.
+  bool exhausted = false;
   /// Smallest distance met on the way.
   double closest = std::numeric_limits<double>::infinity();
   /// Soft shadows: light reaching the start, 1 when unoccluded.

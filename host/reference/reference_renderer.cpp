@@ -151,12 +151,18 @@ RayResult trace_within(const Scene& scene, const std::optional<BoundingSphere>& 
   t_start = std::max(t_start, t_min);
   marching = marching && t_end > t_start;
   MarchEnd end;
+  // A ray that does not march ends where it starts, as in the kernel (kernels/march.cl).
+  end.depth = t_start;
   if (marching) end = reference_march(scene, frame_origin, direction, t_start, t_end, limits);
   RayResult r;
   r.steps = end.steps;
   r.wall_steps = end.wall_steps;
+  r.status = end.hit         ? RayStatus::Hit
+             : end.exhausted ? RayStatus::OutOfSteps
+             : end.depth >= scene.render.max_distance ? RayStatus::OutOfDistance
+                                                      : RayStatus::Miss;
   if (!end.hit) {
-    // Running out of steps is a miss too, like leaving through max_distance.
+    // Running out of steps shades as a miss (the status channel tells them apart).
     r.depth = std::numeric_limits<double>::infinity();
     r.color = reference_tone_map(scene, reference_miss_color(scene, direction, end.closest));
     return r;
@@ -190,6 +196,7 @@ FrameBuffers render_reference(const Scene& scene, const std::optional<ConeStarts
   FrameBuffers fb(width, height);
   fb.has_ids = fb.has_layers = true;
   fb.has_depth_lo = scene.render.precision == Precision::Double;
+  fb.has_status = true;
   ProgressLine progress("reference rows", height, scene.render.width);
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
     for (int j = rows.begin(); j != rows.end(); ++j) {
@@ -204,6 +211,7 @@ FrameBuffers render_reference(const Scene& scene, const std::optional<ConeStarts
         fb.at(Channel::Depth, i, j) = static_cast<float>(r.depth);
         if (fb.has_depth_lo && r.hit) fb.at(Channel::DepthLo, i, j) = static_cast<float>(r.depth - static_cast<float>(r.depth));
         fb.at(Channel::Steps, i, j) = static_cast<float>(r.steps);
+        fb.at(Channel::Status, i, j) = static_cast<float>(r.status);
         fb.at(Channel::NX, i, j) = static_cast<float>(r.normal.x);
         fb.at(Channel::NY, i, j) = static_cast<float>(r.normal.y);
         fb.at(Channel::NZ, i, j) = static_cast<float>(r.normal.z);

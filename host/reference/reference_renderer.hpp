@@ -23,6 +23,8 @@ struct RayResult {
   int steps = 0;
   /// The iterations that stepped to a tiling cell's wall.
   int wall_steps = 0;
+  /// How the ray ended (the status channel).
+  RayStatus status = RayStatus::Miss;
   /// Estimated unit normal at the hit; 0 on a miss.
   glm::dvec3 normal{0.0};
   /// The number of the primitive hit (the id channel; scene/scene.hpp, primitive_count).

@@ -9,7 +9,7 @@ namespace clmarch {
 namespace {
 
 /// Channels of the --buffers EXR (image_writer.cpp), which the writer interleaves into one copy.
-constexpr std::uint64_t kWrittenChannels = 25;
+constexpr std::uint64_t kWrittenChannels = 26;
 
 }  // namespace
 

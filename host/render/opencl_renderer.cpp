@@ -76,7 +76,7 @@ OpenClRenderer::OpenClRenderer(const Scene& scene, const OpenClOptions& options)
   State& s = *state_;
   s.render = scene.render;
   s.options = options;
-  s.outputs = march_outputs(scene, options.purpose);
+  s.outputs = march_outputs(scene, options.purpose, options.ray_status);
   s.prepared = prepare_program(scene, options, options.purpose);
   DeviceProgram& dp = s.prepared.program;
   const std::size_t chunk_limit = options.max_chunk_pixels ? options.max_chunk_pixels : chunk_pixels_for(dp.device);
@@ -114,7 +114,7 @@ bool OpenClRenderer::can_render(const Scene& scene, const OpenClOptions& options
   if (scene.render.width != s.render.width || scene.render.height != s.render.height) return false;
   if (options.device != mine.device || options.lanes != mine.lanes || options.purpose != mine.purpose ||
       !(options.variant == mine.variant) || options.max_chunk_pixels != mine.max_chunk_pixels ||
-      options.value_slots != mine.value_slots || !(scene_variant(scene, options.variant) == s.prepared.kernel_options.variant)) {
+      options.value_slots != mine.value_slots || options.ray_status != mine.ray_status || !(scene_variant(scene, options.variant) == s.prepared.kernel_options.variant)) {
     return false;
   }
   return generate_kernel_source(scene, s.prepared.kernel_options) == s.prepared.source;
@@ -240,6 +240,7 @@ RenderResult OpenClRenderer::render_rows(int band_first_row, int band_rows) {
   result.buffers.has_ids = s.outputs.ids;
   result.buffers.has_layers = s.outputs.layers;
   result.buffers.has_depth_lo = s.outputs.depth_lo;
+  result.buffers.has_status = s.outputs.status;
   const std::size_t chunk_count = (static_cast<std::size_t>(band_rows) + dispatch.chunk_rows - 1) / dispatch.chunk_rows;
   ProgressLine progress("OpenCL chunks", static_cast<long long>(chunk_count),
                         static_cast<double>(pixels) / static_cast<double>(chunk_count));
@@ -303,6 +304,10 @@ RenderResult OpenClRenderer::render_rows(int band_first_row, int band_rows) {
   stats.steps = plane_total(result.buffers.plane(Channel::Steps));
   stats.wall_steps = plane_total(result.buffers.plane(Channel::WallSteps));
   stats.coarse_steps = coarse_steps;
+  if (result.buffers.has_status) {
+    stats.out_of_steps = result.buffers.rays_with_status(RayStatus::OutOfSteps);
+    stats.out_of_distance = result.buffers.rays_with_status(RayStatus::OutOfDistance);
+  }
   stats.rays_per_s = kernel_ms > 0.0 ? static_cast<double>(pixels) / (kernel_ms * 1e-3) : 0.0;
   return result;
 }

@@ -34,6 +34,8 @@ struct OpenClOptions {
   /// Most pixels per dispatch; 0: as many as the device's largest buffer allows (capped so that
   /// progress and Ctrl-C stay responsive).
   std::size_t max_chunk_pixels = 0;
+  /// The status plane also where the purpose does not need it (KernelOptions::ray_status).
+  bool ray_status = false;
 };
 
 /// Figures of one OpenCL render (--stats).
@@ -51,6 +53,10 @@ struct RenderStats {
   std::uint64_t wall_steps = 0;
   /// Steps of the coarse cone pass, one cone per block of pixels (not part of steps).
   std::uint64_t coarse_steps = 0;
+  /// Centre rays that ran out of render.max_steps, and that reached render.max_distance (the
+  /// status channel; 0 where the program wrote none: OpenClOptions::ray_status).
+  std::uint64_t out_of_steps = 0;
+  std::uint64_t out_of_distance = 0;
   double rays_per_s = 0.0;
   /// Dispatches the image was split into.
   int chunks = 1;

@@ -33,6 +33,7 @@ PreparedProgram prepare_program(const Scene& scene, const OpenClOptions& options
   const DeviceEntry device = select_device(options.device);
   const KernelVariant variant = scene_variant(scene, options.variant);
   KernelOptions kernel_options{purpose, program_lanes(options.lanes, default_lanes(device), variant.precision), variant};
+  kernel_options.ray_status = options.ray_status;
   check_precision_support(scene, kernel_options, device.label(), device.has_fp64());
   kernel_options.fp_contraction = allows_fp_contraction(device);
   const bool march = purpose != KernelPurpose::EvalPoints;
@@ -41,7 +42,7 @@ PreparedProgram prepare_program(const Scene& scene, const OpenClOptions& options
   if (options.before_build) options.before_build(source);
   return {build_device_program(device, source, kernel_build_options(variant)), kernel_options.lanes,
           march ? packets_per_item(scene, kernel_options.lanes) : 1,
-          march ? march_outputs(scene, purpose).planes() : std::vector<int>{}, source, kernel_options};
+          march ? march_outputs(scene, purpose, options.ray_status).planes() : std::vector<int>{}, source, kernel_options};
 }
 
 }  // namespace clmarch

@@ -268,8 +268,8 @@ enum class ToneMap { None, Reinhard };
 inline constexpr const char* kToneMapNames[] = {"none", "reinhard"};
 
 /// What the color image shows: the lit scene or one of the debug views.
-enum class View { Shaded, Normals, Depth, Steps, Samples };
-inline constexpr const char* kViewNames[] = {"shaded", "normals", "depth", "steps", "samples"};
+enum class View { Shaded, Normals, Depth, Steps, Samples, Status };
+inline constexpr const char* kViewNames[] = {"shaded", "normals", "depth", "steps", "samples", "status"};
 
 /// Beer-Lambert fog on hits: color = mix(fog color, color, exp(-density * depth)).
 struct Fog {
