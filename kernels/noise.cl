@@ -44,10 +44,10 @@ typedef struct {
 } noise_sample;
 
 /* Value noise: lattice values blended by the cubic smoothstep, with the analytic gradient
- * (Inigo Quilez's noised). */
-SDF_INLINE noise_sample value_noise(vfloat x, vfloat z, uint seed) {
+ * (Inigo Quilez's noised). The lattice cell of (x, z) is moved by (shift_x, shift_z) cells. */
+SDF_INLINE noise_sample value_noise(vfloat x, vfloat z, uint seed, uint shift_x, uint shift_z) {
   const vfloat cell_x = floor(x), cell_z = floor(z);
-  const vuint ix = NOISE_AS_VUINT(NOISE_LATTICE(cell_x)), iz = NOISE_AS_VUINT(NOISE_LATTICE(cell_z));
+  const vuint ix = NOISE_AS_VUINT(NOISE_LATTICE(cell_x)) + shift_x, iz = NOISE_AS_VUINT(NOISE_LATTICE(cell_z)) + shift_z;
   const vfloat fx = x - cell_x, fz = z - cell_z;
   const vfloat ux = fx * fx * (3.0f - 2.0f * fx), uz = fz * fz * (3.0f - 2.0f * fz);
   const vfloat dux = 6.0f * fx * (1.0f - fx), duz = 6.0f * fz * (1.0f - fz);
@@ -71,10 +71,11 @@ SDF_INLINE vfloat perlin_corner(vuint ix, vuint iz, uint seed, vfloat fx, vfloat
   return gx * fx + gz * fz;
 }
 
-/* Gradient (Perlin) noise, blended by the quintic 6f^5 - 15f^4 + 10f^3; zero on the lattice. */
-SDF_INLINE vfloat perlin_noise(vfloat x, vfloat z, uint seed) {
+/* Gradient (Perlin) noise, blended by the quintic 6f^5 - 15f^4 + 10f^3; zero on the lattice. The
+ * lattice cell of (x, z) is moved by (shift_x, shift_z) cells. */
+SDF_INLINE vfloat perlin_noise(vfloat x, vfloat z, uint seed, uint shift_x, uint shift_z) {
   const vfloat cell_x = floor(x), cell_z = floor(z);
-  const vuint ix = NOISE_AS_VUINT(NOISE_LATTICE(cell_x)), iz = NOISE_AS_VUINT(NOISE_LATTICE(cell_z));
+  const vuint ix = NOISE_AS_VUINT(NOISE_LATTICE(cell_x)) + shift_x, iz = NOISE_AS_VUINT(NOISE_LATTICE(cell_z)) + shift_z;
   const vfloat fx = x - cell_x, fz = z - cell_z;
   const vfloat ux = fx * fx * fx * (fx * (6.0f * fx - 15.0f) + 10.0f);
   const vfloat uz = fz * fz * fz * (fz * (6.0f * fz - 15.0f) + 10.0f);
@@ -93,14 +94,39 @@ SDF_INLINE void noise_next_octave(vfloat* x, vfloat* z, float lacunarity) {
   *x = lacunarity * turned_x;
 }
 
+/* Octave i of a terrain far from the origin: its lattice point of the absolute point p + F is
+ * M^i f p + M^i f F, M the octave step. The host splits M^i f F in double into a fraction, added to
+ * the small M^i f p here, and whole cells, added to the lattice index (phases[i] = (fraction x,
+ * fraction z, cells x, cells z), cells exact in float): so the noise keeps the precision of the
+ * map frame's small p instead of float's spacing at F (host/codegen/sdf_codegen.cpp,
+ * terrain_phases). phases is 0 near the origin (F = 0). */
+typedef struct {
+  vfloat x, z;
+  uint shift_x, shift_z;
+} NoiseAt;
+
+SDF_INLINE NoiseAt noise_at(vfloat x, vfloat z, const float4* phases, int octave) {
+  NoiseAt at = {x, z, 0u, 0u};
+  if (phases) {
+    const float4 phase = phases[octave];
+    at.x += phase.x;
+    at.z += phase.y;
+    at.shift_x = (uint)(int)phase.z;
+    at.shift_z = (uint)(int)phase.w;
+  }
+  return at;
+}
+
 /* Height bound: p.y minus the terrain height (a bound only with a step factor below
  * 1 / sqrt(1 + slope^2)). Fractal sum of value noise: weights 0.5^i, frequencies 2^i. */
-SDF_INLINE vfloat sd_terrain_value(vec3v p, float height, float amplitude, float frequency, int octaves, uint seed) {
+SDF_INLINE vfloat sd_terrain_value_phased(vec3v p, float height, float amplitude, float frequency, int octaves, uint seed,
+                                          const float4* phases) {
   vfloat x = p.x * frequency, z = p.z * frequency;
   vfloat sum = (vfloat)(0.0f);
   float weight = 1.0f;
   for (int i = 0; i < octaves; ++i) {
-    sum += weight * value_noise(x, z, seed).value;
+    const NoiseAt at = noise_at(x, z, phases, i);
+    sum += weight * value_noise(at.x, at.z, seed, at.shift_x, at.shift_z).value;
     weight *= 0.5f;
     noise_next_octave(&x, &z, 2.0f);
   }
@@ -108,12 +134,14 @@ SDF_INLINE vfloat sd_terrain_value(vec3v p, float height, float amplitude, float
 }
 
 /* As sd_terrain_value, with gradient (Perlin) noise. */
-SDF_INLINE vfloat sd_terrain_perlin(vec3v p, float height, float amplitude, float frequency, int octaves, uint seed) {
+SDF_INLINE vfloat sd_terrain_perlin_phased(vec3v p, float height, float amplitude, float frequency, int octaves, uint seed,
+                                           const float4* phases) {
   vfloat x = p.x * frequency, z = p.z * frequency;
   vfloat sum = (vfloat)(0.0f);
   float weight = 1.0f;
   for (int i = 0; i < octaves; ++i) {
-    sum += weight * perlin_noise(x, z, seed);
+    const NoiseAt at = noise_at(x, z, phases, i);
+    sum += weight * perlin_noise(at.x, at.z, seed, at.shift_x, at.shift_z);
     weight *= 0.5f;
     noise_next_octave(&x, &z, 2.0f);
   }
@@ -123,13 +151,14 @@ SDF_INLINE vfloat sd_terrain_perlin(vec3v p, float height, float amplitude, floa
 /* The noise-derivative terrain of Heckel's article (after Inigo Quilez): each octave's value is
  * damped by 1 / (1 + |sum of the gradients so far|^2); weight 2.5, times -0.4 per octave, the sum
  * times 0.85 per octave, frequencies 2.75^i. */
-SDF_INLINE vfloat sd_terrain_derivative(vec3v p, float height, float amplitude, float frequency, int octaves,
-                                        uint seed) {
+SDF_INLINE vfloat sd_terrain_derivative_phased(vec3v p, float height, float amplitude, float frequency, int octaves,
+                                               uint seed, const float4* phases) {
   vfloat x = p.x * frequency, z = p.z * frequency;
   vfloat sum = (vfloat)(0.0f), slope_x = (vfloat)(0.0f), slope_z = (vfloat)(0.0f);
   float weight = 2.5f;
   for (int i = 0; i < octaves; ++i) {
-    const noise_sample n = value_noise(x, z, seed);
+    const NoiseAt at = noise_at(x, z, phases, i);
+    const noise_sample n = value_noise(at.x, at.z, seed, at.shift_x, at.shift_z);
     slope_x += n.dx;
     slope_z += n.dz;
     sum += weight * n.value / (1.0f + slope_x * slope_x + slope_z * slope_z);
@@ -138,4 +167,15 @@ SDF_INLINE vfloat sd_terrain_derivative(vec3v p, float height, float amplitude, 
     noise_next_octave(&x, &z, 2.75f);
   }
   return p.y - (height + amplitude * sum);
+}
+
+/* The terrains at the absolute point p (near the origin, where map()'s frame is the world's). */
+SDF_INLINE vfloat sd_terrain_value(vec3v p, float height, float amplitude, float frequency, int octaves, uint seed) {
+  return sd_terrain_value_phased(p, height, amplitude, frequency, octaves, seed, 0);
+}
+SDF_INLINE vfloat sd_terrain_perlin(vec3v p, float height, float amplitude, float frequency, int octaves, uint seed) {
+  return sd_terrain_perlin_phased(p, height, amplitude, frequency, octaves, seed, 0);
+}
+SDF_INLINE vfloat sd_terrain_derivative(vec3v p, float height, float amplitude, float frequency, int octaves, uint seed) {
+  return sd_terrain_derivative_phased(p, height, amplitude, frequency, octaves, seed, 0);
 }

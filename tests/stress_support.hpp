@@ -33,7 +33,7 @@ std::string invariant_violation(const FrameBuffers& buffers, int max_steps, bool
 FrameBuffers render(const Scene& scene, KernelPurpose purpose = KernelPurpose::Shaded, int lanes = 16);
 
 /// Renders twice and returns the first render; fails the current test if any plane differs in
-/// any bit between the runs or an invariant is broken.
+/// any bit between the runs or an invariant is broken, also in a render in the other precision.
 FrameBuffers render_checked(const Scene& scene, KernelPurpose purpose = KernelPurpose::Shaded, int lanes = 16);
 
 /// True when every plane of a and b is bitwise equal.

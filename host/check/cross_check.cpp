@@ -41,7 +41,7 @@ double unit_roundoff(const Scene& scene) { return scene.render.precision == Prec
 /// runs inside the camera's cell.
 double coordinate_size(const Scene& scene, const CameraBasis& basis) {
   if (scene.tiling && scene.tiling->method == TilingMethod::Cells) return glm::length(scene.tiling->cell);
-  if (scene.tiling || takes_absolute_points(scene.sdf)) return glm::length(basis.origin);
+  if (scene.tiling || takes_absolute_points(scene.sdf, map_frame_origin(scene))) return glm::length(basis.origin);
   return glm::length(basis.origin - map_frame_origin(scene));
 }
 

@@ -270,12 +270,40 @@ class SdfEmitter {
     return q;
   }
 
+  /// The terrain at the point p + offset. Its noise hashes absolute lattice coordinates, so the
+  /// offset cannot fold into positions: each octave's lattice point of it, M^i f (offset.x,
+  /// offset.z) with M the octave step of kernels/noise.cl (noise_next_octave), is split here in
+  /// double into whole cells and a fraction, which sd_terrain_<noise>_phased adds to the octave's
+  /// small point (issue 26: at 10^4 float's spacing of the absolute point had turned the normals
+  /// by 31 degrees). Where the cells outgrow float's integers (2^24), the absolute point is formed
+  /// in float as before.
+  std::string terrain_call(const Node& node, const std::string& p, const glm::dvec3& offset) {
+    if (offset == glm::dvec3(0.0)) return primitive_call(node, p, offset, lit_);
+    const Terrain& terrain = params_of<Terrain>(node);
+    const double lacunarity = terrain.noise == TerrainNoise::Derivative ? 2.75 : 2.0;
+    glm::dvec2 lattice = terrain.frequency * glm::dvec2(offset.x, offset.z);
+    std::string phases;
+    for (int octave = 0; octave < terrain.octaves; ++octave) {
+      const glm::dvec2 cells = glm::floor(lattice), fraction = lattice - cells;
+      if (std::abs(cells.x) >= 0x1p24 || std::abs(cells.y) >= 0x1p24) {
+        return primitive_call(node, absolute_point(p, offset), glm::dvec3(0.0), lit_);
+      }
+      phases += fmt::format("{}(float4)({}, {}, {}, {})", octave ? ", " : "", lit_.f(fraction.x), lit_.f(fraction.y),
+                            lit_.f(cells.x), lit_.f(cells.y));
+      lattice = lacunarity * glm::dvec2(0.8 * lattice.x + 0.6 * lattice.y, -0.6 * lattice.x + 0.8 * lattice.y);
+    }
+    const std::string table = fresh("phases");
+    line(fmt::format("const float4 {}[] = {{{}}};", table, phases));
+    // The declared call, renamed to its phased form and given the table.
+    std::string call = primitive_call(node, p, glm::dvec3(0.0), lit_);
+    call.insert(call.find('('), "_phased");
+    call.insert(call.size() - 1, ", " + table);
+    return call;
+  }
+
   Value emit_primitive(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
     Value value{fresh("d"), "", "", ""};
-    // Terrain noise hashes absolute lattice coordinates, so it cannot fold the offset.
-    const std::string call = node.kind == NodeKind::Terrain
-                                 ? primitive_call(node, absolute_point(p, offset), glm::dvec3(0.0), lit_)
-                                 : primitive_call(node, p, offset, lit_);
+    const std::string call = node.kind == NodeKind::Terrain ? terrain_call(node, p, offset) : primitive_call(node, p, offset, lit_);
     line(fmt::format("vfloat {} = {};  /* {} */", value.distance, call, node_kind_name(node.kind)));
     if (with_color_) {
       value.color = fresh("c");
@@ -791,9 +819,15 @@ std::string sdf_functions(const Node& root, const glm::dvec3& frame_origin, bool
       with_ids ? fmt::format("  *id = {};\n", dc.id) : std::string(), dc.distance);
 }
 
-bool takes_absolute_points(const Node& root) {
-  if (root.kind == NodeKind::Terrain) return true;
-  return std::any_of(root.children.begin(), root.children.end(), takes_absolute_points);
+bool takes_absolute_points(const Node& root, const glm::dvec3& frame_origin) {
+  if (root.kind == NodeKind::Terrain) {
+    // terrain_call's test, on the largest octave's lattice point of the frame origin.
+    const Terrain& terrain = params_of<Terrain>(root);
+    const double lacunarity = terrain.noise == TerrainNoise::Derivative ? 2.75 : 2.0;
+    if (terrain.frequency * glm::length(frame_origin) * std::pow(lacunarity, terrain.octaves - 1) >= 0x1p24) return true;
+  }
+  return std::any_of(root.children.begin(), root.children.end(),
+                     [&](const Node& child) { return takes_absolute_points(child, frame_origin); });
 }
 
 SdfCode generate_sdf_code(const Node& root, const glm::dvec3& frame_origin, bool gate_subtrees, const Node* grid_node,

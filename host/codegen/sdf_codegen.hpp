@@ -58,10 +58,11 @@ class Literals {
 std::string sdf_functions(const Node& root, const glm::dvec3& frame_origin, bool gate_subtrees, Literals& literals,
                           const Node* grid_node, std::shared_ptr<const std::vector<float>>& data, bool with_ids);
 
-/// Whether the generated map() of this tree takes absolute world points somewhere (the point plus
-/// the map frame origin, in float: terrain noise, absolute_point), so
-/// that far from the origin its accuracy is the world coordinates' rather than the frame's.
-bool takes_absolute_points(const Node& root);
+/// Whether the generated map() of this tree, measured from frame_origin, takes absolute world points
+/// somewhere (the point plus the frame origin, in float: a terrain whose octaves' lattice points
+/// there pass float's integers), so that its accuracy is the world coordinates' rather than the
+/// frame's.
+bool takes_absolute_points(const Node& root, const glm::dvec3& frame_origin);
 
 /// The code of map and map_color for this tree, taking points relative to the world point
 /// frame_origin (its positions are baked relative to it, in double). With gate_subtrees, unions
