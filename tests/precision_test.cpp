@@ -67,6 +67,26 @@ TEST(DeepZoom, DoubleShowsTheStructureAndPassesTheCheck) {
   EXPECT_GT(widest, 20.0 * M_PI / 180.0);
 }
 
+// The zoom sequence's shallow end (scripts/zoom-sequence.sh at D = 0.2: the camera 0.2 from the
+// same point, epsilon and normal_epsilon 1e-6) passes in double too. The two renders' hit points
+// agree to about 1e-12 of their depth, but both buffers hold depth as float: the check allows the
+// float rounding of both (kDepthBufferRounding). Without it the normal tolerance assumed the hit
+// points known to double's rounding and this frame failed, its normals 0.0002 degrees apart
+// against a tolerance 635 times smaller (64 x 36).
+TEST(DeepZoom, TheShallowEndPassesInDoubleToo) {
+  Scene scene = deep_zoom(Precision::Double);
+  const glm::dvec3 hit = scene.camera.look_at;
+  scene.camera.position = hit - 0.2 * glm::normalize(hit - scene.camera.position);
+  scene.render.epsilon = scene.render.normal_epsilon = 1e-6;
+  scene.render.max_distance = 10.0;
+  OpenClOptions options;
+  options.purpose = KernelPurpose::Buffers;
+  const FrameBuffers opencl = render_opencl(scene, options).buffers;
+  const CheckReport report = cross_check(scene, opencl, render_reference(scene), reshade_hits(scene, opencl));
+  EXPECT_TRUE(report.passed()) << report.to_text();
+  EXPECT_GT(report.both_hit, 64 * 36 / 2);
+}
+
 // The same view in float: its rays start from the same rounded camera and march through the same
 // rounded points, so their normals' taps land on the same few points (few distinct normals: a
 // flat image), and the check says the scene is beyond float's reach
