@@ -177,6 +177,39 @@ typedef mask16 vint;
 
 /* Whether any of 16 lanes is set, as an OR tree: PoCL 3.1's any() tests the lanes one by one with
  * a branch each, which cost the torus's march loop about 10 % (measured). */
+#if LANES == 1 && defined(DOUBLE_PRECISION)
+/* One double lane (GPUs' shape): the kernels pass float literals to builtins (fmax(x, 0.0f)),
+ * which for a scalar double x match the float and the double overloads alike. These take every
+ * argument as double; their bodies call the builtins before the names are redefined. */
+SDF_INLINE double lane_fmax(double a, double b) { return fmax(a, b); }
+SDF_INLINE double lane_fmin(double a, double b) { return fmin(a, b); }
+SDF_INLINE double lane_clamp(double x, double low, double high) { return clamp(x, low, high); }
+SDF_INLINE double lane_mix(double a, double b, double t) { return mix(a, b, t); }
+SDF_INLINE double lane_step(double edge, double x) { return step(edge, x); }
+SDF_INLINE double lane_smoothstep(double low, double high, double x) { return smoothstep(low, high, x); }
+SDF_INLINE double lane_pow(double x, double y) { return pow(x, y); }
+SDF_INLINE double lane_atan2(double y, double x) { return atan2(y, x); }
+SDF_INLINE double lane_copysign(double x, double y) { return copysign(x, y); }
+#undef fmax
+#undef fmin
+#undef clamp
+#undef mix
+#undef step
+#undef smoothstep
+#undef pow
+#undef atan2
+#undef copysign
+#define fmax(a, b) lane_fmax((a), (b))
+#define fmin(a, b) lane_fmin((a), (b))
+#define clamp(x, low, high) lane_clamp((x), (low), (high))
+#define mix(a, b, t) lane_mix((a), (b), (t))
+#define step(edge, x) lane_step((edge), (x))
+#define smoothstep(low, high, x) lane_smoothstep((low), (high), (x))
+#define pow(x, y) lane_pow((x), (y))
+#define atan2(y, x) lane_atan2((y), (x))
+#define copysign(x, y) lane_copysign((x), (y))
+#endif
+
 SDF_INLINE int any16(mask16 m) {
   const mask8 a = m.lo | m.hi;
   const mask4 b = a.lo | a.hi;

@@ -76,11 +76,10 @@ FrameBuffers render_checked(const Scene& scene, KernelPurpose purpose, int lanes
   const int budget = scene.render.max_steps;
   EXPECT_EQ(invariant_violation(first, budget, shaded), "");
   // Every stress scene in the other precision too (issue 26): a double render keeps the same
-  // invariants (double programs take vector lanes).
+  // invariants.
   Scene other = scene;
   other.render.precision = scene.render.precision == Precision::Float ? Precision::Double : Precision::Float;
-  const int other_lanes = other.render.precision == Precision::Double && lanes == 1 ? 4 : lanes;
-  EXPECT_EQ(invariant_violation(render(other, purpose, other_lanes), budget, shaded), "")
+  EXPECT_EQ(invariant_violation(render(other, purpose, lanes), budget, shaded), "")
       << "in " << kPrecisionNames[static_cast<int>(other.render.precision)];
   return first;
 }

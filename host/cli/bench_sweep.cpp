@@ -83,9 +83,6 @@ int run_bench_sweep(const BenchCommandOptions& options) {
   for (const SweepCase& c : cases) {
     if (c.options.variant.precision != Precision::Double) continue;
     if (!device.has_fp64()) throw InputError(fmt::format("--sweep precision=double: {} has no cl_khr_fp64", device.label()));
-    if (program_lanes(c.options.lanes, default_lanes(device), Precision::Double) == 1) {
-      throw InputError(fmt::format("--sweep: {} ({})", kDoubleNeedsVectorLanes, combination_label(c.combination)));
-    }
   }
 
   SweepSettings settings;

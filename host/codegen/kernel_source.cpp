@@ -192,9 +192,6 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
   if (options.variant.native_math && options.variant.precision == Precision::Double) {
     throw std::invalid_argument("native math needs float precision: OpenCL has no native_* functions for double");
   }
-  if (options.variant.precision == Precision::Double && options.lanes == 1) {
-    throw std::invalid_argument(kDoubleNeedsVectorLanes);
-  }
   std::string src = fmt::format("/* clmarch program for {} */\n", scene.source_name);
   src += feature_defines(scene, options);
   src += kernel_file("device_types.h");

@@ -89,16 +89,9 @@ bool uses_antialiasing(const Scene& scene, KernelPurpose purpose);
 /// single lane (GPUs, where work-items already run in lock-step and registers are scarce).
 int packets_per_item(const Scene& scene, int lanes);
 
-/// Why double precision needs LANES 4, 8 or 16: the kernels pass float literals to builtins
-/// (fmax(x, 0.0f)), which for a scalar double x matches fmax(double, double) and fmax(float, float)
-/// equally well; for vectors only the double overload is viable.
-inline constexpr const char* kDoubleNeedsVectorLanes =
-    "double precision needs lanes 4, 8 or 16 (with one lane, calls such as fmax(x, 0.0f) are ambiguous for double x)";
-
 /// The full program source, exactly as it is built (and dumped by --dump-kernel). Throws
-/// std::invalid_argument for native math with double precision (OpenCL has no double native_*)
-/// and for double precision with 1 lane, and std::invalid_argument for value slots in an
-/// eval_points program or outside the scene's literals.
+/// std::invalid_argument for native math with double precision (OpenCL has no double native_*),
+/// and for value slots in an eval_points program or outside the scene's literals.
 std::string generate_kernel_source(const Scene& scene, const KernelOptions& options);
 
 /// The scene's code in its march programs, literals open: the distance functions (points relative

@@ -13,28 +13,22 @@ KernelVariant scene_variant(const Scene& scene, KernelVariant variant) {
   return variant;
 }
 
-int program_lanes(std::optional<int> asked, int device_default, Precision precision) {
-  if (asked) return *asked;
-  return precision == Precision::Double && device_default == 1 ? 4 : device_default;
-}
-
-void check_precision_support(const Scene& scene, const KernelOptions& options, const std::string& device, bool has_fp64) {
-  if (options.variant.precision != Precision::Double) return;
+void check_precision_support(const Scene& scene, const KernelVariant& variant, const std::string& device, bool has_fp64) {
+  if (variant.precision != Precision::Double) return;
   const char* asked_by = scene.render.precision == Precision::Double ? "render.precision: double" : "precision=double";
   if (!has_fp64) {
     throw InputError(fmt::format("{}: {} needs a device with cl_khr_fp64 (double arithmetic), which {} lacks; choose another "
                                  "device (clmarch devices) or render.precision: float",
                                  scene.source_name, asked_by, device));
   }
-  if (options.lanes == 1) throw InputError(fmt::format("{}: {}: {}", scene.source_name, asked_by, kDoubleNeedsVectorLanes));
 }
 
 PreparedProgram prepare_program(const Scene& scene, const OpenClOptions& options, KernelPurpose purpose) {
   const DeviceEntry device = select_device(options.device);
   const KernelVariant variant = scene_variant(scene, options.variant);
-  KernelOptions kernel_options{purpose, program_lanes(options.lanes, default_lanes(device), variant.precision), variant};
+  check_precision_support(scene, variant, device.label(), device.has_fp64());
+  KernelOptions kernel_options{purpose, options.lanes.value_or(default_lanes(device)), variant};
   kernel_options.ray_status = options.ray_status;
-  check_precision_support(scene, kernel_options, device.label(), device.has_fp64());
   kernel_options.fp_contraction = allows_fp_contraction(device);
   const bool march = purpose != KernelPurpose::EvalPoints;
   if (march) kernel_options.value_slots = options.value_slots;

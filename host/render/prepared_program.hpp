@@ -6,7 +6,6 @@
 #include "render/opencl_renderer.hpp"
 #include "scene/scene.hpp"
 
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,13 +27,9 @@ struct PreparedProgram {
 /// render.precision: double.
 KernelVariant scene_variant(const Scene& scene, KernelVariant variant);
 
-/// Pixels per work-item: the asked-for lanes, else the device's default; double programs need
-/// vector lanes, so where the default is one (GPUs) they take 4.
-int program_lanes(std::optional<int> asked, int device_default, Precision precision);
-
 /// Throws InputError naming the scene file and the device where a double program cannot run: the
-/// device lacks cl_khr_fp64, or the program has one lane per work-item.
-void check_precision_support(const Scene& scene, const KernelOptions& options, const std::string& device, bool has_fp64);
+/// device lacks cl_khr_fp64.
+void check_precision_support(const Scene& scene, const KernelVariant& variant, const std::string& device, bool has_fp64);
 
 /// Generates and builds the scene's program for purpose (handing the source to
 /// options.before_build first when set).
