@@ -68,7 +68,9 @@ SDF_INLINE void clip_to_bounds(float4 bounds, vec3v dir, vint* marching, vfloat*
   const vec3v closest = v3(bounds.x - b * dir.x, bounds.y - b * dir.y, bounds.z - b * dir.z);
   const vfloat h = bounds.w * bounds.w - v3_dot(closest, closest);
   const vfloat root = sqrt(fmax(h, 0.0f));
-  *t_start = fmax(-b - root, 0.0f);
+  /* A lane whose ray misses the sphere starts (and ends: the status channel) at 0, as in the
+   * reference, not at its closest approach, which may lie past max_distance. */
+  *t_start = select((vfloat)(0.0f), fmax(-b - root, 0.0f), MASK(h >= 0.0f));
   *t_end = fmin(-b + root, *t_end);
   *marching &= MASK(h >= 0.0f) & MASK(*t_end > *t_start);
 }
@@ -248,7 +250,8 @@ SDF_INLINE void finish_packet(SceneValues values, const Packet* k, const MarchRe
   STORE_PLANE(CLMARCH_CHANNEL_DEPTH_LO, select((vfloat)(0.0f), m->t - ROUNDED_TO_FLOAT(m->t), m->hit));
 #endif
 #if defined(WRITE_STATUS)
-  /* A lane that did not march ends where it starts (0 outside the bounding sphere). */
+  /* A lane that did not march ends where it starts: 0 where its ray misses the bounding sphere,
+   * its entry where that lies past max_distance (clip_to_bounds). */
   const vfloat past_end = select((vfloat)(CLMARCH_RAY_MISS), (vfloat)(CLMARCH_RAY_OUT_OF_DISTANCE), MASK(m->t >= params->max_distance));
   const vfloat status = select(select(past_end, (vfloat)(CLMARCH_RAY_OUT_OF_STEPS), m->exhausted), (vfloat)(CLMARCH_RAY_HIT), m->hit);
   STORE_PLANE(CLMARCH_CHANNEL_STATUS, status);

@@ -131,6 +131,47 @@ TEST(CheckRange, ANormalToleranceBeyondPiFails) {
   EXPECT_EQ(report.normal_tolerance_past_pi, report.both_hit);
 }
 
+// A render whose depths are wrong fails on its depths, and where its normal tolerance passes pi
+// because of them, on that, but it is not called beyond the precision's reach: only rounding's
+// share of the normal tolerance counts for that.
+TEST(CheckRange, AWrongDepthIsNotBlamedOnThePrecision) {
+  Scene scene = load_scene_file(source_path("scenes/torus.yaml").string());
+  scene.render.width = 48;
+  scene.render.height = 27;
+  const FrameBuffers reference = render_reference(scene);
+  FrameBuffers shifted = reference;
+  for (float& t : shifted.plane(Channel::Depth)) t += 10.0f * static_cast<float>(scene.render.normal_epsilon) * 4.0f;
+  const CheckReport report = cross_check(scene, shifted, reference);
+  EXPECT_FALSE(report.passed());
+  EXPECT_EQ(report.normal_rounding_past_pi, 0) << report.to_text();
+  EXPECT_EQ(report.to_text().find("reach"), std::string::npos) << report.to_text();
+  EXPECT_NE(report.to_text().find("depth error p99"), std::string::npos) << report.to_text();
+  // Depths 1000 normal steps apart: every normal tolerance passes pi, and the check says why.
+  for (float& t : shifted.plane(Channel::Depth)) t += 1000.0f * static_cast<float>(scene.render.normal_epsilon);
+  const CheckReport far_apart = cross_check(scene, shifted, reference);
+  EXPECT_EQ(far_apart.normal_tolerance_past_pi, far_apart.both_hit);
+  EXPECT_NE(far_apart.to_text().find("depths differ by up to"), std::string::npos) << far_apart.to_text();
+}
+
+// Every shipped scene builds and renders in double at one pixel a work-item (the GPUs' shape),
+// where the kernels' builtins called with float literals take double arguments (kernels/lanes.cl),
+// every colour finite. (16 lanes in double: the stress suite renders every scene in both precisions.)
+TEST(Precision, EveryShippedSceneRendersInDoubleAtOneLane) {
+  for (const std::string& name : testing::shipped_scene_names()) {
+    SCOPED_TRACE(name);
+    Scene scene = load_scene_file(source_path("scenes/" + name).string());
+    scene.render.width = 16;
+    scene.render.height = 9;
+    scene.render.precision = Precision::Double;
+    OpenClOptions options;
+    options.lanes = 1;
+    const FrameBuffers buffers = render_opencl(scene, options).buffers;
+    int finite = 0;
+    for (float v : buffers.plane(Channel::R)) finite += std::isfinite(v);
+    EXPECT_EQ(finite, 16 * 9);
+  }
+}
+
 TEST(Precision, DevicesWithoutDoubleAreOneLineErrors) {
   Scene scene = testing::scene_from_yaml("sdf: {sphere: {}}\nrender: {precision: double}\n");
   scene.source_name = "zoom.yaml";

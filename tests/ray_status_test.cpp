@@ -70,6 +70,39 @@ TEST(RayStatus, UnboundedRaysRunOutOfDistance) {
   expect_sphere_statuses(sphere_scene("bounds: none"), RayStatus::OutOfDistance);
 }
 
+// A sphere 60 away with max_distance 30: the rays that meet its bounding sphere meet it past
+// max_distance (out of distance, though they never march), the others miss it, and the shaded
+// program that --stats gives a status plane says so as the --buffers program and the reference
+// do. The kernel once started the missing rays at their closest approach to the bound, 60 away,
+// and called them out of distance too.
+TEST(RayStatus, ASceneBeyondMaxDistanceIsOutOfDistanceWhereItsRaysMeetIt) {
+  const Scene scene = testing::scene_from_yaml(fmt::format("camera: {{position: [0, 0, 0], look_at: [0, 0, -60], fov: 4}}\n"
+                                                           "render: {{width: {}, height: {}, max_distance: 30}}\n"
+                                                           "sdf: {{sphere: {{center: [0, 0, -60], radius: 1}}}}\n",
+                                                           kWidth, kHeight));
+  const CameraBasis basis = camera_basis(scene.camera, kWidth, kHeight);
+  OpenClOptions shaded;
+  shaded.ray_status = true;
+  auto renders = both_backends(scene);
+  renders.emplace_back("opencl shaded", render_opencl(scene, shaded).buffers);
+  for (const auto& [backend, buffers] : renders) {
+    SCOPED_TRACE(backend);
+    int met = 0, missed = 0;
+    for (int j = 0; j < kHeight; ++j) {
+      for (int i = 0; i < kWidth; ++i) {
+        const glm::dvec3 d = pixel_ray_direction(basis, i, j);
+        const double closest = glm::length(glm::cross(glm::dvec3(0, 0, -60) - basis.origin, d));
+        if (std::abs(closest - 1.0) < 0.1) continue;
+        EXPECT_EQ(status_at(buffers, i, j), closest < 1.0 ? RayStatus::OutOfDistance : RayStatus::Miss) << i << ", " << j;
+        met += closest < 1.0;
+        missed += closest >= 1.0;
+      }
+    }
+    EXPECT_GT(met, 20);
+    EXPECT_GT(missed, 100);
+  }
+}
+
 // One step from 5 away reaches neither the sphere (4 away) nor max_distance: every ray is out of
 // steps, which shades as a miss (depth +inf). Fails when the kernel forgets which lanes its step
 // budget stopped (every ray then reads as a miss).

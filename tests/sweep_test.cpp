@@ -107,6 +107,7 @@ TEST(SweepCommand, BadInputIsOneLineAndExitCode2) {
         {"--sweep", "render.epsilon=-1", "--csv", csv}, {"--sweep", "render.epsilon=1e-3"}, {"--csv", csv},
         {"--sweep", "render.epsilon=1e-3", "--csv", "/no/such/folder/s.csv"},
         {"--sweep", "precision=double", "--sweep", "native_math=on", "--csv", csv},
+        {"--set", "render.precision=double", "--sweep", "native_math=on", "--csv", csv},
         {"--sweep", "render.width=16,32", "--csv", csv}, {"--sweep", "lanes=1,1", "--csv", csv}}) {
     std::vector<std::string> args = {"bench", torus, "--size", "16x9"};
     args.insert(args.end(), extra.begin(), extra.end());

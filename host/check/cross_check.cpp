@@ -30,6 +30,10 @@ constexpr double kQuantile = 0.99;
 /// float programs the 16 roundings of the arithmetic cover it; in double it is what bounds how far
 /// apart the two hit points may be (docs/accuracy.md).
 constexpr double kDepthBufferRounding = 2.0 * 0x1p-24;
+/// Both renders store normals as floats: each component rounds by at most u_float, the angle
+/// between the stored and the computed normal by at most sqrt(3) u_float, twice over. Below
+/// float's arithmetic it never shows; in double, where t < h, it can be the larger term.
+constexpr double kNormalBufferRounding = 2.0 * 1.7320508075688772 * 0x1p-24;
 
 /// The unit roundoff of the OpenCL render's arithmetic (render.precision): float's or double's.
 double unit_roundoff(const Scene& scene) { return scene.render.precision == Precision::Double ? 0x1p-53 : 0x1p-24; }
@@ -228,8 +232,8 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
   CheckReport r;
   const int w = reference.width, h = reference.height;
   r.pixels = w * h;
-  r.out_of_steps_opencl = opencl.rays_with_status(RayStatus::OutOfSteps);
-  r.out_of_steps_reference = reference.rays_with_status(RayStatus::OutOfSteps);
+  if (opencl.has_status) r.out_of_steps_opencl = opencl.rays_with_status(RayStatus::OutOfSteps);
+  if (reference.has_status) r.out_of_steps_reference = reference.rays_with_status(RayStatus::OutOfSteps);
   const CameraBasis basis = camera_basis(scene.camera, w, h);
   const double eps = scene.render.epsilon;
   const double cone_slope = hit_cone_slope(scene.render, scene.camera);
@@ -245,6 +249,7 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
   const double glow_slope = color_per_closest_approach(scene.shading);
 
   std::vector<double> depth_abs, depth_rel, depth_eps, depth_tol, normal_deg, normal_tol, color_abs, color_tol;
+  double max_dt = 0.0;
   std::vector<double> miss_color_abs, miss_color_tol;
   double steps_sum = 0.0, squared_color = 0.0;
   int edge_pixels = 0;
@@ -306,10 +311,15 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
       depth_eps.push_back(dt / eps);
       depth_tol.push_back(dt / depth_tolerance);
       // Finite differences of a 1-Lipschitz field move by at most the shift of the point: the
-      // normal estimates of points dt apart differ by at most sqrt(3) (dt + rounding) / h.
-      const double normal_tolerance = std::sqrt(3.0) * (dt + rounding) / normal_h;
-      // Angles lie in [0, pi]: a tolerance past pi would pass any normal, and checks nothing.
+      // normal estimates of points dt apart differ by at most sqrt(3) (dt + rounding) / h, and
+      // each buffer holds them as floats.
+      const double rounding_tolerance = std::sqrt(3.0) * rounding / normal_h;
+      const double normal_tolerance = std::sqrt(3.0) * dt / normal_h + rounding_tolerance + kNormalBufferRounding;
+      // Angles lie in [0, pi]: a tolerance past pi would pass any normal, and checks nothing. Where
+      // rounding alone takes it there, the precision is to blame; else the depths' difference.
       r.normal_tolerance_past_pi += normal_tolerance >= M_PI;
+      r.normal_rounding_past_pi += rounding_tolerance >= M_PI;
+      max_dt = std::max(max_dt, dt);
       const double angle = angle_between(normal_at(opencl, i, j), n_ref);
       normal_deg.push_back(angle * 180.0 / M_PI);
       normal_tol.push_back(angle / normal_tolerance);
@@ -343,13 +353,20 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
   t.miss_color_p99_abs = r.miss_color_p99_abs / std::max(miss_color_ratio_p99, 1e-300);
 
   // A criterion whose tolerance outgrows its quantity's range passes whatever the render holds: where
-  // that is so at more pixels than the p99 leaves out, the scene is beyond the precision's reach.
-  if (r.normal_tolerance_past_pi > (1.0 - kQuantile) * r.both_hit) {
+  // that is so at more pixels than the p99 leaves out, the check fails, saying why: the precision's
+  // rounding (the scene is beyond its reach), or depths too far apart to compare normals.
+  const double past_pi_limit = (1.0 - kQuantile) * r.both_hit;
+  if (r.normal_rounding_past_pi > past_pi_limit) {
     r.failures.push_back(fmt::format(
         "the normal tolerance exceeds pi at {} of {} pixels both hit, so it checks nothing there: {}'s rounding of coordinates "
         "of size {:.3g} is too coarse for render.normal_epsilon {:g}; the scene is beyond {}'s reach{}",
         r.normal_tolerance_past_pi, r.both_hit, precision_name(scene), origin_size, normal_h,
         precision_name(scene), scene.render.precision == Precision::Float ? " (render it with render.precision: double)" : ""));
+  } else if (r.normal_tolerance_past_pi > past_pi_limit) {
+    r.failures.push_back(fmt::format(
+        "the normal tolerance exceeds pi at {} of {} pixels both hit, so it checks nothing there: the two renders' depths "
+        "differ by up to {:.3g}, too much for normals estimated render.normal_epsilon {:g} apart to be compared",
+        r.normal_tolerance_past_pi, r.both_hit, max_dt, normal_h));
   }
   if (r.non_finite_opencl + r.non_finite_reference > 0) {
     r.failures.push_back(fmt::format("{} OpenCL and {} reference pixels hold a NaN or an infinity (color, a hit's "
@@ -438,10 +455,11 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
 
 nlohmann::json CheckReport::to_json() const {
   const auto summary = [](const ErrorSummary& s) { return nlohmann::json{{"p50", s.p50}, {"p99", s.p99}, {"max", s.max}, {"rms", s.rms}}; };
+  const auto or_null = [](const std::optional<std::uint64_t>& n) { return n ? nlohmann::json(*n) : nlohmann::json(nullptr); };
   return {{"passed", passed()},
           {"pixels", pixels},
           {"both_hit", both_hit},
-          {"out_of_steps", {{"opencl", out_of_steps_opencl}, {"reference", out_of_steps_reference}}},
+          {"out_of_steps", {{"opencl", or_null(out_of_steps_opencl)}, {"reference", or_null(out_of_steps_reference)}}},
           {"mask_mismatch", {{"silhouette", mask_mismatch_silhouette}, {"interior", mask_mismatch_interior}}},
           {"depth_abs", summary(depth_abs)},
           {"depth_rel", summary(depth_rel)},
@@ -450,6 +468,7 @@ nlohmann::json CheckReport::to_json() const {
           {"steps_diff", {{"mean", steps_diff_mean}, {"max", steps_diff_max}}},
           {"normal_angle_deg_p99", normal_angle_p99},
           {"normal_tolerance_past_pi", normal_tolerance_past_pi},
+          {"normal_rounding_past_pi", normal_rounding_past_pi},
           {"color",
            {{"max_abs", color_max_abs},
             {"p99_abs", color_p99_abs},
@@ -473,8 +492,9 @@ nlohmann::json CheckReport::to_json() const {
 std::string CheckReport::to_text() const {
   std::string out;
   out += fmt::format("pixels            {} ({} hit on both sides)\n", pixels, both_hit);
+  const auto count = [](const std::optional<std::uint64_t>& n) { return n ? std::to_string(*n) : std::string("n/a"); };
   out += fmt::format("out of steps      OpenCL {}, reference {} (rays neither hit nor past their end: reported, not checked)\n",
-                     out_of_steps_opencl, out_of_steps_reference);
+                     count(out_of_steps_opencl), count(out_of_steps_reference));
   out += fmt::format("hit-mask mismatch silhouette {} (max {}), interior {} (max {})\n", mask_mismatch_silhouette,
                      tolerances.mask_mismatch_silhouette, mask_mismatch_interior, tolerances.mask_mismatch_interior);
   out += fmt::format("depth abs         p50 {:.3g}  p99 {:.3g}  max {:.3g}\n", depth_abs.p50, depth_abs.p99, depth_abs.max);

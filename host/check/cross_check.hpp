@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,9 +26,10 @@ struct CheckReport {
   int pixels = 0;
   int both_hit = 0;
   /// Rays that ran out of render.max_steps on each side (the status channel; not a criterion:
-  /// where the step counts differ by one a ray may run out on one side only).
-  std::uint64_t out_of_steps_opencl = 0;
-  std::uint64_t out_of_steps_reference = 0;
+  /// where the step counts differ by one a ray may run out on one side only); none for a render
+  /// without the status plane.
+  std::optional<std::uint64_t> out_of_steps_opencl;
+  std::optional<std::uint64_t> out_of_steps_reference;
   /// Pixels where exactly one side hits, next to a hit/miss edge in either image, or elsewhere.
   int mask_mismatch_silhouette = 0;
   int mask_mismatch_interior = 0;
@@ -49,8 +51,10 @@ struct CheckReport {
   /// Degrees, over pixels both hit.
   double normal_angle_p99 = 0.0;
   /// Pixels both hit whose normal tolerance is pi or more (it would pass any normal): more than the
-  /// 1 % the p99 leaves out fail the check, the scene being beyond the precision's reach.
+  /// 1 % the p99 leaves out fail the check. normal_rounding_past_pi counts those where rounding
+  /// alone takes it there: then the scene is beyond the precision's reach.
   int normal_tolerance_past_pi = 0;
+  int normal_rounding_past_pi = 0;
   double color_max_abs = 0.0;
   /// Over the pixels both hit with equal steps.
   double color_p99_abs = 0.0;

@@ -75,6 +75,11 @@ int run_bench_sweep(const BenchCommandOptions& options) {
       c.scene.render.precision = c.options.variant.precision;
     } else {
       c.options.variant = scene_variant(c.scene, c.options.variant);
+      if (c.options.variant.precision == Precision::Double && c.options.variant.native_math) {
+        throw InputError(fmt::format("--sweep {}: native_math=on needs float precision, but the scene has render.precision: "
+                                     "double (OpenCL has no native_* functions for double)",
+                                     combination_label(combination)));
+      }
     }
     if (options.one_at_a_time && !cases.empty() && repeats_base(c, base, base_options, device)) continue;
     c.is_defaults = same_settings(c, defaults, default_options, device);
