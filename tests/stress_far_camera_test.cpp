@@ -256,23 +256,6 @@ TEST(FarCamera, EveryNodeKindRendersInTheMapFrame) {
   });
 }
 
-// The displacement texture is a function of the absolute point, which the kernel gets back from its
-// map frame: a displaced sphere that fills the image, 10^3 + 500 away, passes the cross-check (in
-// the scene above the displaced sphere is too small for a texture taken in the frame to show).
-TEST(FarCamera, DisplacementTakesTheAbsolutePoint) {
-  const std::string yaml =
-      "camera: {position: [1500, -1200, 902.2], look_at: [1500, -1200, 900], fov: 50}\n"
-      "render: {width: 64, height: 36, epsilon: 1.0e-4, max_steps: 400, max_distance: 40}\n"
-      "sdf: {displace: {amplitude: 0.2, frequency: 3, children: [{sphere: {center: [1500, -1200, 900], radius: 1}}]}}\n"
-      "lights: [{directional: {direction: [1, 2, 1.5]}}]\n";
-  const Scene scene = testing::scene_from_yaml(yaml);
-  ASSERT_NE(map_frame_origin(scene), glm::dvec3(0.0));
-  const FrameBuffers opencl = render_checked(scene, KernelPurpose::Shaded);
-  const CheckReport report = cross_check(scene, opencl, render_reference(scene), reshade_hits(scene, opencl));
-  EXPECT_TRUE(report.passed()) << report.to_text();
-  EXPECT_GT(report.both_hit, 64 * 36 / 2);
-}
-
 // A model authored far from the origin and translated home (issue 26): a transformed node's
 // subtree is measured from its bound's centre, the translation folded into its positions in
 // double, so 10^5 and 10^6 away (on two axes) the model renders as the one authored at home: the
@@ -321,21 +304,27 @@ TEST(FarCamera, ModelAuthoredFarAndTranslatedHomeRendersAsAtHome) {
   }
 }
 
-// The displacement texture's phase f * offset is reduced mod 2 pi on the host in double (issue 26):
-// 10^5 away, where float's spacing of the absolute point is 0.008 (its texture turned the normals
-// by tens of degrees), the displaced sphere passes the check with the tolerance of the map frame.
-// Fails with the phase taken in float (the absolute point added back in the kernel).
+// The displacement texture is a function of the absolute point, whose phase f * offset the host
+// reduces mod 2 pi in double (issue 26), so a displaced sphere that fills the image passes the
+// cross-check with the tolerance of the map frame 10^3 + 500 away (in the scene above it is too
+// small for a texture taken in the frame to show) and 10^5 away, where float's spacing of the
+// absolute point is 0.008: with the phase taken in float (the absolute point added back in the
+// kernel) its texture turned the normals by tens of degrees and the check failed.
 TEST(FarCamera, DisplacementFarAwayKeepsTheFramesPrecision) {
-  const std::string yaml =
-      "camera: {position: [100000, -100000, 100002.2], look_at: [100000, -100000, 100000], fov: 50}\n"
-      "render: {width: 64, height: 36, epsilon: 1.0e-4, max_steps: 400, max_distance: 40}\n"
-      "sdf: {displace: {amplitude: 0.2, frequency: 3, children: [{sphere: {center: [100000, -100000, 100000], radius: 1}}]}}\n"
-      "lights: [{directional: {direction: [1, 2, 1.5]}}]\n";
-  const Scene scene = testing::scene_from_yaml(yaml);
-  const FrameBuffers opencl = render_checked(scene, KernelPurpose::Shaded);
-  const CheckReport report = cross_check(scene, opencl, render_reference(scene), reshade_hits(scene, opencl));
-  EXPECT_TRUE(report.passed()) << report.to_text();
-  EXPECT_GT(report.both_hit, 64 * 36 / 2);
+  for (const glm::dvec3 centre : {glm::dvec3(1500.0, -1200.0, 900.0), glm::dvec3(1e5, -1e5, 1e5)}) {
+    SCOPED_TRACE(fmt::format("sphere at ({}, {}, {})", centre.x, centre.y, centre.z));
+    const Scene scene = testing::scene_from_yaml(fmt::format(
+        "camera: {{position: [{0}, {1}, {3}], look_at: [{0}, {1}, {2}], fov: 50}}\n"
+        "render: {{width: 64, height: 36, epsilon: 1.0e-4, max_steps: 400, max_distance: 40}}\n"
+        "sdf: {{displace: {{amplitude: 0.2, frequency: 3, children: [{{sphere: {{center: [{0}, {1}, {2}], radius: 1}}}}]}}}}\n"
+        "lights: [{{directional: {{direction: [1, 2, 1.5]}}}}]\n",
+        centre.x, centre.y, centre.z, centre.z + 2.2));
+    ASSERT_NE(map_frame_origin(scene), glm::dvec3(0.0));
+    const FrameBuffers opencl = render_checked(scene, KernelPurpose::Shaded);
+    const CheckReport report = cross_check(scene, opencl, render_reference(scene), reshade_hits(scene, opencl));
+    EXPECT_TRUE(report.passed()) << report.to_text();
+    EXPECT_GT(report.both_hit, 64 * 36 / 2);
+  }
 }
 
 // Terrain noise hashes absolute lattice points; far from the origin each octave's lattice point of

@@ -93,6 +93,9 @@ std::string primitive_call(const Node& node, const std::string& p, const glm::dv
   }, node.params);
 }
 
+/// The factor between a terrain's octaves' frequencies, as kernels/noise.cl steps them.
+double terrain_lacunarity(const Terrain& terrain) { return terrain.noise == TerrainNoise::Derivative ? 2.75 : 2.0; }
+
 /// A rough cost of evaluating a subtree, in sphere evaluations: what decides whether a bounding
 /// sphere (about one sphere evaluation and a branch) can pay for itself.
 int subtree_cost(const Node& node) {
@@ -280,7 +283,7 @@ class SdfEmitter {
   std::string terrain_call(const Node& node, const std::string& p, const glm::dvec3& offset) {
     if (offset == glm::dvec3(0.0)) return primitive_call(node, p, offset, lit_);
     const Terrain& terrain = params_of<Terrain>(node);
-    const double lacunarity = terrain.noise == TerrainNoise::Derivative ? 2.75 : 2.0;
+    const double lacunarity = terrain_lacunarity(terrain);
     glm::dvec2 lattice = terrain.frequency * glm::dvec2(offset.x, offset.z);
     std::string phases;
     for (int octave = 0; octave < terrain.octaves; ++octave) {
@@ -823,8 +826,9 @@ bool takes_absolute_points(const Node& root, const glm::dvec3& frame_origin) {
   if (root.kind == NodeKind::Terrain) {
     // terrain_call's test, on the largest octave's lattice point of the frame origin.
     const Terrain& terrain = params_of<Terrain>(root);
-    const double lacunarity = terrain.noise == TerrainNoise::Derivative ? 2.75 : 2.0;
-    if (terrain.frequency * glm::length(frame_origin) * std::pow(lacunarity, terrain.octaves - 1) >= 0x1p24) return true;
+    if (terrain.frequency * glm::length(frame_origin) * std::pow(terrain_lacunarity(terrain), terrain.octaves - 1) >= 0x1p24) {
+      return true;
+    }
   }
   return std::any_of(root.children.begin(), root.children.end(),
                      [&](const Node& child) { return takes_absolute_points(child, frame_origin); });
