@@ -11,7 +11,7 @@
  * k t of the axis point t a; where the field there is d, a ray's points up to depth t + s keep a
  * field value of at least d - k (t + s) - s (the field is 1-Lipschitz). The cone steps the largest
  * s that keeps this at or above the hit threshold there, max(epsilon, slope (t + s)), plus
- * COARSE_MARGIN (the glow radius): no ray of the block could have hit, or passed near enough to
+ * the margin params.shading.glow_radius (0 without glow): no ray of the block could have hit, or passed near enough to
  * glow, before its start. It stops once that step falls below COARSE_STOP_FRACTION of d, what
  * plain sphere tracing would step, or at the end of the bounding sphere or max_distance. */
 
@@ -53,7 +53,8 @@ __kernel void coarse_cones(const MarchParams params, __global float* starts, __g
   }
   /* The kernel's rays also arrive below REAL_EPSILON t (hit_threshold in march_loop.cl). */
   const float slope = fmax(params.hit_cone_slope, (float)REAL_EPSILON);
-  const float floor_threshold = params.epsilon + COARSE_MARGIN;
+  const float margin = params.shading.glow_radius;
+  const float floor_threshold = params.epsilon + margin;
 
   const vec3v origin = camera_origin(&params);
   vfloat t = (vfloat)(t_first);
@@ -62,7 +63,7 @@ __kernel void coarse_cones(const MarchParams params, __global float* starts, __g
   for (int step = 0; step < params.max_steps && LANE_ANY(active); ++step) {
     const vfloat d = field(values, v3_add(origin, v3_scale(axis, t)));
     steps += select((vfloat)(0.0f), (vfloat)(1.0f), active);
-    const vfloat s = fmin((d - floor_threshold - k * t) / (1.0f + k), (d - COARSE_MARGIN - (k + slope) * t) / (1.0f + k + slope));
+    const vfloat s = fmin((d - floor_threshold - k * t) / (1.0f + k), (d - margin - (k + slope) * t) / (1.0f + k + slope));
     active &= MASK(s >= COARSE_STOP_FRACTION * d);
     t = select(t, fmin(t + s, (vfloat)(t_last)), active);
     active &= MASK(t < (vfloat)(t_last));

@@ -81,11 +81,57 @@ typedef cl_float4 float4;
 #define CLMARCH_GRID_RECORD_ID 3       /* the word of a record holding its first primitive's number */
 #define CLMARCH_GRID_RECORD_WORDS 4    /* distance shape, color shape, offset of the color literals, id */
 
-/* Lights, two float4 each, positions relative to the camera (computed on the host in double). */
-#define CLMARCH_LIGHT_FLOAT4S 2
+/* Shadow rays (the SHADOW_MODE switch; host/scene/scene.hpp, ShadowMode, in the same order): hard
+ * shadows, Inigo Quilez's classic penumbra min(k h / t), or his improved one. */
+#define CLMARCH_SHADOW_HARD 0
+#define CLMARCH_SHADOW_SOFT 1
+#define CLMARCH_SHADOW_SOFT_IMPROVED 2
 
-/* Per-frame march parameters: the camera contract's basis and the march limits. Changing any of
- * these does not rebuild the program. */
+/* One light. Points are relative to the camera (computed on the host in double). */
+typedef struct LightParams {
+  float4 where;    /* point lights: xyz = position, w = 1; directional: xyz = unit vector towards it, w = 0 */
+  float4 radiance; /* xyz = color * intensity */
+} LightParams;
+
+/* The shading's numbers (kernels/shading.cl, atmosphere.cl): host/scene/scene.hpp's Shading, as
+ * floats. Which of them a program reads is its feature switches' choice (NEED_SHADING, FOG,
+ * SKY, ...); the others are 0. Per frame, like the camera: changing them does not rebuild. */
+typedef struct ShadingParams {
+  float4 background;
+  float4 ambient;
+  float4 fog_color;
+  float4 sky_horizon;
+  float4 sky_zenith;
+  float4 glow_color;
+  float4 planet_glow_color;
+  float4 planet_glow_sun;       /* unit vector towards the sun */
+  float4 height_fog_color;
+  float4 height_fog_sun_color;
+  float4 height_fog_sun_direction;
+  CLMARCH_FLOAT diffuse;
+  CLMARCH_FLOAT specular;
+  CLMARCH_FLOAT shininess;
+  CLMARCH_FLOAT step_ao;        /* steps^2 / step_ao darkens (STEP_AO) */
+  CLMARCH_FLOAT fog_density;
+  CLMARCH_FLOAT shadow_k;       /* the soft penumbra's sharpness */
+  CLMARCH_FLOAT shadow_min_t;
+  CLMARCH_FLOAT shadow_max_t;   /* directional lights' shadow rays end here */
+  CLMARCH_FLOAT ao_step;
+  CLMARCH_FLOAT ao_power;
+  CLMARCH_FLOAT reflection_offset;
+  CLMARCH_FLOAT glow_radius;    /* also the cone pass's margin (kernels/coarse.cl): 0 without glow */
+  CLMARCH_FLOAT planet_glow_sharpness;
+  CLMARCH_FLOAT height_fog_density;
+  CLMARCH_FLOAT height_fog_falloff;
+  CLMARCH_FLOAT height_fog_sun_power;
+  CLMARCH_FLOAT gamma;          /* DISPLAY_GAMMA: c^(1 / gamma) */
+  CLMARCH_INT light_count;      /* LightParams in the lights buffer */
+  CLMARCH_INT shadow_max_steps;
+  CLMARCH_INT ao_samples;
+  CLMARCH_INT reflection_bounces;
+  CLMARCH_INT padding[3];
+} ShadingParams;
+
 /* Floats from a refining pass's sample points' x to their y (kernels/march.cl, sample_packet):
  * kMaxSamples (host/scene/scene.hpp) and a vector's lanes past the last. */
 #define CLMARCH_SAMPLE_POINT_STRIDE (1024 + 16)
@@ -101,6 +147,9 @@ typedef cl_float4 float4;
 #define CLMARCH_CAMERA_ORIGIN_IN_CELL 12
 #define CLMARCH_CAMERA_DOUBLES 16
 
+/* Per-frame parameters: the camera contract's basis, the march limits and the shading's numbers.
+ * Changing any of these does not rebuild the program; the program's #defines are only feature
+ * switches (host/codegen/kernel_source.cpp). */
 typedef struct MarchParams {
   float4 origin;       /* xyz = camera position relative to map_frame_origin (host/scene/camera_model.hpp) */
   float4 forward;      /* xyz = f, unit */
@@ -132,6 +181,7 @@ typedef struct MarchParams {
      (host/render/live_tiles.cpp); the others miss it. */
   CLMARCH_INT live_columns[2];
   CLMARCH_INT live_rows[2];
+  ShadingParams shading;
   /* origin, forward, right_extent, up_extent and origin_in_cell as the host's doubles
      (CLMARCH_CAMERA_*; the last double is padding): what double programs (render.precision: double)
      build their rays from, where float's rounding of the camera would move a deep zoom's view by
@@ -140,7 +190,13 @@ typedef struct MarchParams {
 } MarchParams;
 
 #ifndef __OPENCL_VERSION__
-static_assert(sizeof(MarchParams) == 8 * 16 + 16 * 4 + CLMARCH_CAMERA_DOUBLES * 8, "MarchParams layout must match OpenCL C");
+static_assert(sizeof(LightParams) == 2 * 16, "LightParams layout must match OpenCL C");
+static_assert(sizeof(ShadingParams) == 11 * 16 + 24 * 4, "ShadingParams layout must match OpenCL C");
+static_assert(offsetof(ShadingParams, diffuse) == 11 * 16, "ShadingParams: scalars after the float4s");
+static_assert(sizeof(ShadingParams) % 16 == 0, "ShadingParams keeps the float4 alignment of what follows");
+static_assert(offsetof(MarchParams, shading) == 8 * 16 + 16 * 4, "MarchParams: the shading after the march limits");
+static_assert(sizeof(MarchParams) == 8 * 16 + 16 * 4 + sizeof(ShadingParams) + CLMARCH_CAMERA_DOUBLES * 8,
+              "MarchParams layout must match OpenCL C");
 static_assert(offsetof(MarchParams, camera_double) % 8 == 0, "doubles at 8-byte boundaries, as OpenCL C aligns them");
 #endif
 

@@ -24,29 +24,31 @@ SDF_INLINE Hit surface_at(SceneValues values, const MarchResult* m, vec3v relati
 }
 #endif
 
-#if defined(NEED_SHADING) && defined(REFLECTION_BOUNCES)
+#if defined(NEED_SHADING) && defined(REFLECTIONS)
 /* Adds the mirror bounces of the PBR course: each bounce's color weighted by the product of the
  * reflectivities met so far; a bounce that misses shows the sky. */
-SDF_INLINE vec3v add_reflections(SceneValues values, vec3v color, Hit hit, vec3v dir, vint live, const MarchParams* params, __constant float4* lights) {
+SDF_INLINE vec3v add_reflections(SceneValues values, vec3v color, Hit hit, vec3v dir, vint live, const MarchParams* params,
+                                 __constant LightParams* lights) {
+  const ShadingParams* shading = &params->shading;
   /* Mirror rays march plainly with the fixed epsilon: the pixel cone is the camera's, and their t
    * starts again at the mirror. */
-  MarchLimits limits = {values, params->max_steps, params->epsilon, 0, 0.0f, 1.0f, 0.0f};
+  MarchLimits limits = {values, params->max_steps, params->epsilon, CLMARCH_SHADOW_HARD, 0.0f, 1.0f, 0.0f};
   vfloat weight = (vfloat)(1.0f);
   vint active = live;
-  for (int bounce = 0; bounce < REFLECTION_BOUNCES; ++bounce) {
+  for (int bounce = 0; bounce < shading->reflection_bounces; ++bounce) {
     weight *= hit.surface.z;
     active &= MASK(weight > 0.0f);
     if (!LANE_ANY(active)) break;
     /* reflect(dir, n) = dir - 2 dot(dir, n) n */
     dir = v3_sub(dir, v3_scale(hit.normal, 2.0f * v3_dot(dir, hit.normal)));
-    const vec3v origin = v3_add(hit.point, v3_scale(hit.normal, REFLECTION_OFFSET));
-    const vec3v relative_origin = v3_add(hit.relative, v3_scale(hit.normal, REFLECTION_OFFSET));
+    const vec3v origin = v3_add(hit.point, v3_scale(hit.normal, shading->reflection_offset));
+    const vec3v relative_origin = v3_add(hit.relative, v3_scale(hit.normal, shading->reflection_offset));
     const MarchResult r = MARCH(origin, dir, active, (vfloat)(0.0f), (vfloat)(params->max_distance), limits);
-    vec3v seen = miss_color(values, dir, r.closest);
+    vec3v seen = miss_color(shading, dir, r.closest);
     const vint reflected_hit = active & r.hit;
     if (LANE_ANY(reflected_hit)) {
       const Hit next = surface_at(values, &r, relative_origin, dir, params->normal_epsilon);
-      seen = v3_select(seen, shade(values, &next, v3_scale(dir, -1.0f), reflected_hit, lights), reflected_hit);
+      seen = v3_select(seen, shade(values, params, &next, v3_scale(dir, -1.0f), reflected_hit, lights), reflected_hit);
       hit.point = v3_select(hit.point, next.point, reflected_hit);
       hit.relative = v3_select(hit.relative, next.relative, reflected_hit);
       hit.normal = v3_select(hit.normal, next.normal, reflected_hit);
@@ -185,7 +187,7 @@ SDF_INLINE Packet packet_at(const MarchParams* params, int index, __global const
 
 /* The march limits of camera rays; with RECORD_SAMPLES, where the packet's points go. */
 SDF_INLINE MarchLimits camera_limits(SceneValues values, const MarchParams* params, const Packet* k, const MarchRecord* record) {
-  MarchLimits limits = {values, params->max_steps, params->epsilon, 0, 0.0f, params->over_relaxation, params->hit_cone_slope};
+  MarchLimits limits = {values, params->max_steps, params->epsilon, CLMARCH_SHADOW_HARD, 0.0f, params->over_relaxation, params->hit_cone_slope};
 #if defined(RECORD_SAMPLES)
   limits.samples = record->samples;
   limits.sample_stride = record->sample_stride;
@@ -201,47 +203,48 @@ SDF_INLINE MarchLimits camera_limits(SceneValues values, const MarchParams* para
 #ifdef NEED_SHADING
 /* A term of a hit's color as it reaches the camera through the fog along dir over t: fog is
  * c -> c f + g, and the term's share of the fogged color is term f = fog(term) - fog(0). */
-SDF_INLINE vec3v fogged_term(SceneValues values, vec3v term, vec3v dir, vfloat t, float camera_height) {
-  return v3_sub(apply_fog(values, term, dir, t, camera_height), apply_fog(values, v3_splat(0.0f), dir, t, camera_height));
+SDF_INLINE vec3v fogged_term(const ShadingParams* shading, vec3v term, vec3v dir, vfloat t, float camera_height) {
+  return v3_sub(apply_fog(shading, term, dir, t, camera_height), apply_fog(shading, v3_splat(0.0f), dir, t, camera_height));
 }
 
 /* The shaded, tone-mapped color of packet k's rays (the sky's where they miss), and the normals at
  * their hits (0 where they miss), with WRITE_IDS the numbers of the primitives hit (-1 where they
  * miss) and with WRITE_LAYERS the terms of their lit colors through the fog (0 where they miss). */
 SDF_INLINE vec3v packet_color(SceneValues values, const Packet* k, const MarchResult* m, const MarchParams* params,
-                              __constant float4* lights, vec3v* normal, vfloat* id, LightTerms* layers) {
+                              __constant LightParams* lights, vec3v* normal, vfloat* id, LightTerms* layers) {
+  const ShadingParams* shading = &params->shading;
   *normal = v3_splat(0.0f);
   *id = (vfloat)(-1.0f);
   layers->ambient = layers->diffuse = layers->specular = v3_splat(0.0f);
-  vec3v color = miss_color(values, k->dir, m->closest);
+  vec3v color = miss_color(shading, k->dir, m->closest);
   if (LANE_ANY(m->hit)) {
     const Hit hit = surface_at(values, m, v3_splat(0.0f), k->dir, params->normal_epsilon);
     *normal = v3_select(*normal, hit.normal, m->hit);
 #if defined(WRITE_IDS)
     *id = select(*id, hit.id, m->hit);
 #endif
-    const LightTerms terms = light_terms(values, &hit, v3_scale(k->dir, -1.0f), m->hit, lights);
-    vec3v lit = lit_color(values, &terms, hit.steps);
-#if defined(REFLECTION_BOUNCES)
+    const LightTerms terms = light_terms(values, params, &hit, v3_scale(k->dir, -1.0f), m->hit, lights);
+    vec3v lit = lit_color(shading, &terms, hit.steps);
+#if defined(REFLECTIONS)
     lit = add_reflections(values, lit, hit, k->dir, m->hit, params, lights);
 #endif
-    lit = apply_fog(values, lit, k->dir, m->t, params->camera_height);
+    lit = apply_fog(shading, lit, k->dir, m->t, params->camera_height);
     color = v3_select(color, lit, m->hit);
 #if defined(WRITE_LAYERS)
     const float height = params->camera_height;
-    layers->ambient = v3_select(layers->ambient, fogged_term(values, terms.ambient, k->dir, m->t, height), m->hit);
-    layers->diffuse = v3_select(layers->diffuse, fogged_term(values, terms.diffuse, k->dir, m->t, height), m->hit);
-    layers->specular = v3_select(layers->specular, fogged_term(values, terms.specular, k->dir, m->t, height), m->hit);
+    layers->ambient = v3_select(layers->ambient, fogged_term(shading, terms.ambient, k->dir, m->t, height), m->hit);
+    layers->diffuse = v3_select(layers->diffuse, fogged_term(shading, terms.diffuse, k->dir, m->t, height), m->hit);
+    layers->specular = v3_select(layers->specular, fogged_term(shading, terms.specular, k->dir, m->t, height), m->hit);
 #endif
   }
-  return tone_map(values, color);
+  return tone_map(shading, color);
 }
 #endif
 
 /* Writes what the march of packet k found: depth, steps (and wall steps), and as the program
  * needs them the normal and the shaded color. */
 SDF_INLINE void finish_packet(SceneValues values, const Packet* k, const MarchResult* m, const MarchParams* params, __global float* out,
-                              __constant float4* lights) {
+                              __constant LightParams* lights) {
   const int stride = params->plane_stride;
   const int at = k->row0 * params->width + k->x0;
 #define STORE_PLANE(channel, v) store_tile((v), at, params->width, k->columns, k->rows, out + (channel) * stride)
@@ -381,7 +384,7 @@ SDF_INLINE Packet sample_packet(const MarchParams* params, int packet, __global 
  * slot (a pair that starts the packet or its pixel's samples); the other pairs' slots are left
  * alone: the host adds about one slot a packet instead of one a sample. */
 SDF_INLINE void store_samples(SceneValues values, const Packet* k, const MarchResult* m, const MarchParams* params,
-                              __constant float4* lights, int packet, __global float4* samples) {
+                              __constant LightParams* lights, int packet, __global float4* samples) {
   const int pairs = (int)params->sampling.z * ((int)params->sampling.y - 1);
   /* Per lane: r, g, b, hit, then the layers' r, g, b, a float4 each */
   float lane_sums[REFINED_FLOAT4S * 4][LANES];
@@ -435,7 +438,7 @@ SDF_INLINE void store_samples(SceneValues values, const Packet* k, const MarchRe
 
 /* A refining pass's work-item: sample packets item and item + 1 (PACKETS_PER_ITEM = 2, marched
  * interleaved, as on the centre pass) or item, their sums into samples (store_samples). */
-SDF_INLINE void refine_item(const MarchParams* params, vec3v origin, __constant float4* lights, SceneValues values, int item,
+SDF_INLINE void refine_item(const MarchParams* params, vec3v origin, __constant LightParams* lights, SceneValues values, int item,
                             __global const int* pixels, __constant float* sample_points, __global float4* samples) {
   const MarchRecord record = {0};
   const int pairs = (int)params->sampling.z * ((int)params->sampling.y - 1);
@@ -464,7 +467,7 @@ SDF_INLINE void refine_item(const MarchParams* params, vec3v origin, __constant 
  * steps interleave (march_plain_pair), one on GPUs and under the cells tiling. values holds the
  * scene's numbers that the program reads instead of spelling them (an animation's; NULL when it
  * spells them all). */
-__kernel void march(const MarchParams params, __global float* out, __constant float4* lights, SceneValues values
+__kernel void march(const MarchParams params, __global float* out, __constant LightParams* lights, SceneValues values
 #if defined(COARSE_PASS)
                     , __global const float* coarse_starts
 #endif

@@ -1,8 +1,8 @@
 /* The plain sphere-tracing loop and the result type every march loop (tiling.cl too) returns. A
  * lane goes idle once its ray hits (distance < epsilon), passes its end or the step budget runs
  * out (both misses). The same loop serves camera rays, reflection rays and shadow rays; a shadow
- * ray also tracks Inigo Quilez's penumbra min(k h / t) (soft_mode 1, or 2 for his improved
- * variant), and every ray the closest approach to the surface (for the glow of misses). */
+ * ray also tracks Inigo Quilez's penumbra min(k h / t) (CLMARCH_SHADOW_SOFT, or
+ * CLMARCH_SHADOW_SOFT_IMPROVED for his improved variant), and every ray the closest approach to the surface (for the glow of misses). */
 
 /* What the march of one packet found. */
 typedef struct {
@@ -16,14 +16,15 @@ typedef struct {
   vfloat penumbra;   /* soft shadows: light reaching the start point, 1 when unoccluded */
 } MarchResult;
 
-/* Limits of one march; soft_mode and soft_k only matter for shadow rays. Camera rays set the last
+/* Limits of one march; shadow_mode and soft_k only matter for shadow rays. Camera rays set the last
  * two; an initialiser that leaves them out gives 0 (plain sphere tracing, the fixed epsilon), which
  * is what shadow and mirror rays use. */
 typedef struct {
   SceneValues values; /* the scene's animated values (map()) */
   int max_steps;
   float epsilon;
-  int soft_mode; /* 0: none, 1: classic penumbra, 2: improved */
+  int shadow_mode; /* CLMARCH_SHADOW_*: the penumbra a shadow ray tracks; camera and mirror rays
+                      are CLMARCH_SHADOW_HARD, which tracks none */
   float soft_k;
   float over_relaxation; /* Keinert et al.'s omega; steps of omega * d while it is > 1 */
   float hit_cone_slope;  /* a lane arrives below max(epsilon, hit_cone_slope * t) */
@@ -88,9 +89,9 @@ SDF_INLINE MarchResult march_result_init(vfloat t_start) {
  * the sample before (the improved variant estimates the true closest point between the two). */
 SDF_INLINE void track_approach(MarchResult* m, vfloat h, vfloat previous, vint active, const MarchLimits* limits) {
   m->closest = select(m->closest, fmin(m->closest, h), active);
-  if (limits->soft_mode == 1) {
+  if (limits->shadow_mode == CLMARCH_SHADOW_SOFT) {
     m->penumbra = select(m->penumbra, fmin(m->penumbra, limits->soft_k * h / fmax(m->t, 1e-6f)), active);
-  } else if (limits->soft_mode == 2) {
+  } else if (limits->shadow_mode == CLMARCH_SHADOW_SOFT_IMPROVED) {
     const vfloat y = h * h / (2.0f * previous);
     const vfloat d = sqrt(fmax(h * h - y * y, 0.0f));
     m->penumbra = select(m->penumbra, fmin(m->penumbra, limits->soft_k * d / fmax(m->t - y, 1e-6f)), active);
@@ -164,7 +165,7 @@ SDF_INLINE MarchResult plain_march_end(PlainMarch* s) {
   m.exhausted = s->active;
   m.local_point = v3_add(s->origin, v3_scale(s->dir, m.t));
 #if defined(TILING_MOD)
-  m.local_point = wrap_to_cell(m.local_point);
+  m.local_point = wrap_to_cell(s->limits.values, m.local_point);
 #endif
   return m;
 }

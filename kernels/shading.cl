@@ -1,8 +1,9 @@
 /* Direct lighting of a surface point: Lambert diffuse with Phong or Blinn-Phong specular, or a
  * PBR material (Cook-Torrance: GGX distribution, Smith-Schlick geometry, Fresnel-Schlick) with
- * metallic and roughness; LIGHT_COUNT lights from a constant buffer; hard or soft shadows by
- * marching towards each light (SHADOW_MODE); ambient occlusion by marching along the normal
- * (AO_SAMPLES) and from the step count (SHADING_STEP_AO). Light positions are relative to the
+ * metallic and roughness; the lights of a constant buffer; hard or soft shadows by marching
+ * towards each light (SHADOW_MODE); ambient occlusion by marching along the normal
+ * (AMBIENT_OCCLUSION) and from the step count (STEP_AO). The numbers are MarchParams.shading's
+ * (kernels/device_types.h). Light positions are relative to the
  * camera, so lighting keeps its precision far from the origin; shadow and occlusion rays run in
  * the frame of map(), like the camera ray. */
 
@@ -24,27 +25,28 @@ SDF_INLINE vec3v point_light_direction(vec3v p, float4 position) { return v3_nor
 #if defined(SHADOW_MODE)
 /* Light reaching p from unit direction l over distance t_end: 0 behind an occluder, 1 unlit by
  * none, the penumbra in between for soft shadows. */
-SDF_INLINE vfloat shadow_factor(SceneValues values, vec3v p, vec3v n, vec3v l, vfloat t_end, vint live) {
-  MarchLimits limits = {values, SHADOW_MAX_STEPS, SHADOW_EPSILON, SHADOW_MODE - 1, SHADOW_K};
+SDF_INLINE vfloat shadow_factor(SceneValues values, const MarchParams* params, vec3v p, vec3v n, vec3v l, vfloat t_end, vint live) {
+  const ShadingParams* shading = &params->shading;
+  MarchLimits limits = {values, shading->shadow_max_steps, params->epsilon, SHADOW_MODE, shading->shadow_k};
   /* Leave the surface along its normal first so the ray does not hit its own start. */
-  const vec3v origin = v3_add(p, v3_scale(n, SHADOW_EPSILON * 4.0f));
-  const MarchResult m = MARCH(origin, l, live, (vfloat)(SHADOW_MIN_T), t_end, limits);
-  const vfloat lit = SHADOW_MODE == 1 ? (vfloat)(1.0f) : clamp(m.penumbra, 0.0f, 1.0f);
+  const vec3v origin = v3_add(p, v3_scale(n, params->epsilon * 4.0f));
+  const MarchResult m = MARCH(origin, l, live, (vfloat)(shading->shadow_min_t), t_end, limits);
+  const vfloat lit = SHADOW_MODE == CLMARCH_SHADOW_HARD ? (vfloat)(1.0f) : clamp(m.penumbra, 0.0f, 1.0f);
   return select(lit, (vfloat)(0.0f), m.hit);
 }
 #endif
 
-#if defined(AO_SAMPLES)
+#if defined(AMBIENT_OCCLUSION)
 /* The PBR-course occlusion: from 1, subtract (i delta - sdf(p + n i delta))^2 / i over the samples,
- * then raise to AO_POWER. */
-SDF_INLINE vfloat normal_occlusion(SceneValues values, vec3v p, vec3v n) {
+ * then raise to the power ao_power. */
+SDF_INLINE vfloat normal_occlusion(SceneValues values, const ShadingParams* shading, vec3v p, vec3v n) {
   vfloat occlusion = (vfloat)(1.0f);
-  for (int i = AO_SAMPLES; i > 0; --i) {
-    const float along = (float)i * AO_STEP;
+  for (int i = shading->ao_samples; i > 0; --i) {
+    const float along = (float)i * shading->ao_step;
     const vfloat gap = along - field(values, v3_add(p, v3_scale(n, along)));
     occlusion -= gap * gap / (float)i;
   }
-  return pow(clamp(occlusion, 0.0f, 1.0f), (vfloat)(AO_POWER));
+  return pow(clamp(occlusion, 0.0f, 1.0f), (vfloat)(shading->ao_power));
 }
 #endif
 
@@ -84,21 +86,21 @@ SDF_INLINE Reflection pbr_light(vec3v n, vec3v l, vec3v v, vec3v albedo, vfloat 
   return r;
 }
 #else
-/* x^SHADING_SHININESS for x >= 0, as exp2(s log2 x): PoCL 3.1's double16 pow() returns inf for some
+/* x^shininess for x >= 0, as exp2(s log2 x): PoCL 3.1's double16 pow() returns inf for some
  * lanes on AVX-512 CPUs (seen on tiled_spheres with DOUBLE_PRECISION), while exp2 and log2 are
  * right; x = 0 gives exp2(-inf) = 0. */
-SDF_INLINE vfloat specular_power(SceneValues values, vfloat x) { return exp2((vfloat)(SHADING_SHININESS) * log2(x)); }
+SDF_INLINE vfloat specular_power(const ShadingParams* shading, vfloat x) { return exp2((vfloat)(shading->shininess) * log2(x)); }
 
-SDF_INLINE vfloat specular_term(SceneValues values, vec3v n, vec3v l, vec3v v) {
+SDF_INLINE vfloat specular_term(const ShadingParams* shading, vec3v n, vec3v l, vec3v v) {
 #if defined(SHADING_MODEL_PHONG)
   /* reflect(-l, n) = 2 dot(n, l) n - l */
   vec3v r = v3_sub(v3_scale(n, 2.0f * v3_dot(n, l)), l);
-  return specular_power(values, fmax(v3_dot(r, v), 0.0f));
+  return specular_power(shading, fmax(v3_dot(r, v), 0.0f));
 #elif defined(SHADING_MODEL_BLINN_PHONG)
   vec3v half_vector = v3_normalize(v3_add(l, v));
-  return specular_power(values, fmax(v3_dot(n, half_vector), 0.0f));
+  return specular_power(shading, fmax(v3_dot(n, half_vector), 0.0f));
 #else
-  (void)values;
+  (void)shading;
   (void)n;
   (void)l;
   (void)v;
@@ -107,22 +109,22 @@ SDF_INLINE vfloat specular_term(SceneValues values, vec3v n, vec3v l, vec3v v) {
 }
 
 /* Lambert, and the specular model where n.l > 0, for one light. */
-SDF_INLINE Reflection classic_light(SceneValues values, vec3v n, vec3v l, vec3v v, vec3v albedo) {
+SDF_INLINE Reflection classic_light(const ShadingParams* shading, vec3v n, vec3v l, vec3v v, vec3v albedo) {
   const vfloat n_dot_l = fmax(v3_dot(n, l), 0.0f);
-  const vfloat specular = select((vfloat)(0.0f), specular_term(values, n, l, v), MASK(n_dot_l > 0.0f));
-  const vfloat white = SHADING_SPECULAR * specular;
-  const Reflection r = {v3_scale(albedo, SHADING_DIFFUSE * n_dot_l), v3(white, white, white)};
+  const vfloat specular = select((vfloat)(0.0f), specular_term(shading, n, l, v), MASK(n_dot_l > 0.0f));
+  const vfloat white = shading->specular * specular;
+  const Reflection r = {v3_scale(albedo, shading->diffuse * n_dot_l), v3(white, white, white)};
   return r;
 }
 #endif
 
-/* Darkens by steps^2 / SHADING_STEP_AO: many steps mean the ray crept past nearby geometry. */
-SDF_INLINE vec3v apply_step_ao(SceneValues values, vec3v color, vfloat steps) {
-#ifdef SHADING_STEP_AO
-  vfloat darkening = steps * steps / SHADING_STEP_AO;
+/* Darkens by steps^2 / step_ao: many steps mean the ray crept past nearby geometry. */
+SDF_INLINE vec3v apply_step_ao(const ShadingParams* shading, vec3v color, vfloat steps) {
+#ifdef STEP_AO
+  vfloat darkening = steps * steps / shading->step_ao;
   return v3(color.x - darkening, color.y - darkening, color.z - darkening);
 #else
-  (void)values;
+  (void)shading;
   (void)steps;
   return color;
 #endif
@@ -136,32 +138,32 @@ typedef struct {
   vec3v specular;
 } LightTerms;
 
-/* The terms of the surface's lit color, seen along -view (unit). Each light is (xyz position
- * relative to the camera, w = 1) or (xyz unit direction towards the light, w = 0), then its
- * radiance. */
-SDF_INLINE LightTerms light_terms(SceneValues values, const Hit* hit, vec3v view, vint live, __constant float4* lights) {
+/* The terms of the surface's lit color, seen along -view (unit). */
+SDF_INLINE LightTerms light_terms(SceneValues values, const MarchParams* params, const Hit* hit, vec3v view, vint live,
+                                  __constant LightParams* lights) {
+  const ShadingParams* shading = &params->shading;
   vfloat ambient_occlusion = (vfloat)(1.0f);
-#if defined(AO_SAMPLES)
-  ambient_occlusion = normal_occlusion(values, hit->point, hit->normal);
+#if defined(AMBIENT_OCCLUSION)
+  ambient_occlusion = normal_occlusion(values, shading, hit->point, hit->normal);
 #endif
   LightTerms terms;
-  terms.ambient = v3_scale(v3_mul(hit->albedo, v3_from(AMBIENT_COLOR)), ambient_occlusion);
+  terms.ambient = v3_scale(v3_mul(hit->albedo, v3_from(shading->ambient)), ambient_occlusion);
   terms.diffuse = v3_splat(0.0f);
   terms.specular = v3_splat(0.0f);
-  for (int k = 0; k < LIGHT_COUNT; ++k) {
-    const float4 where = lights[CLMARCH_LIGHT_FLOAT4S * k];
-    const float4 radiance = lights[CLMARCH_LIGHT_FLOAT4S * k + 1];
+  for (int k = 0; k < shading->light_count; ++k) {
+    const float4 where = lights[k].where;
+    const float4 radiance = lights[k].radiance;
     const bool is_point = where.w > 0.5f;
     const vec3v l = is_point ? point_light_direction(hit->relative, where) : v3_from(where);
 #if defined(SHADING_MODEL_PBR)
     const Reflection lit = pbr_light(hit->normal, l, view, hit->albedo, hit->surface.x, hit->surface.y);
 #else
-    const Reflection lit = classic_light(values, hit->normal, l, view, hit->albedo);
+    const Reflection lit = classic_light(shading, hit->normal, l, view, hit->albedo);
 #endif
     vec3v reaching = v3_from(radiance);
 #if defined(SHADOW_MODE)
-    const vfloat t_end = is_point ? v3_length(v3_sub(v3_from(where), hit->relative)) : (vfloat)(SHADOW_MAX_T);
-    reaching = v3_scale(reaching, shadow_factor(values, hit->point, hit->normal, l, t_end, live & MASK(v3_dot(hit->normal, l) > 0.0f)));
+    const vfloat t_end = is_point ? v3_length(v3_sub(v3_from(where), hit->relative)) : (vfloat)(shading->shadow_max_t);
+    reaching = v3_scale(reaching, shadow_factor(values, params, hit->point, hit->normal, l, t_end, live & MASK(v3_dot(hit->normal, l) > 0.0f)));
 #else
     (void)live;
 #endif
@@ -172,13 +174,14 @@ SDF_INLINE LightTerms light_terms(SceneValues values, const Hit* hit, vec3v view
 }
 
 /* The lit color of a hit whose march took steps: its terms, darkened by the step count. */
-SDF_INLINE vec3v lit_color(SceneValues values, const LightTerms* terms, vfloat steps) {
+SDF_INLINE vec3v lit_color(const ShadingParams* shading, const LightTerms* terms, vfloat steps) {
   const vec3v color = v3_add(v3_add(terms->ambient, terms->diffuse), terms->specular);
-  return v3_max0(apply_step_ao(values, color, steps));
+  return v3_max0(apply_step_ao(shading, color, steps));
 }
 
 /* Lit color of the surface, seen along -view (unit). */
-SDF_INLINE vec3v shade(SceneValues values, const Hit* hit, vec3v view, vint live, __constant float4* lights) {
-  const LightTerms terms = light_terms(values, hit, view, live, lights);
-  return lit_color(values, &terms, hit->steps);
+SDF_INLINE vec3v shade(SceneValues values, const MarchParams* params, const Hit* hit, vec3v view, vint live,
+                       __constant LightParams* lights) {
+  const LightTerms terms = light_terms(values, params, hit, view, live, lights);
+  return lit_color(&params->shading, &terms, hit->steps);
 }

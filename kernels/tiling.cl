@@ -22,10 +22,10 @@ SDF_INLINE vfloat enter_next_cell(vfloat q, vfloat dir, vint crosses, float cell
 /* Marches origin + t * dir (origin in some cell's frame) for t from t_start, the starting point
  * wrapped into its cell; lanes stop at t_end. */
 SDF_INLINE MarchResult march_cells(vec3v origin, vec3v dir, vint live, vfloat t_start, vfloat t_end, MarchLimits limits) {
-  const float4 cell = TILING_CELL;
+  const float4 cell = tiling_cell(limits.values);
   MarchResult m = march_result_init(t_start);
   /* The ray is entry + s * dir in the current cell's frame; m.t - s is its depth at entry. */
-  vec3v entry = wrap_to_cell(v3_add(origin, v3_scale(dir, t_start)));
+  vec3v entry = wrap_to_cell(limits.values, v3_add(origin, v3_scale(dir, t_start)));
   vfloat t_entry = t_start;
   vfloat s = (vfloat)(0.0f);
   vint active = live;

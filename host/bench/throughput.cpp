@@ -22,11 +22,9 @@ std::vector<int> record_march(const Scene& scene, PreparedProgram& prepared, con
   DeviceProgram& dp = prepared.program;
   const int width = scene.render.width, height = scene.render.height;
   const Dispatch dispatch = plan_tile_dispatch(prepared, width, height, chunk_pixels_for(dp.device));
-  const std::vector<cl_float4> lights = light_data(scene);
   std::vector<float> steps(static_cast<std::size_t>(width) * height);
   cl::Buffer out(dp.context, CL_MEM_WRITE_ONLY | CL_MEM_HOST_READ_ONLY, march_output_bytes(dispatch));
-  cl::Buffer light_buffer(dp.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, lights.size() * sizeof(cl_float4),
-                          const_cast<cl_float4*>(lights.data()));
+  cl::Buffer light_buffer = make_light_buffer(dp.context, scene);
   cl::Buffer bases(dp.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sample_base.size() * sizeof(cl_int),
                    const_cast<cl_int*>(sample_base.data()));
   cl::Kernel kernel(dp.program, "march");

@@ -125,8 +125,8 @@ void check_render_options(const RenderCommandOptions& options, const std::string
 }
 
 /// What the frames of a sequence carry from one to the next: the OpenCL renderer of the previous
-/// frame, kept when this frame's program is the same (the camera, lights and the varying literals
-/// are its inputs), and the literals of the distance function that vary among the frames.
+/// frame, kept when this frame's program is the same (the camera, march limits, shading, lights and
+/// the varying literals are its inputs), and the literals of the distance function that vary among the frames.
 struct SequenceState {
   std::optional<OpenClRenderer> renderer;
   VaryingLiterals varying;

@@ -14,64 +14,38 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <initializer_list>
 #include <stdexcept>
 
 namespace clmarch {
 namespace {
 
-/// The numbers of shading, shadows, occlusion, reflections, sky, glows, fog and tone mapping, for
-/// kernels/shading.cl and atmosphere.cl: defined after map(), their literals marked like its own,
-/// so that an animation's frames read the ones that change from their values too (the macros
-/// expand where `values` is in scope).
-std::string shading_value_defines(const Scene& scene, Literals& lit) {
-  const Shading& s = scene.shading;
-  std::string out = "\n/* The scene's shading numbers (kernels/shading.cl, atmosphere.cl). */\n";
-  out += fmt::format("#define SHADING_DIFFUSE {}\n", lit.f(s.diffuse));
-  out += fmt::format("#define SHADING_SPECULAR {}\n", lit.f(s.specular));
-  out += fmt::format("#define SHADING_SHININESS {}\n", lit.f(s.shininess));
-  if (s.step_ao > 0.0) out += fmt::format("#define SHADING_STEP_AO {}\n", lit.f(s.step_ao));
-  out += fmt::format("#define BACKGROUND_COLOR {}\n", lit.f4(s.background));
-  out += fmt::format("#define AMBIENT_COLOR {}\n", lit.f4(s.ambient));
-  if (s.fog) {
-    out += fmt::format("#define FOG_DENSITY {}\n", lit.f(s.fog->density));
-    out += fmt::format("#define FOG_COLOR {}\n", lit.f4(s.fog->color));
-  }
-  if (s.shadows) {
-    out += fmt::format("#define SHADOW_K {}\n", lit.f(s.shadows->k));
-    out += fmt::format("#define SHADOW_MIN_T {}\n", lit.f(s.shadows->min_t));
-    out += fmt::format("#define SHADOW_MAX_T {}\n", lit.f(s.shadows->max_t));
-    out += fmt::format("#define SHADOW_EPSILON {}\n", lit.f(scene.render.epsilon));
-  }
-  if (s.ambient_occlusion) {
-    out += fmt::format("#define AO_STEP {}\n", lit.f(s.ambient_occlusion->step));
-    out += fmt::format("#define AO_POWER {}\n", lit.f(s.ambient_occlusion->power));
-  }
-  if (s.reflection_bounces > 0) out += fmt::format("#define REFLECTION_OFFSET {}\n", lit.f(reflection_offset(scene.render)));
-  if (s.sky) {
-    out += fmt::format("#define SKY_HORIZON {}\n", lit.f4(s.sky->horizon));
-    out += fmt::format("#define SKY_ZENITH {}\n", lit.f4(s.sky->zenith));
-  }
-  if (s.glow) {
-    out += fmt::format("#define GLOW_COLOR {}\n", lit.f4(s.glow->color));
-    out += fmt::format("#define GLOW_RADIUS {}\n", lit.f(s.glow->radius));
-  }
-  if (s.planetary_glow) {
-    out += fmt::format("#define PLANET_GLOW_COLOR {}\n", lit.f4(s.planetary_glow->color));
-    out += fmt::format("#define PLANET_GLOW_SHARPNESS {}\n", lit.f(s.planetary_glow->sharpness));
-    out += fmt::format("#define PLANET_GLOW_SUN {}\n", lit.f4(s.planetary_glow->sun_direction));
-  }
-  if (s.height_fog) {
-    const HeightFog& f = *s.height_fog;
-    out += fmt::format("#define HEIGHT_FOG_DENSITY {}\n", lit.f(f.density));
-    out += fmt::format("#define HEIGHT_FOG_FALLOFF {}\n", lit.f(f.falloff));
-    out += fmt::format("#define HEIGHT_FOG_COLOR {}\n", lit.f4(f.color));
-    out += fmt::format("#define HEIGHT_FOG_SUN_COLOR {}\n", lit.f4(f.sun_color));
-    out += fmt::format("#define HEIGHT_FOG_SUN_DIRECTION {}\n", lit.f4(f.sun_direction));
-    out += fmt::format("#define HEIGHT_FOG_SUN_POWER {}\n", lit.f(f.sun_power));
-  }
+/// The shadow modes' switch values, in ShadowMode's order.
+constexpr const char* kShadowModeSwitches[] = {"CLMARCH_SHADOW_HARD", "CLMARCH_SHADOW_SOFT", "CLMARCH_SHADOW_SOFT_IMPROVED"};
+static_assert(static_cast<int>(ShadowMode::Hard) == CLMARCH_SHADOW_HARD && static_cast<int>(ShadowMode::Soft) == CLMARCH_SHADOW_SOFT &&
+                  static_cast<int>(ShadowMode::SoftImproved) == CLMARCH_SHADOW_SOFT_IMPROVED,
+              "ShadowMode and the kernels' CLMARCH_SHADOW_* agree");
+
+/// The switches of the shading's optional parts: which of MarchParams.shading's numbers the
+/// program reads (kernels/shading.cl, atmosphere.cl).
+std::string shading_defines(const Shading& s) {
+  std::string out;
+  if (s.model == ShadingModel::Phong) out += "#define SHADING_MODEL_PHONG\n";
+  if (s.model == ShadingModel::BlinnPhong) out += "#define SHADING_MODEL_BLINN_PHONG\n";
+  if (s.model == ShadingModel::Pbr) out += "#define SHADING_MODEL_PBR\n";
+  if (s.shadows) out += fmt::format("#define SHADOW_MODE {}\n", kShadowModeSwitches[static_cast<int>(s.shadows->mode)]);
+  if (s.ambient_occlusion) out += "#define AMBIENT_OCCLUSION\n";
+  if (s.reflection_bounces > 0) out += "#define REFLECTIONS\n";
+  if (s.step_ao > 0.0) out += "#define STEP_AO\n";
+  if (s.fog) out += "#define FOG\n";
+  if (s.sky) out += "#define SKY\n";
+  if (s.glow) out += "#define GLOW\n";
+  if (s.planetary_glow) out += "#define PLANET_GLOW\n";
+  if (s.height_fog) out += "#define HEIGHT_FOG\n";
   if (s.tone_map == ToneMap::Reinhard) out += "#define TONE_MAP_REINHARD\n";
-  if (s.gamma != 1.0) out += fmt::format("#define DISPLAY_GAMMA {}\n", lit.f(s.gamma));
+  if (s.gamma != 1.0) out += "#define DISPLAY_GAMMA\n";
   return out;
 }
 
@@ -97,24 +71,10 @@ std::string feature_defines(const Scene& scene, const KernelOptions& options) {
     if (scene.render.normal_method == NormalMethod::Tetrahedral) out += "#define NORMAL_TETRAHEDRAL\n";
     if (scene.render.normal_method == NormalMethod::Forward) out += "#define NORMAL_FORWARD\n";
   }
-  if (outputs.color) {
-    const Shading& s = scene.shading;
-    out += "#define NEED_SHADING\n";
-    if (s.model == ShadingModel::Phong) out += "#define SHADING_MODEL_PHONG\n";
-    if (s.model == ShadingModel::BlinnPhong) out += "#define SHADING_MODEL_BLINN_PHONG\n";
-    if (s.model == ShadingModel::Pbr) out += "#define SHADING_MODEL_PBR\n";
-    out += fmt::format("#define LIGHT_COUNT {}\n", scene.lights.size());
-    if (s.shadows) {
-      out += fmt::format("#define SHADOW_MODE {}\n", static_cast<int>(s.shadows->mode) + 1);
-      out += fmt::format("#define SHADOW_MAX_STEPS {}\n", s.shadows->max_steps);
-    }
-    if (s.ambient_occlusion) out += fmt::format("#define AO_SAMPLES {}\n", s.ambient_occlusion->samples);
-    if (s.reflection_bounces > 0) out += fmt::format("#define REFLECTION_BOUNCES {}\n", s.reflection_bounces);
-  }
+  if (outputs.color) out += "#define NEED_SHADING\n" + shading_defines(scene.shading);
   if (uses_cone_pass(scene) && options.purpose != KernelPurpose::EvalPoints) out += "#define COARSE_PASS\n";
   if (scene.tiling && options.purpose != KernelPurpose::EvalPoints) {
     out += scene.tiling->method == TilingMethod::Cells ? "#define TILING_CELLS\n" : "#define TILING_MOD\n";
-    out += fmt::format("#define TILING_CELL {}\n", cl_float4(scene.tiling->cell));
   }
   return out;
 }
@@ -129,7 +89,7 @@ SdfCode eval_points_scene_code(const Scene& scene) {
 SdfCode program_scene_code(const Scene& scene, const KernelOptions& options) {
   if (options.purpose == KernelPurpose::EvalPoints) return eval_points_scene_code(scene);
   const MarchOutputs outputs = march_outputs(scene, options.purpose, options.ray_status);
-  return march_scene_code(scene, outputs.color, outputs.ids);
+  return march_scene_code(scene, outputs.ids);
 }
 
 /// True if node or a descendant is of one of kinds: the library files of rare primitives are
@@ -227,17 +187,16 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
 
 namespace {
 
-SdfCode scene_code(const Scene& scene, bool with_shading, bool with_ids) {
+SdfCode scene_code(const Scene& scene, bool with_ids) {
   Literals literals;
   SdfCode code;
   code.source = sdf_functions(scene.sdf, map_frame_origin(scene), scene.render.subtree_bounds == SceneBounds::Sphere, literals,
                               grid_union(scene), code.data, with_ids);
   code.literal_rounding = literals.distance_rounding();
-  // Recorded whether or not the program shades, so that a literal's index is the same in every program.
-  const std::string shading = shading_value_defines(scene, literals);
-  if (with_shading) code.source += shading;
-  if (uses_cone_pass(scene)) {
-    code.source += fmt::format("#define COARSE_MARGIN {}\n", literals.f(scene.shading.glow ? scene.shading.glow->radius : 0.0));
+  if (scene.tiling) {
+    // The cell is the scene's geometry, like map()'s literals: an animation may vary it.
+    code.source += fmt::format("\n/* The tiling's cell (kernels/field.cl). */\nSDF_INLINE float4 tiling_cell(SceneValues values) {{ return {}; }}\n",
+                               literals.f4(scene.tiling->cell));
   }
   code.literals = literals.take();
   return code;
@@ -245,14 +204,26 @@ SdfCode scene_code(const Scene& scene, bool with_shading, bool with_ids) {
 
 }  // namespace
 
-SdfCode march_scene_code(const Scene& scene, bool with_shading, bool with_ids) {
+SdfCode march_scene_code(const Scene& scene, bool with_ids) {
   // A number beyond float's range or an operand grid too large for memory is refused while the
   // code is generated, which knows nodes and not files.
   try {
-    return scene_code(scene, with_shading, with_ids);
+    return scene_code(scene, with_ids);
   } catch (const InputError& e) {
     throw InputError(fmt::format("{}: {}", scene.source_name, e.what()));
   }
+}
+
+ProgramKey program_key(const Scene& scene, const KernelOptions& options) {
+  SdfCode code = program_scene_code(scene, options);
+  ProgramKey key{feature_defines(scene, options), std::move(code.source), {}};
+  const ValueSlots& slots = options.value_slots;
+  for (std::size_t k = 0; k < code.literals.size(); ++k) {
+    if (!std::binary_search(slots.begin(), slots.end(), static_cast<int>(k))) {
+      key.spelled_literals.push_back(std::bit_cast<std::uint32_t>(code.literals[k]));
+    }
+  }
+  return key;
 }
 
 ProgramValues scene_values(const Scene& scene, const KernelOptions& options) {

@@ -5,6 +5,7 @@
 #include "codegen/sdf_codegen.hpp"
 #include "scene/scene.hpp"
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -95,10 +96,23 @@ int packets_per_item(const Scene& scene, int lanes);
 std::string generate_kernel_source(const Scene& scene, const KernelOptions& options);
 
 /// The scene's code in its march programs, literals open: the distance functions (points relative
-/// to map_frame_origin, subtrees gated as render.subtree_bounds says), then with_shading the
-/// shading's numbers, and the cone pass's margin when it runs; with_ids, map_color numbers the
-/// primitive it hit. Each literal has the same index with and without the shading and the ids.
-SdfCode march_scene_code(const Scene& scene, bool with_shading = true, bool with_ids = false);
+/// to map_frame_origin, subtrees gated as render.subtree_bounds says) and the tiling's cell; with_ids,
+/// map_color numbers the primitive it hit. Each literal has the same index with and without the ids.
+SdfCode march_scene_code(const Scene& scene, bool with_ids = false);
+
+/// What tells programs apart: their feature switches (the #defines), the shape of the scene's code
+/// (march_scene_code's source, literals open) and the bits of the literals it spells (those outside
+/// the value slots). Two scenes with equal keys under the same options run on one program; what
+/// else differs between them (MarchParams: the camera, march limits and shading numbers; the
+/// lights; the slots' values) reaches the device as data.
+struct ProgramKey {
+  std::string features;
+  std::string code_shape;
+  std::vector<std::uint32_t> spelled_literals;
+
+  bool operator==(const ProgramKey&) const = default;
+};
+ProgramKey program_key(const Scene& scene, const KernelOptions& options);
 
 /// What the values buffer of the scene's march program built with options holds.
 ProgramValues scene_values(const Scene& scene, const KernelOptions& options);

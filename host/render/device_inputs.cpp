@@ -28,6 +28,61 @@ void set_camera_double(MarchParams& params, int first, const glm::dvec3& v) {
   for (int axis = 0; axis < 3; ++axis) params.camera_double[first + axis] = v[axis];
 }
 
+/// The shading's numbers as the kernels read them (kernels/device_types.h, ShadingParams); those of
+/// parts the scene lacks stay 0.
+ShadingParams shading_params(const Scene& scene) {
+  const Shading& s = scene.shading;
+  ShadingParams p{};
+  p.background = to_cl(s.background);
+  p.ambient = to_cl(s.ambient);
+  p.diffuse = static_cast<float>(s.diffuse);
+  p.specular = static_cast<float>(s.specular);
+  p.shininess = static_cast<float>(s.shininess);
+  p.step_ao = static_cast<float>(s.step_ao);
+  if (s.fog) {
+    p.fog_color = to_cl(s.fog->color);
+    p.fog_density = static_cast<float>(s.fog->density);
+  }
+  if (s.shadows) {
+    p.shadow_k = static_cast<float>(s.shadows->k);
+    p.shadow_min_t = static_cast<float>(s.shadows->min_t);
+    p.shadow_max_t = static_cast<float>(s.shadows->max_t);
+    p.shadow_max_steps = s.shadows->max_steps;
+  }
+  if (s.ambient_occlusion) {
+    p.ao_samples = s.ambient_occlusion->samples;
+    p.ao_step = static_cast<float>(s.ambient_occlusion->step);
+    p.ao_power = static_cast<float>(s.ambient_occlusion->power);
+  }
+  p.reflection_bounces = s.reflection_bounces;
+  p.reflection_offset = static_cast<float>(reflection_offset(scene.render));
+  if (s.sky) {
+    p.sky_horizon = to_cl(s.sky->horizon);
+    p.sky_zenith = to_cl(s.sky->zenith);
+  }
+  if (s.glow) {
+    p.glow_color = to_cl(s.glow->color);
+    p.glow_radius = static_cast<float>(s.glow->radius);
+  }
+  if (s.planetary_glow) {
+    p.planet_glow_color = to_cl(s.planetary_glow->color);
+    p.planet_glow_sharpness = static_cast<float>(s.planetary_glow->sharpness);
+    p.planet_glow_sun = to_cl(s.planetary_glow->sun_direction);
+  }
+  if (s.height_fog) {
+    const HeightFog& f = *s.height_fog;
+    p.height_fog_density = static_cast<float>(f.density);
+    p.height_fog_falloff = static_cast<float>(f.falloff);
+    p.height_fog_color = to_cl(f.color);
+    p.height_fog_sun_color = to_cl(f.sun_color);
+    p.height_fog_sun_direction = to_cl(f.sun_direction);
+    p.height_fog_sun_power = static_cast<float>(f.sun_power);
+  }
+  p.gamma = static_cast<float>(s.gamma);
+  p.light_count = static_cast<cl_int>(scene.lights.size());
+  return p;
+}
+
 }  // namespace
 
 MarchParams march_params(const Scene& scene, const Dispatch& dispatch) {
@@ -59,6 +114,7 @@ MarchParams march_params(const Scene& scene, const Dispatch& dispatch) {
   params.camera_height = static_cast<float>(scene.camera.position.y);
   params.over_relaxation = static_cast<float>(camera_over_relaxation(scene));
   params.hit_cone_slope = static_cast<float>(hit_cone_slope(scene.render, scene.camera));
+  params.shading = shading_params(scene);
   if (const std::optional<BoundingSphere> bounds = camera_ray_bounds(scene)) {
     const glm::dvec3 c = scene.camera.position - bounds->center;
     params.bounds = to_cl(c);
@@ -81,16 +137,31 @@ MarchParams march_params(const Scene& scene, const Dispatch& dispatch) {
   return params;
 }
 
-std::vector<cl_float4> light_data(const Scene& scene) {
-  std::vector<cl_float4> data;
+std::vector<LightParams> light_data(const Scene& scene) {
+  std::vector<LightParams> data;
   for (const Light& light : scene.lights) {
-    cl_float4 where = light.kind == LightKind::Point ? to_cl(light.position - scene.camera.position) : to_cl(light.direction);
-    where.s[3] = light.kind == LightKind::Point ? 1.0f : 0.0f;
-    data.push_back(where);
-    data.push_back(to_cl(light.color * light.intensity));
+    LightParams params{};
+    params.where = light.kind == LightKind::Point ? to_cl(light.position - scene.camera.position) : to_cl(light.direction);
+    params.where.s[3] = light.kind == LightKind::Point ? 1.0f : 0.0f;
+    params.radiance = to_cl(light.color * light.intensity);
+    data.push_back(params);
   }
-  if (data.empty()) data.push_back(to_cl(glm::dvec3(0.0)));  // a buffer may not be empty
+  if (data.empty()) data.push_back(LightParams{});  // a buffer may not be empty
   return data;
+}
+
+cl::Buffer make_light_buffer(const cl::Context& context, const Scene& scene) {
+  std::vector<LightParams> lights = light_data(scene);
+  return cl::Buffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, lights.size() * sizeof(LightParams), lights.data());
+}
+
+void write_lights(const cl::CommandQueue& queue, const cl::Context& context, const Scene& scene, cl::Buffer& lights) {
+  const std::vector<LightParams> data = light_data(scene);
+  if (data.size() * sizeof(LightParams) > lights.getInfo<CL_MEM_SIZE>()) {
+    lights = make_light_buffer(context, scene);
+    return;
+  }
+  queue.enqueueWriteBuffer(lights, CL_TRUE, 0, data.size() * sizeof(LightParams), data.data());
 }
 
 namespace {

@@ -17,8 +17,14 @@ namespace clmarch {
 
 /// The march kernel's parameters for the scene (first_row left at 0).
 MarchParams march_params(const Scene& scene, const Dispatch& dispatch);
-/// Lights as the kernel reads them (kernels/shading.cl): positions relative to the camera.
-std::vector<cl_float4> light_data(const Scene& scene);
+/// Lights as the kernel reads them (kernels/shading.cl): positions relative to the camera; one
+/// unread light for a scene without any (a buffer may not be empty).
+std::vector<LightParams> light_data(const Scene& scene);
+/// A buffer holding the scene's lights (light_data).
+cl::Buffer make_light_buffer(const cl::Context& context, const Scene& scene);
+/// Writes the scene's lights into lights, or into a new buffer when there are more of them than it
+/// holds (the light count is a frame's number, not the program's).
+void write_lights(const cl::CommandQueue& queue, const cl::Context& context, const Scene& scene, cl::Buffer& lights);
 
 /// What one device lets a values buffer take.
 struct DeviceMemoryLimits {

@@ -82,11 +82,9 @@ OpenClRenderer::OpenClRenderer(const Scene& scene, const OpenClOptions& options)
   const std::size_t chunk_limit = options.max_chunk_pixels ? options.max_chunk_pixels : chunk_pixels_for(dp.device);
   s.dispatch = plan_tile_dispatch(s.prepared, scene.render.width, scene.render.height, chunk_limit);
   s.params = march_params(scene, s.dispatch);
-  const std::vector<cl_float4> lights = light_data(scene);
   with_device_errors(dp.device, [&] {
     s.out = cl::Buffer(dp.context, CL_MEM_WRITE_ONLY | CL_MEM_HOST_READ_ONLY, march_output_bytes(s.dispatch));
-    s.lights = cl::Buffer(dp.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, lights.size() * sizeof(cl_float4),
-                          const_cast<cl_float4*>(lights.data()));
+    s.lights = make_light_buffer(dp.context, scene);
     s.values = make_scene_values(s.prepared, scene);
     s.kernel = cl::Kernel(dp.program, "march");
     s.cones = make_cone_pass(s.prepared, scene, s.values);
@@ -117,7 +115,7 @@ bool OpenClRenderer::can_render(const Scene& scene, const OpenClOptions& options
       options.value_slots != mine.value_slots || options.ray_status != mine.ray_status || !(scene_variant(scene, options.variant) == s.prepared.kernel_options.variant)) {
     return false;
   }
-  return generate_kernel_source(scene, s.prepared.kernel_options) == s.prepared.source;
+  return program_key(scene, s.prepared.kernel_options) == s.prepared.key;
 }
 
 void OpenClRenderer::set_scene(const Scene& scene) {
@@ -125,11 +123,13 @@ void OpenClRenderer::set_scene(const Scene& scene) {
   s.render = scene.render;
   s.cones_run = false;
   s.params = march_params(scene, s.dispatch);
-  // The same source has the same LIGHT_COUNT, so the buffer keeps its size.
-  const std::vector<cl_float4> lights = light_data(scene);
   with_device_errors(s.prepared.program.device, [&] {
-    s.prepared.program.queue.enqueueWriteBuffer(s.lights, CL_TRUE, 0, lights.size() * sizeof(cl_float4), lights.data());
+    const DeviceProgram& dp = s.prepared.program;
+    write_lights(dp.queue, dp.context, scene, s.lights);
     write_scene_values(s.prepared, scene, s.values);
+    // Either may have moved to a larger buffer: the kernels must not keep the old one.
+    bind_march_inputs(s.kernel, s.out, s.lights, s.values, s.cones);
+    if (s.cones) set_scene_values_arg(s.cones->kernel, 3, s.values);
   });
 }
 

@@ -95,8 +95,8 @@ class OpenClRenderer {
   RenderResult render_rows(int first_row, int rows);
 
   /// Whether scene can be rendered with this program and buffers: the same image size, options
-  /// (but before_build) and generated source, so only what the kernel takes as arguments
-  /// differs (the camera and lights, march limits, the literals at value_slots).
+  /// (but before_build) and program key (program_key), so only what the kernel takes as arguments
+  /// differs (the camera, march limits and shading numbers, the lights, the literals at value_slots).
   bool can_render(const Scene& scene, const OpenClOptions& options) const;
   /// Makes scene the current one; can_render(scene, ...) must hold.
   void set_scene(const Scene& scene);

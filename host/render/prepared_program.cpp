@@ -36,7 +36,8 @@ PreparedProgram prepare_program(const Scene& scene, const OpenClOptions& options
   if (options.before_build) options.before_build(source);
   return {build_device_program(device, source, kernel_build_options(variant)), kernel_options.lanes,
           march ? packets_per_item(scene, kernel_options.lanes) : 1,
-          march ? march_outputs(scene, purpose, options.ray_status).planes() : std::vector<int>{}, source, kernel_options};
+          march ? march_outputs(scene, purpose, options.ray_status).planes() : std::vector<int>{}, source, kernel_options,
+          program_key(scene, kernel_options)};
 }
 
 }  // namespace clmarch

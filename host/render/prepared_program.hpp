@@ -21,6 +21,8 @@ struct PreparedProgram {
   /// The generated OpenCL C it was built from, and what it was generated with.
   std::string source;
   KernelOptions kernel_options;
+  /// program_key(scene, kernel_options): which scenes it renders.
+  ProgramKey key;
 };
 
 /// The program variant the scene renders with: variant, in double where the scene asks for

@@ -1,0 +1,143 @@
+// Programs are keyed by their feature switches and the shape of the scene's code: the numbers a
+// frame changes (camera, march limits, shading, lights) reach the device as data and never rebuild
+// the program, and the program's #defines are feature switches only.
+#include "codegen/kernel_source.hpp"
+#include "render/opencl_renderer.hpp"
+#include "scene/scene_loader.hpp"
+
+#include <gtest/gtest.h>
+
+#include <initializer_list>
+#include <regex>
+#include <utility>
+#include <set>
+#include <string>
+
+namespace clmarch {
+namespace {
+
+// Every shading part, with two lights; the frames below change their numbers only.
+const char* const kLit =
+    "camera: {position: [0, 1.5, 5], look_at: [0, 0.5, 0]}\n"
+    "render: {width: 40, height: 24, max_distance: 30, coarse_pass: cone}\n"
+    "sdf:\n  union:\n    - sphere: {center: [0, 0.6, 0], radius: 0.6, reflectivity: 0.3}\n"
+    "    - plane: {normal: [0, 1, 0], offset: 0}\n"
+    "lights: [{point: {position: [2, 3, 2]}}, {directional: {direction: [-1, 2, 1], intensity: 0.5}}]\n"
+    "shading: {model: blinn_phong, specular: 0.4, step_ao: 5000, ambient_occlusion: {}, shadows: {mode: soft_improved},\n"
+    "          reflections: 1, sky: {}, glow: {radius: 0.2}, planetary_glow: {}, fog: {density: 0.02},\n"
+    "          height_fog: {density: 0.05}, tone_map: reinhard, gamma: 2.2}\n";
+
+Scene lit(const std::string& yaml = kLit) { return load_scene_text(yaml, "lit.yaml"); }
+
+/// kLit with the first occurrence of each from replaced by its to.
+Scene lit_with(std::initializer_list<std::pair<std::string, std::string>> changes) {
+  std::string yaml = kLit;
+  for (const auto& [from, to] : changes) {
+    const std::size_t at = yaml.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) yaml.replace(at, from.size(), to);
+  }
+  return lit(yaml);
+}
+Scene lit_with(const std::string& from, const std::string& to) { return lit_with({{from, to}}); }
+
+KernelOptions shaded() { return KernelOptions{KernelPurpose::Shaded, 16}; }
+
+// Each of these changes numbers of MarchParams or the lights buffer, not the program.
+TEST(ProgramKey, NumbersOfTheFrameKeepTheProgram) {
+  const ProgramKey key = program_key(lit(), shaded());
+  const std::pair<const char*, const char*> changes[] = {
+      {"position: [0, 1.5, 5]", "position: [0.3, 1.7, 4.5]"},
+      {"max_distance: 30", "max_distance: 25, epsilon: 0.002, max_steps: 90"},
+      {"position: [2, 3, 2]", "position: [-2, 4, 1], intensity: 2, color: [1, 0.5, 0.5]"},
+      {"specular: 0.4", "specular: 0.7, shininess: 12, diffuse: 0.8, ambient: [0.2, 0.1, 0.1], background: [0.1, 0.2, 0.3]"},
+      {"step_ao: 5000", "step_ao: 3000"},
+      {"ambient_occlusion: {}", "ambient_occlusion: {samples: 3, step: 0.08, power: 2}"},
+      {"mode: soft_improved", "mode: soft_improved, k: 8, min_t: 0.02, max_t: 12, max_steps: 40"},
+      {"reflections: 1", "reflections: 2"},
+      {"sky: {}", "sky: {horizon: [1, 0.9, 0.8]}"},
+      {"glow: {radius: 0.2}", "glow: {radius: 0.3, color: [0.5, 0.5, 1]}"},
+      {"planetary_glow: {}", "planetary_glow: {sharpness: 4, sun_direction: [1, 1, 0]}"},
+      {"fog: {density: 0.02}", "fog: {density: 0.05, color: [0.8, 0.8, 0.9]}"},
+      {"height_fog: {density: 0.05}", "height_fog: {density: 0.08, falloff: 0.3, sun_power: 4}"},
+      {"gamma: 2.2", "gamma: 1.8"},
+      {"lights: [", "lights: [{point: {position: [0, 5, 0]}}, {directional: {direction: [1, 1, 0]}}, "},
+      {"lights: [{point: {position: [2, 3, 2]}}, ", "lights: ["},
+  };
+  for (const auto& [from, to] : changes) EXPECT_EQ(program_key(lit_with(from, to), shaded()), key) << to;
+}
+
+// What changes the code does change the key: a feature switch, a spelled literal, a shape.
+TEST(ProgramKey, FeaturesLiteralsAndShapesMakeAnotherProgram) {
+  const ProgramKey key = program_key(lit(), shaded());
+  const std::pair<const char*, const char*> changes[] = {
+      {"planetary_glow: {}, fog: {density: 0.02},", "planetary_glow: {},"},
+      {"mode: soft_improved", "mode: hard"},
+      {"model: blinn_phong", "model: phong"},
+      {"gamma: 2.2", "gamma: 1"},
+      {"radius: 0.6", "radius: 0.7"},
+      {"- plane: {normal: [0, 1, 0], offset: 0}", "- box: {half_size: [3, 0.1, 3]}"},
+  };
+  for (const auto& [from, to] : changes) EXPECT_NE(program_key(lit_with(from, to), shaded()), key) << from << " -> " << to;
+  KernelOptions depth{KernelPurpose::DepthSteps, 16};
+  EXPECT_NE(program_key(lit(), depth), key);
+  KernelOptions slots = shaded();
+  slots.value_slots = {0};
+  EXPECT_NE(program_key(lit(), slots), key) << "a literal read from the values is no longer spelled";
+}
+
+// A renderer made for one frame renders the next, whose numbers all differ and which has a light
+// more (the lights buffer grows), then one light fewer, each as a renderer of its own would: plane
+// for plane, at 1 and 16 lanes.
+TEST(ProgramKey, OneRendererDrawsEachFrameAsItsOwnWould) {
+  const Scene frames[] = {
+      lit(),
+      lit_with({{"position: [0, 1.5, 5]", "position: [0.4, 1.6, 4.8]"},
+                {"lights: [", "lights: [{point: {position: [0, 5, 0], intensity: 0.7}}, "},
+                {"fog: {density: 0.02}", "fog: {density: 0.04}"},
+                {"specular: 0.4", "specular: 0.6, ambient: [0.15, 0.1, 0.1]"}}),
+      lit_with("lights: [{point: {position: [2, 3, 2]}}, ", "lights: ["),
+  };
+  for (int lanes : {1, 16}) {
+    OpenClOptions options;
+    options.lanes = lanes;
+    OpenClRenderer renderer(frames[0], options);
+    for (const Scene& frame : frames) {
+      ASSERT_TRUE(renderer.can_render(frame, options));
+      renderer.set_scene(frame);
+      const FrameBuffers shared = renderer.render().buffers;
+      const FrameBuffers own = render_opencl(frame, options).buffers;
+      for (int c = 0; c < kChannelCount; ++c) {
+        EXPECT_EQ(shared.planes[c], own.planes[c]) << kChannelNames[c] << " lanes " << lanes << " lights " << frame.lights.size();
+      }
+    }
+  }
+}
+
+// The program's #defines switch features; numbers reach it as MarchParams and the lights. The only
+// defines with a value are the packet's shape (LANES, PACKETS_PER_ITEM) and the shadow mode, named.
+TEST(KernelSource, DefinesAreFeatureSwitches) {
+  const std::string source = generate_kernel_source(lit(), shaded());
+  const std::string header = source.substr(0, source.find("#line 1"));
+  const std::regex define(R"(#define (\w+)( (.*))?)");
+  std::set<std::string> names;
+  for (std::sregex_iterator it(header.begin(), header.end(), define), end; it != end; ++it) {
+    const std::string name = (*it)[1].str(), value = (*it)[3].str();
+    names.insert(name);
+    if (name == "LANES" || name == "PACKETS_PER_ITEM") {
+      EXPECT_TRUE(std::regex_match(value, std::regex(R"(\d+)"))) << name << " " << value;
+    } else if (name == "SHADOW_MODE") {
+      EXPECT_EQ(value, "CLMARCH_SHADOW_SOFT_IMPROVED");
+    } else {
+      EXPECT_EQ(value, "") << name;
+    }
+  }
+  for (const char* feature : {"NEED_SHADING", "SHADING_MODEL_BLINN_PHONG", "SHADOW_MODE", "AMBIENT_OCCLUSION", "REFLECTIONS",
+                              "STEP_AO", "FOG", "SKY", "GLOW", "PLANET_GLOW", "HEIGHT_FOG", "TONE_MAP_REINHARD",
+                              "DISPLAY_GAMMA", "COARSE_PASS"}) {
+    EXPECT_EQ(names.count(feature), 1u) << feature;
+  }
+}
+
+}  // namespace
+}  // namespace clmarch
