@@ -151,8 +151,10 @@ TEST(SceneLoader, AnEmptyValueIsPlacedAtItsKey) {
   EXPECT_EQ(error_of("sdf: {sphere: {}}\nrender:\n  width: 8\n  epsilon: # later\n\n  height: 4\n"),
             "s.yaml:4:3: render.epsilon must be a number (got nothing)");
   EXPECT_EQ(error_of("sdf: {sphere: {radius: }}\n"), "s.yaml:1:16: sdf.sphere.radius must be a number (got nothing)");
-  EXPECT_EQ(error_of("camera: {fov: 60}\nsdf: {sphere: {}}\n", {{"camera", "null"}}),
-            "s.yaml (--set): camera must be a map (got nothing)");
+  EXPECT_EQ(error_of("camera: {fov: 60}\nsdf: {sphere: {}}\n", {{"camera", "{fov: }"}}),
+            "s.yaml (--set): camera.fov must be a number (got nothing)");
+  // A null from --set removes the key instead (issue 29): the camera's defaults apply.
+  EXPECT_EQ(error_of("camera: {fov: 60}\nsdf: {sphere: {}}\n", {{"camera", "null"}}), "no error");
   // An empty item of a block list is placed at the list's start (the next token is under another
   // key); in a flow list, at the comma after it.
   EXPECT_EQ(error_of("sdf:\n  union:\n    - sphere: {}\n    -\n\nrender: {width: 8}\n"),

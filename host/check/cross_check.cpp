@@ -339,6 +339,7 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
   r.color_p99_abs = summarise(color_abs).p99;
   r.miss_color_p99_abs = summarise(miss_color_abs).p99;
   r.color_compared = static_cast<int>(color_abs.size() + miss_color_abs.size());
+  r.misses_compared = static_cast<int>(miss_color_abs.size());
   const double mse = squared_color / (3.0 * std::max(r.pixels, 1));
   r.color_psnr_db = mse > 0.0 ? 10.0 * std::log10(1.0 / mse) : std::numeric_limits<double>::infinity();
 
@@ -348,6 +349,9 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
   const double normal_ratio_p99 = summarise(normal_tol).p99;
   const double color_ratio_p99 = summarise(color_tol).p99;
   const double miss_color_ratio_p99 = summarise(miss_color_tol).p99;
+  r.ratios.normal_p99 = normal_ratio_p99;
+  r.ratios.color_p99 = color_ratio_p99;
+  r.ratios.miss_color_p99 = miss_color_ratio_p99;
   t.normal_angle_p99 = r.normal_angle_p99 / std::max(normal_ratio_p99, 1e-300);
   t.color_p99_abs = r.color_p99_abs / std::max(color_ratio_p99, 1e-300);
   t.miss_color_p99_abs = r.miss_color_p99_abs / std::max(miss_color_ratio_p99, 1e-300);
@@ -356,6 +360,7 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
   // that is so at more pixels than the p99 leaves out, the check fails, saying why: the precision's
   // rounding (the scene is beyond its reach), or depths too far apart to compare normals.
   const double past_pi_limit = (1.0 - kQuantile) * r.both_hit;
+  t.normal_past_pi = past_pi_limit;
   if (r.normal_rounding_past_pi > past_pi_limit) {
     r.failures.push_back(fmt::format(
         "the normal tolerance exceeds pi at {} of {} pixels both hit, so it checks nothing there: {}'s rounding of coordinates "
@@ -445,6 +450,7 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
   r.shading_p99_abs = summary.p99;
   r.shading_compared = pixels_compared;
   const double ratio_p99 = summarise(ratios).p99;
+  r.ratios.shading_p99 = ratio_p99;
   r.tolerances.shading_p99_abs = ratio_p99 > 0.0 ? summary.p99 / ratio_p99 : kColorQuantum + power_rounding;
   if (ratio_p99 > 1.0) {
     r.failures.push_back(fmt::format("shading error p99 is {:.3g} times its per-pixel tolerance (half a step of 8 bits "
@@ -474,7 +480,8 @@ nlohmann::json CheckReport::to_json() const {
             {"p99_abs", color_p99_abs},
             {"psnr_db", color_psnr_db},
             {"miss_p99_abs", miss_color_p99_abs},
-            {"compared", color_compared}}},
+            {"compared", color_compared},
+            {"misses_compared", misses_compared}}},
           {"shading", {{"max_abs", shading_max_abs}, {"p99_abs", shading_p99_abs}, {"compared", shading_compared}}},
           {"id_mismatch", {{"edge", id_mismatch_edge}, {"interior", id_mismatch_interior}, {"compared", ids_compared}}},
           {"non_finite", {{"opencl", non_finite_opencl}, {"reference", non_finite_reference}}},
@@ -485,37 +492,59 @@ nlohmann::json CheckReport::to_json() const {
             {"steps_diff_mean", tolerances.steps_diff_mean},
             {"shading_p99_abs", tolerances.shading_p99_abs},
             {"id_mismatch_interior", tolerances.id_mismatch_interior},
-            {"id_mismatch_edge", tolerances.id_mismatch_edge}}},
+            {"id_mismatch_edge", tolerances.id_mismatch_edge},
+            {"normal_past_pi", tolerances.normal_past_pi}}},
+          {"ratios_p99",
+           {{"normal", ratios.normal_p99}, {"color", ratios.color_p99}, {"miss_color", ratios.miss_color_p99},
+            {"shading", ratios.shading_p99}}},
           {"failures", failures}};
 }
 
 std::string CheckReport::to_text() const {
-  std::string out;
-  out += fmt::format("pixels            {} ({} hit on both sides)\n", pixels, both_hit);
+  // Lines that decide the check start with PASS or FAIL and name their limit; the others are figures.
+  const auto decided = [](bool pass) { return pass ? "PASS " : "FAIL "; };
+  const std::string figure = "     ";
   const auto count = [](const std::optional<std::uint64_t>& n) { return n ? std::to_string(*n) : std::string("n/a"); };
-  out += fmt::format("out of steps      OpenCL {}, reference {} (rays neither hit nor past their end: reported, not checked)\n",
-                     count(out_of_steps_opencl), count(out_of_steps_reference));
-  out += fmt::format("hit-mask mismatch silhouette {} (max {}), interior {} (max {})\n", mask_mismatch_silhouette,
-                     tolerances.mask_mismatch_silhouette, mask_mismatch_interior, tolerances.mask_mismatch_interior);
-  out += fmt::format("depth abs         p50 {:.3g}  p99 {:.3g}  max {:.3g}\n", depth_abs.p50, depth_abs.p99, depth_abs.max);
-  out += fmt::format("depth rel         p50 {:.3g}  p99 {:.3g}  max {:.3g}\n", depth_rel.p50, depth_rel.p99, depth_rel.max);
-  out += fmt::format("depth / epsilon   p50 {:.3g}  p99 {:.3g}  max {:.3g}\n", depth_in_epsilons.p50, depth_in_epsilons.p99,
-                     depth_in_epsilons.max);
-  out += fmt::format("depth / tolerance p50 {:.3g}  p99 {:.3g} (max 1)  max {:.3g}\n", depth_in_tolerances.p50,
-                     depth_in_tolerances.p99, depth_in_tolerances.max);
-  out += fmt::format("steps difference  mean {:.3g} (max {})  max {}{}\n", steps_diff_mean, tolerances.steps_diff_mean, steps_diff_max,
+  std::string out;
+  out += fmt::format("{}pixels            {} ({} hit on both sides)\n", figure, pixels, both_hit);
+  out += fmt::format("{}out of steps      OpenCL {}, reference {} (rays neither hit nor past their end: reported, not checked)\n",
+                     figure, count(out_of_steps_opencl), count(out_of_steps_reference));
+  out += fmt::format("{}non-finite        OpenCL {}, reference {} pixels (max 0)\n", decided(non_finite_opencl + non_finite_reference == 0),
+                     non_finite_opencl, non_finite_reference);
+  out += fmt::format("{}hit-mask mismatch silhouette {} (max {}), interior {} (max {})\n",
+                     decided(mask_mismatch_silhouette <= tolerances.mask_mismatch_silhouette &&
+                             mask_mismatch_interior <= tolerances.mask_mismatch_interior),
+                     mask_mismatch_silhouette, tolerances.mask_mismatch_silhouette, mask_mismatch_interior,
+                     tolerances.mask_mismatch_interior);
+  out += fmt::format("{}depth / tolerance p99 {:.3g} (max {:g})  p50 {:.3g}  max {:.3g}\n",
+                     decided(depth_in_tolerances.p99 <= tolerances.depth_in_tolerances_p99), depth_in_tolerances.p99,
+                     tolerances.depth_in_tolerances_p99, depth_in_tolerances.p50, depth_in_tolerances.max);
+  out += fmt::format("{}depth abs         p50 {:.3g}  p99 {:.3g}  max {:.3g}\n", figure, depth_abs.p50, depth_abs.p99, depth_abs.max);
+  out += fmt::format("{}depth rel         p50 {:.3g}  p99 {:.3g}  max {:.3g}\n", figure, depth_rel.p50, depth_rel.p99, depth_rel.max);
+  out += fmt::format("{}depth / epsilon   p50 {:.3g}  p99 {:.3g}  max {:.3g}\n", figure, depth_in_epsilons.p50,
+                     depth_in_epsilons.p99, depth_in_epsilons.max);
+  out += fmt::format("{}steps difference  mean {:.3g} (max {:g})  max {}{}\n", decided(steps_diff_mean <= tolerances.steps_diff_mean),
+                     steps_diff_mean, tolerances.steps_diff_mean, steps_diff_max,
                      steps_one_sided ? "  (steps short of the reference's only: an operand grid bounds its union outside)" : "");
-  out += fmt::format("normal angle p99  {:.3g} deg\n", normal_angle_p99);
-  out += fmt::format("color             max abs {:.3g}  p99 abs {:.3g}  PSNR {:.1f} dB\n", color_max_abs, color_p99_abs, color_psnr_db);
-  out += fmt::format("color of misses   p99 abs {:.3g}  ({} pixels compared, hits and misses)\n", miss_color_p99_abs,
-                     color_compared);
+  out += fmt::format("{}normal angle p99  {:.3g} deg: {:.3g} of its per-pixel tolerance (max 1)\n", decided(ratios.normal_p99 <= 1.0),
+                     normal_angle_p99, ratios.normal_p99);
+  out += fmt::format("{}normal tolerance  past pi at {} pixels both hit (max {:.0f}: there it would pass any normal)\n",
+                     decided(normal_tolerance_past_pi <= tolerances.normal_past_pi), normal_tolerance_past_pi,
+                     std::floor(tolerances.normal_past_pi));
+  out += fmt::format("{}color of hits     p99 abs {:.3g}: {:.3g} of its per-pixel tolerance (max 1)  max abs {:.3g}  PSNR {:.1f} dB\n",
+                     decided(ratios.color_p99 <= 1.0), color_p99_abs, ratios.color_p99, color_max_abs, color_psnr_db);
+  out += fmt::format("{}color of misses   p99 abs {:.3g}: {:.3g} of its per-pixel tolerance (max 1)  ({} misses compared)\n",
+                     decided(ratios.miss_color_p99 <= 1.0), miss_color_p99_abs, ratios.miss_color_p99, misses_compared);
   if (shading_compared > 0) {
-    out += fmt::format("shading           max abs {:.3g}  p99 abs {:.3g}  ({} hits shaded by both: color, ao, diffuse, specular)\n", shading_max_abs,
-                       shading_p99_abs, shading_compared);
+    out += fmt::format("{}shading           p99 abs {:.3g}: {:.3g} of its per-pixel tolerance (max 1)  max abs {:.3g}  "
+                       "({} hits shaded by both: color, ao, diffuse, specular)\n",
+                       decided(ratios.shading_p99 <= 1.0), shading_p99_abs, ratios.shading_p99, shading_max_abs, shading_compared);
   }
   if (ids_compared > 0) {
-    out += fmt::format("id mismatch       edge {} (max {}), interior {} (max {})  ({} hits compared)\n", id_mismatch_edge,
-                       tolerances.id_mismatch_edge, id_mismatch_interior, tolerances.id_mismatch_interior, ids_compared);
+    out += fmt::format("{}id mismatch       edge {} (max {}), interior {} (max {})  ({} hits compared)\n",
+                       decided(id_mismatch_edge <= tolerances.id_mismatch_edge && id_mismatch_interior <= tolerances.id_mismatch_interior),
+                       id_mismatch_edge, tolerances.id_mismatch_edge, id_mismatch_interior, tolerances.id_mismatch_interior,
+                       ids_compared);
   }
   out += passed() ? "check passed\n" : "check FAILED:\n";
   for (const std::string& f : failures) out += "  " + f + "\n";

@@ -62,8 +62,9 @@ struct CheckReport {
   /// Over the pixels both miss away from edges (the sky, the background, the glow of misses), those
   /// with equal steps where the scene has Crum's glow.
   double miss_color_p99_abs = 0.0;
-  /// Pixels whose color the hit and miss criteria compared.
+  /// Pixels whose color the hit and miss criteria compared, and the misses among them.
   int color_compared = 0;
+  int misses_compared = 0;
   /// The shading alone, over the pixels the OpenCL render hit: its color and each of its layers
   /// (ao, diffuse, specular) against the reference's of the same depth, normal and steps
   /// (reshade_hits), so that differences of geometry drop out. Compared pixels: 0 when the check
@@ -90,12 +91,22 @@ struct CheckReport {
     double shading_p99_abs = 0.0;
     int id_mismatch_interior = 0;
     int id_mismatch_edge = 0;
+    /// Pixels both hit whose normal tolerance may pass pi (the 1 % the p99 leaves out).
+    double normal_past_pi = 0.0;
   } tolerances;
+  /// The p99 over pixels of each error divided by its per-pixel tolerance: at most 1 passes.
+  struct ToleranceRatios {
+    double normal_p99 = 0.0;
+    double color_p99 = 0.0;
+    double miss_color_p99 = 0.0;
+    double shading_p99 = 0.0;
+  } ratios;
   std::vector<std::string> failures;
 
   bool passed() const { return failures.empty(); }
   nlohmann::json to_json() const;
-  /// A short human-readable report, one figure per line.
+  /// A short human-readable report, one figure per line; each line that decides the check starts
+  /// with PASS or FAIL and names its limit.
   std::string to_text() const;
 };
 

@@ -10,14 +10,20 @@
 #include "common/cancellation.hpp"
 #include "common/errors.hpp"
 #include "common/log.hpp"
+#include "common/nearest_name.hpp"
 #include "common/progress.hpp"
 #include "distributed/mpi_world.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
 
 #include <unistd.h>
 
@@ -31,6 +37,39 @@ void reject_empty_values(CLI::App& command) {
   for (CLI::Option* option : command.get_options()) {
     if (option->get_expected_max() > 0) option->check(non_empty);
   }
+}
+
+/// Options a user coming from other renderers tries for one clmarch spells otherwise.
+constexpr std::pair<std::string_view, std::string_view> kOptionSynonyms[] = {
+    {"width", "size"}, {"height", "size"}, {"resolution", "size"}, {"res", "size"}, {"out", "output"}, {"spp", "samples"}};
+
+/// " (did you mean '--NAME'?)" for the first --option of the command line that its command does
+/// not know, or empty.
+std::string option_suggestion(const CLI::App& app, int argc, char** argv) {
+  const CLI::App* command = &app;
+  std::vector<std::string> words(argv + 1, argv + argc);
+  for (const std::string& word : words) {
+    const auto named = app.get_subcommands([&](const CLI::App* c) { return c->get_name() == word; });
+    if (!named.empty()) {
+      command = named.front();
+      break;
+    }
+  }
+  std::vector<std::string> names;
+  for (const CLI::Option* option : command->get_options()) {
+    for (const std::string& name : option->get_lnames()) names.push_back(name);
+  }
+  for (const std::string& word : words) {
+    if (!word.starts_with("--")) continue;
+    const std::string name = word.substr(2, word.find('=') == std::string::npos ? std::string::npos : word.find('=') - 2);
+    if (std::find(names.begin(), names.end(), name) != names.end()) continue;
+    for (const auto& [synonym, option] : kOptionSynonyms) {
+      if (name == synonym && std::find(names.begin(), names.end(), option) != names.end()) return fmt::format(" (did you mean '--{}'?)", option);
+    }
+    const std::string nearest = clmarch::nearest_name(name, std::vector<std::string_view>(names.begin(), names.end()));
+    return nearest.empty() ? std::string() : fmt::format(" (did you mean '--{}'?)", nearest);
+  }
+  return {};
 }
 
 }  // namespace
@@ -86,7 +125,7 @@ int main(int argc, char** argv) {
       }
       break;
     }
-    std::cerr << "clmarch: " << one_line(e.what()) << " (see clmarch --help)\n";
+    std::cerr << "clmarch: " << one_line(e.what()) << option_suggestion(app, argc, argv) << " (see clmarch --help)\n";
     return kExitBadInput;
   }
   set_verbosity(quiet ? Verbosity::Quiet : verbose ? Verbosity::Verbose : Verbosity::Normal);

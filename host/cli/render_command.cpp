@@ -44,7 +44,8 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& options) {
       "  clmarch render scenes/torus.yaml --set render.epsilon=1e-5 --set shading.view=normals -o n.png\n"
       "  clmarch render scenes/torus.yaml --backend reference -o ref.png   # CPU, double precision\n"
       "  clmarch render scenes/torus.yaml --device 0 --lanes 1     # one pixel per work-item\n"
-      "  clmarch render scenes/torus.yaml --dump-kernel torus.cl   # the OpenCL C that is built\n"
+      "  clmarch render scenes/torus.yaml --dump-kernel torus.cl   # only the OpenCL C that is built\n"
+      "  clmarch render scenes/torus.yaml --no-image --buffers torus.exr   # the buffers alone\n"
       "  clmarch render scenes/moving_shapes.yaml --time 1.5       # t = 1.5 in the scene's expressions\n"
       "  clmarch render scenes/torus.yaml --samples 16 --buffers torus.exr   # anti-aliased, coverage in A\n"
       "  clmarch render scenes/moving_shapes.yaml --frames 0:47 --fps 24 -o frames/shot_####.png\n"
@@ -64,14 +65,17 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& options) {
                      "(e.g. --backend reference)")
       ->check(CLI::IsMember({"opencl", "reference"}));
   render->add_option("--dump-kernel", options.dump_kernel,
-                     "Write the exact OpenCL C source that is built, before building it (e.g. --dump-kernel torus.cl)");
-  CLI::Option* frames = render->add_option("--frames", options.frames,
+                     "Write the exact OpenCL C source that is built, before building it; without -o no image is "
+                     "written, and without --buffers or --stats nothing renders (e.g. --dump-kernel torus.cl)");
+  render->add_flag("--no-image", options.no_image,
+                   "Write no color image: for --buffers, --stats or --dump-kernel alone (e.g. --no-image --stats)");
+  render->add_option("--frames", options.frames,
                      "Render frames FIRST:LAST (both included) of an animation, frame n at t = n / fps, to numbered "
                      "files: a run of # in -o/--buffers/--dump-kernel is the frame number (-o shot_####.png), else _NNNN goes "
                      "before the extension (e.g. --frames 0:47 --fps 24)");
+  // Checked against --frames in check_render_options: CLI11's needs() would garble the help line.
   render->add_option("--fps", options.fps, "Frames per second of --frames (default 24; e.g. --fps 30)")
-      ->check(finite_number([](double fps) { return fps > 0.0 && fps <= 1000.0; }, "frames per second in (0, 1000]"))
-      ->needs(frames);
+      ->check(finite_number([](double fps) { return fps > 0.0 && fps <= 1000.0; }, "frames per second in (0, 1000]"));
   render->add_flag("--stats", options.stats,
                    "Print one JSON line of figures on stdout: device, lanes, build_ms, kernel_ms, steps, rays_per_s");
   return render;
@@ -101,7 +105,7 @@ void check_distinct_outputs(const std::string& output, const std::string& buffer
 
 /// Refuses option combinations that cannot apply, before anything is loaded or written.
 void check_render_options(const RenderCommandOptions& options, const std::string& output) {
-  check_image_path(output, "--output");
+  if (!output.empty()) check_image_path(output, "--output");
   if (options.backend == "reference") {
     for (const auto& [given, name] : {std::pair{options.scene.device.has_value(), "--device"},
                                       std::pair{options.scene.lanes.has_value(), "--lanes"},
@@ -121,6 +125,11 @@ void check_render_options(const RenderCommandOptions& options, const std::string
   check_distinct_outputs(output, options.buffers, options.dump_kernel);
   if (!options.frames.empty() && options.scene.time) {
     throw InputError("--time and --frames both set the time: --frames renders frame n at t = n / fps");
+  }
+  if (options.fps && options.frames.empty()) throw InputError("--fps requires --frames: it sets the frames' times");
+  if (options.no_image && !options.output.empty()) throw InputError("--no-image and --output both given: write an image or not");
+  if (options.no_image && options.buffers.empty() && !options.stats && options.dump_kernel.empty()) {
+    throw InputError("--no-image leaves nothing to write: add --buffers, --stats or --dump-kernel");
   }
 }
 
@@ -175,6 +184,10 @@ RenderResult render_scene(const RenderCommandOptions& options, const Scene& scen
   } else {
     renderer->emplace(scene, cl);
   }
+  if (files.output.empty() && files.buffers.empty() && !options.stats) {
+    // A --dump-kernel run: the program is built (its build log shows any error), nothing rendered.
+    return {};
+  }
   RenderResult result = (*renderer)->render();
   // The renderer's dispatch takes default_local_size for its work-groups (render/dispatch_plan.cpp).
   log_verbose(fmt::format("lanes {} (pixels per work-item), local size {}, {} chunk{}, kernel {:.1f} ms",
@@ -222,8 +235,11 @@ RenderStats render_image(const RenderCommandOptions& options, const Scene& scene
 /// with the options).
 FrameFiles frame_files(const RenderCommandOptions& options, const std::string& output, int frame,
                        const FrameRange& range) {
-  FrameFiles files{frame_path(output, frame, range), "", ""};
-  check_output_name(files.output, "--output");
+  FrameFiles files;
+  if (!output.empty()) {
+    files.output = frame_path(output, frame, range);
+    check_output_name(files.output, "--output");
+  }
   if (!options.buffers.empty()) {
     files.buffers = frame_path(options.buffers, frame, range);
     check_output_name(files.buffers, "--buffers");
@@ -244,7 +260,7 @@ constexpr int kSampledFrames = 64;
 /// they come free (each rank writes its own). Each image is complete before the next begins, so a
 /// Ctrl-C leaves the finished frames and nothing of the ones in progress.
 void render_sequence(const RenderCommandOptions& options, const std::string& output) {
-  const FrameRange range = parse_frame_range(options.frames, options.fps);
+  const FrameRange range = parse_frame_range(options.frames, options.fps.value_or(24.0));
   SequenceState sequence;
   // Every frame is loaded, and so checked, before the first renders: a scene that breaks at some
   // time fails with nothing written (a load costs little next to a render). Knowing up front
@@ -285,9 +301,13 @@ void render_sequence(const RenderCommandOptions& options, const std::string& out
 
 int run_render_command(const RenderCommandOptions& given) {
   RenderCommandOptions options = given;
+  check_render_options(options, options.output);
+  // The color image: -o's, else SCENE_NAME.png, except for --no-image and a --dump-kernel run.
   std::string output = options.output;
-  if (output.empty()) output = std::filesystem::path(options.scene.scene_path).stem().string() + ".png";
-  check_render_options(options, output);
+  if (output.empty() && !options.no_image && options.dump_kernel.empty()) {
+    output = std::filesystem::path(options.scene.scene_path).stem().string() + ".png";
+    check_image_path(output, "--output");
+  }
   const MpiWorld& world = mpi_world();
   if (world.distributed() && options.backend == "opencl" && !options.scene.device) {
     options.scene.device = rank_default_device(list_devices(), world.local_rank);

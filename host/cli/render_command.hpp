@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <optional>
 #include <string>
 
 namespace clmarch {
@@ -16,9 +17,12 @@ struct RenderCommandOptions {
   std::string backend = "opencl";
   std::string dump_kernel;
   bool stats = false;
+  /// --no-image: no color image (a buffers, stats or kernel-only run).
+  bool no_image = false;
   /// --frames A:B; empty: one image at --time.
   std::string frames;
-  double fps = 24.0;
+  /// --fps, which needs --frames; 24 when not given.
+  std::optional<double> fps;
 };
 
 /// Registers the subcommand; run_render_command does the work once parsed.

@@ -8,8 +8,11 @@
 #include "frame/views.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <cstdio>
+#include <string>
+#include <vector>
 
 namespace clmarch {
 
@@ -30,13 +33,21 @@ KernelPurpose purpose_for(const Scene& scene, bool want_buffers) {
 void write_outputs(const FrameFiles& files, const Scene& scene, FrameBuffers& buffers) {
   // A Ctrl-C that came too late for the renderer's own checks still writes nothing.
   throw_if_cancelled();
+  if (files.output.empty() && files.buffers.empty()) return;  // --no-image with --stats, or --dump-kernel alone
   apply_view(buffers, scene.shading.view, scene.render);
   // Both files are written before either replaces its target: a failure leaves both as they were.
   StagedFiles written;
-  write_color_image(written, files.output, buffers);
-  if (!files.buffers.empty()) write_buffers_exr(written, files.buffers, buffers, scene);
+  std::vector<std::string> names;
+  if (!files.output.empty()) {
+    write_color_image(written, files.output, buffers);
+    names.push_back(files.output);
+  }
+  if (!files.buffers.empty()) {
+    write_buffers_exr(written, files.buffers, buffers, scene);
+    names.push_back(files.buffers);
+  }
   written.commit();
-  log_info(fmt::format("wrote {}{}", files.output, files.buffers.empty() ? "" : " and " + files.buffers));
+  if (!names.empty()) log_info(fmt::format("wrote {}", fmt::join(names, " and ")));
 }
 
 nlohmann::json stats_json(const RenderCommandOptions& options, const Scene& scene, const RenderStats& s) {

@@ -3,6 +3,8 @@
 
 #include <atomic>
 #include <cstdio>
+#include <mutex>
+#include <set>
 #include <string>
 
 namespace clmarch {
@@ -29,6 +31,14 @@ void log_info(std::string_view line) {
 
 void log_verbose(std::string_view line) {
   if (verbosity() == Verbosity::Verbose) write_line(line);
+}
+
+void log_warning(std::string_view line) {
+  static std::mutex mutex;
+  static std::set<std::string, std::less<>> said;
+  const std::lock_guard lock(mutex);
+  if (verbosity() == Verbosity::Quiet || !said.emplace(line).second) return;
+  write_line(std::string("warning: ").append(line));
 }
 
 }  // namespace clmarch

@@ -17,5 +17,8 @@ Verbosity verbosity();
 void log_info(std::string_view line);
 /// "clmarch: " + line on stderr with --verbose only (device, build, dispatch details).
 void log_verbose(std::string_view line);
+/// "clmarch: warning: " + line on stderr unless --quiet, once per process for each line (the
+/// frames of a sequence load the scene again and again).
+void log_warning(std::string_view line);
 
 }  // namespace clmarch

@@ -3,6 +3,7 @@
 
 #include "common/cancellation.hpp"
 #include "common/errors.hpp"
+#include "common/nearest_name.hpp"
 #include "scene/instance_file.hpp"
 #include "scene/yaml_reader.hpp"
 
@@ -321,7 +322,8 @@ class SceneReader {
     if (!kind) {
       std::vector<std::string_view> names;
       for (NodeKind k : kAllNodeKinds) names.push_back(node_kind_name(k));
-      yaml_.fail(entry->first, fmt::format("{}: unknown node kind '{}' (expected one of: {})", path, name, fmt::join(names, ", ")));
+      yaml_.fail(entry->first, fmt::format("{}: unknown node kind '{}'{} (expected one of: {})", path, name, did_you_mean(name, names),
+                                           fmt::join(names, ", ")));
     }
     Node node = node_of_kind(*kind);
     const std::string node_path = path + "." + name;
@@ -682,6 +684,8 @@ void apply_override(YAML::Node& root, const SceneOverride& override_) {
     segments.push_back(segment);
   }
   if (segments.empty()) throw InputError(fmt::format("{}: empty key path", option));
+  // A null value removes the key (or list item), so that an optional part can be switched off.
+  const bool remove = value.IsNull();
   // yaml-cpp's operator= on a Node writes through to the node it refers to; reset() rebinds.
   YAML::Node current;
   current.reset(root);
@@ -690,6 +694,9 @@ void apply_override(YAML::Node& root, const SceneOverride& override_) {
     const bool last = i + 1 == segments.size();
     YAML::Node next;
     const bool is_index = segment.find_first_not_of("0123456789") == std::string::npos;
+    if (remove && (!current.IsDefined() || current.IsNull() || (current.IsMap() && !current[segment]))) {
+      throw InputError(fmt::format("{}: the scene has no {} to remove", option, fmt::join(segments.begin(), segments.begin() + i + 1, ".")));
+    }
     // A key the file does not have yet becomes a map; assigning through current fills the parent.
     if (!current.IsDefined() || current.IsNull()) {
       if (is_index && i > 0) {
@@ -710,13 +717,21 @@ void apply_override(YAML::Node& root, const SceneOverride& override_) {
         throw InputError(fmt::format("{}: index {} is past the end of a list of {}", option, index, current.size()));
       }
       if (last) {
-        current[index] = value;
+        if (remove) {
+          current.remove(index);
+        } else {
+          current[index] = value;
+        }
         return;
       }
       next.reset(current[index]);
     } else if (current.IsMap()) {
       if (last) {
-        current[segment] = value;
+        if (remove) {
+          current.remove(segment);
+        } else {
+          current[segment] = value;
+        }
         return;
       }
       next.reset(current[segment]);
@@ -741,6 +756,27 @@ SceneOverride parse_override(const std::string& option_text) {
   return {option_text.substr(0, equals), option_text.substr(equals + 1)};
 }
 
+namespace {
+
+/// Where a tab stands in the lines up to one past the parse error's (0-based) line, which a YAML
+/// error rarely says itself ("illegal map value"): YAML indents with spaces only. Else empty.
+std::string tab_hint(const std::string& text, int error_line) {
+  int line = 0;
+  std::size_t line_start = 0;
+  for (std::size_t at = 0; at < text.size() && line <= error_line + 1; ++at) {
+    if (text[at] == '\t') {
+      return fmt::format(" (line {} column {} holds a tab: YAML indents with spaces only)", line + 1, at - line_start + 1);
+    }
+    if (text[at] == '\n') {
+      ++line;
+      line_start = at + 1;
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
 Scene load_scene_text(const std::string& text, const std::string& source_name, const std::vector<SceneOverride>& overrides,
                       double time) {
   // yaml-cpp takes a NUL in UTF-8 text for an escape and reports it a line later ("unknown escape
@@ -763,7 +799,8 @@ Scene load_scene_text(const std::string& text, const std::string& source_name, c
     throw InputError(fmt::format("{}:{}:{}: the YAML is nested more than {} levels deep (an sdf tree may have {})", source_name,
                                  e.mark.line + 1, e.mark.column + 1, e.depth(), kMaxTreeDepth));
   } catch (const YAML::ParserException& e) {
-    throw InputError(fmt::format("{}:{}:{}: malformed YAML: {}", source_name, e.mark.line + 1, e.mark.column + 1, e.msg));
+    throw InputError(fmt::format("{}:{}:{}: malformed YAML: {}{}", source_name, e.mark.line + 1, e.mark.column + 1, e.msg,
+                                 tab_hint(text, e.mark.line)));
   }
   if (root.IsNull()) {
     if (overrides.empty()) throw InputError(fmt::format("{}: the scene is empty (it needs at least an sdf tree)", source_name));

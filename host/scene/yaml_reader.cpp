@@ -2,11 +2,15 @@
 #include "scene/yaml_reader.hpp"
 
 #include "common/errors.hpp"
+#include "common/log.hpp"
+#include "common/nearest_name.hpp"
+#include "scene/expression.hpp"
 
 #include <fmt/format.h>
-#include <muParser.h>
 #include <yaml-cpp/eventhandler.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -122,6 +126,19 @@ void YamlReader::fail(const YAML::Node& at, const std::string& message) const {
   throw InputError(fmt::format("{}: {}", where(at), shown));
 }
 
+namespace {
+
+/// Where YAML split an expression at its comma (a flow map reads `radius: max(0.1, t)` as the
+/// value "max(0.1" and a key "t)"), how to keep it whole; else empty. Such pieces are short: a
+/// long text with unbalanced parentheses is another mistake.
+std::string split_expression_hint(const std::string& text) {
+  constexpr std::size_t kLongestPiece = 200;
+  if (text.size() > kLongestPiece || std::count(text.begin(), text.end(), '(') == std::count(text.begin(), text.end(), ')')) return {};
+  return "; an expression with a comma must be quoted, as in radius: \"max(0.1, t)\", or YAML splits it at the comma";
+}
+
+}  // namespace
+
 void YamlReader::expect_map(const YAML::Node& node, const std::string& what,
                             std::initializer_list<std::string_view> allowed) const {
   expect_map(node, what, std::vector<std::string_view>(allowed));
@@ -136,7 +153,8 @@ void YamlReader::expect_map(const YAML::Node& node, const std::string& what,
     bool known = false;
     for (std::string_view a : allowed) known = known || a == key;
     if (!known) {
-      fail(entry.first, fmt::format("unknown key '{}' in {} (expected one of: {})", key, what, fmt::join(allowed, ", ")));
+      fail(entry.first, fmt::format("unknown key '{}' in {}{} (expected one of: {}){}", key, what, did_you_mean(key, allowed),
+                                    fmt::join(allowed, ", "), split_expression_hint(key)));
     }
     if (!seen.insert(key).second) fail(entry.first, fmt::format("duplicate key '{}' in {}", key, what));
   }
@@ -157,15 +175,11 @@ double YamlReader::number(const YAML::Node& node, const std::string& what, Range
       fail(node, fmt::format("{} must be a number within +-{:g}, the float range (got {})", what, kMaxSceneNumber, node.Scalar()));
     }
     try {
-      mu::Parser parser;
-      double t = time_;
-      parser.DefineVar("t", &t);
-      parser.DefineConst("pi", M_PI);
-      parser.SetExpr(node.Scalar());
-      value = parser.Eval();
+      value = evaluate_expression(node.Scalar(), {{"t", time_}});
       shown = fmt::format("{} = {:g} at t = {:g}", node.Scalar(), value, time_);
-    } catch (const mu::Parser::exception_type& e) {
-      fail(node, fmt::format("{} must be a number or an expression of the time t (got '{}': {})", what, node.Scalar(), e.GetMsg()));
+    } catch (const ExpressionError& e) {
+      fail(node, fmt::format("{} must be a number or an expression of the time t (got '{}': {}){}", what, node.Scalar(), e.what(),
+                             split_expression_hint(node.Scalar())));
     }
   }
   if (!std::isfinite(value)) fail(node, fmt::format("{} must be finite (got {})", what, shown));
@@ -215,8 +229,18 @@ glm::dvec3 YamlReader::vec3(const YAML::Node& node, const std::string& what, Ran
 }
 
 glm::dvec3 YamlReader::color(const YAML::Node& node, const std::string& what) const {
-  if (node.IsScalar()) return glm::dvec3(number(node, what, Range::non_negative()));
-  return vec3(node, what, Range::non_negative());
+  const std::string& text = node.IsScalar() ? node.Scalar() : std::string();
+  const bool is_word = !text.empty() && std::all_of(text.begin(), text.end(), [](unsigned char c) { return std::isalpha(c) || c == '_'; });
+  if (is_word && text != "t" && text != "pi") {
+    fail(node, fmt::format("{} must be a color: [r, g, b], linear with 1 the full channel, or one number for gray (got '{}')", what, text));
+  }
+  const glm::dvec3 color = node.IsScalar() ? glm::dvec3(number(node, what, Range::non_negative())) : vec3(node, what, Range::non_negative());
+  if (std::max({color.r, color.g, color.b}) > kPlausibleColor) {
+    log_warning(fmt::format("{}: {} has a channel of {:g}: colors are linear with 1 the full channel (as in a shader), so this "
+                            "one blows out; [255, 0, 0] red is [1, 0, 0]",
+                            where(node), what, std::max({color.r, color.g, color.b})));
+  }
+  return color;
 }
 
 int YamlReader::choice_of(const YAML::Node& node, const std::string& what, const char* const* names,
@@ -227,7 +251,7 @@ int YamlReader::choice_of(const YAML::Node& node, const std::string& what, const
     if (value == names[i]) return static_cast<int>(i);
     options.emplace_back(names[i]);
   }
-  fail(node, fmt::format("{} must be one of {} (got '{}')", what, fmt::join(options, ", "), value));
+  fail(node, fmt::format("{} must be one of {} (got '{}'){}", what, fmt::join(options, ", "), value, did_you_mean(value, options)));
 }
 
 void YamlReader::optional_number(const YAML::Node& map, const char* key, const std::string& what, double& out,

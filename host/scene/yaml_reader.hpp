@@ -41,7 +41,9 @@ class YamlReader {
   /// true or false, spelt so (not yes/no/on/off, which YAML 1.1 also reads as booleans).
   bool boolean(const YAML::Node& node, const std::string& what) const;
   glm::dvec3 vec3(const YAML::Node& node, const std::string& what, Range range = Range::any()) const;
-  /// A color: [r, g, b] or one number for gray; components >= 0.
+  /// Above this a color's channel is more likely 0..255 than linear light: a warning says so.
+  static constexpr double kPlausibleColor = 10.0;
+  /// A color: [r, g, b] or one number for gray; components >= 0; a word (red) fails saying so.
   glm::dvec3 color(const YAML::Node& node, const std::string& what) const;
   /// Index of node's text in names, else fails listing them.
   template <std::size_t N>

@@ -1,0 +1,32 @@
+// Expressions in scene files: muparser's syntax with GLSL's scalar functions, so that a shader
+// author's `fract(t)`, `mod(t, 2)` or `smoothstep(0, 1, t)` reads as it does in a shader.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace clmarch {
+
+/// An expression that does not parse or evaluate: muparser's message, and for a name it does not
+/// know what an expression may name (expression_vocabulary).
+class ExpressionError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// A variable an expression may name, and its value.
+using ExpressionVariable = std::pair<std::string, double>;
+
+/// The value of text with variables set. GLSL's abs, sign, floor, ceil, fract, mod (x - y floor(x / y)),
+/// min, max, clamp, mix, step, smoothstep, pow, sqrt, exp, log (natural), sin, cos, tan, asin,
+/// acos, atan (of y, or of y and x), length (of one to three values), muparser's other functions
+/// and the constant pi. Throws ExpressionError.
+double evaluate_expression(const std::string& text, const std::vector<ExpressionVariable>& variables);
+
+/// "variables t; constants pi; functions abs, acos, ...": what an expression with these variables
+/// may name, for error messages.
+std::string expression_vocabulary(const std::vector<ExpressionVariable>& variables);
+
+}  // namespace clmarch
