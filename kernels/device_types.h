@@ -87,10 +87,25 @@ typedef cl_float4 float4;
 #define CLMARCH_SHADOW_SOFT 1
 #define CLMARCH_SHADOW_SOFT_IMPROVED 2
 
-/* One light. Points are relative to the camera (computed on the host in double). */
+/* Kinds of light (host/scene/scene.hpp, LightKind, in the same order) and their falloffs (Falloff). */
+#define CLMARCH_LIGHT_POINT 0
+#define CLMARCH_LIGHT_DIRECTIONAL 1
+#define CLMARCH_LIGHT_SPOT 2
+#define CLMARCH_FALLOFF_NONE 0
+#define CLMARCH_FALLOFF_INVERSE_SQUARE 1
+
+/* One light. Positions are relative to the camera (computed on the host in double). */
 typedef struct LightParams {
-  float4 where;    /* point lights: xyz = position, w = 1; directional: xyz = unit vector towards it, w = 0 */
-  float4 radiance; /* xyz = color * intensity */
+  float4 where;     /* point and spot lights: xyz = position; directional: xyz = unit vector towards the light */
+  float4 radiance;  /* xyz = color * intensity */
+  float4 spot_axis; /* spot lights: xyz = unit vector the light points along */
+  CLMARCH_INT kind;          /* CLMARCH_LIGHT_* */
+  CLMARCH_INT falloff;       /* CLMARCH_FALLOFF_* */
+  CLMARCH_INT casts_shadows; /* 1: shadow rays march towards it (with SHADOW_MODE) */
+  CLMARCH_FLOAT inverse_range2; /* 1 / range^2 (the window clamp(1 - (d / range)^4, 0, 1)^2); 0: no range */
+  CLMARCH_FLOAT cos_inner;   /* spot lights: cosines of the cone's inner and outer angles */
+  CLMARCH_FLOAT cos_outer;
+  CLMARCH_FLOAT padding[2];
 } LightParams;
 
 /* The shading's numbers (kernels/shading.cl, atmosphere.cl): host/scene/scene.hpp's Shading, as
@@ -190,7 +205,8 @@ typedef struct MarchParams {
 } MarchParams;
 
 #ifndef __OPENCL_VERSION__
-static_assert(sizeof(LightParams) == 2 * 16, "LightParams layout must match OpenCL C");
+static_assert(sizeof(LightParams) == 3 * 16 + 8 * 4, "LightParams layout must match OpenCL C");
+static_assert(offsetof(LightParams, kind) == 3 * 16, "LightParams: the scalars after the float4s");
 static_assert(sizeof(ShadingParams) == 11 * 16 + 24 * 4, "ShadingParams layout must match OpenCL C");
 static_assert(offsetof(ShadingParams, diffuse) == 11 * 16, "ShadingParams: scalars after the float4s");
 static_assert(sizeof(ShadingParams) % 16 == 0, "ShadingParams keeps the float4 alignment of what follows");

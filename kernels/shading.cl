@@ -1,7 +1,8 @@
 /* Direct lighting of a surface point: Lambert diffuse with Phong or Blinn-Phong specular, or a
  * PBR material (Cook-Torrance: GGX distribution, Smith-Schlick geometry, Fresnel-Schlick) with
- * metallic and roughness; the lights of a constant buffer; hard or soft shadows by marching
- * towards each light (SHADOW_MODE); ambient occlusion by marching along the normal
+ * metallic and roughness; the point, directional and spot lights of a constant buffer, with
+ * falloff and range (SHAPED_LIGHTS); hard or soft shadows by marching towards each light that
+ * casts them (SHADOW_MODE); ambient occlusion by marching along the normal
  * (AMBIENT_OCCLUSION) and from the step count (STEP_AO). The numbers are MarchParams.shading's
  * (kernels/device_types.h). Light positions are relative to the
  * camera, so lighting keeps its precision far from the origin; shadow and occlusion rays run in
@@ -138,6 +139,31 @@ typedef struct {
   vec3v specular;
 } LightTerms;
 
+#if defined(SHAPED_LIGHTS)
+/* The share of a point or spot light's radiance that reaches a point d away in direction l (unit,
+ * towards the light): 1 / d^2 with the inverse-square falloff, times the range's window
+ * clamp(1 - (d / range)^4, 0, 1)^2, times a spot's cone: smoothstep from its outer angle (0) to its
+ * inner one (1). Directional lights: 1. */
+SDF_INLINE vfloat light_reach(__constant LightParams* light, vec3v l, vfloat d) {
+  vfloat reach = (vfloat)(1.0f);
+  if (light->kind == CLMARCH_LIGHT_DIRECTIONAL) return reach;
+  if (light->falloff == CLMARCH_FALLOFF_INVERSE_SQUARE) reach = 1.0f / (d * d);
+  if (light->inverse_range2 > 0.0f) {
+    const vfloat q = d * d * light->inverse_range2;
+    const vfloat window = clamp(1.0f - q * q, 0.0f, 1.0f);
+    reach *= window * window;
+  }
+  if (light->kind == CLMARCH_LIGHT_SPOT) {
+    /* The cosine of the angle between the spot's axis and its ray to the point, -l. */
+    const float4 axis = light->spot_axis;
+    const vfloat c = -(l.x * axis.x + l.y * axis.y + l.z * axis.z);
+    const vfloat s = clamp((c - light->cos_outer) / fmax(light->cos_inner - light->cos_outer, 1e-7f), 0.0f, 1.0f);
+    reach *= s * s * (3.0f - 2.0f * s);
+  }
+  return reach;
+}
+#endif
+
 /* The terms of the surface's lit color, seen along -view (unit). */
 SDF_INLINE LightTerms light_terms(SceneValues values, const MarchParams* params, const Hit* hit, vec3v view, vint live,
                                   __constant LightParams* lights) {
@@ -153,19 +179,27 @@ SDF_INLINE LightTerms light_terms(SceneValues values, const MarchParams* params,
   for (int k = 0; k < shading->light_count; ++k) {
     const float4 where = lights[k].where;
     const float4 radiance = lights[k].radiance;
-    const bool is_point = where.w > 0.5f;
-    const vec3v l = is_point ? point_light_direction(hit->relative, where) : v3_from(where);
+    const bool positional = lights[k].kind != CLMARCH_LIGHT_DIRECTIONAL;
+    const vec3v l = positional ? point_light_direction(hit->relative, where) : v3_from(where);
+    /* How far the light is; directional lights' shadow rays end at shadow_max_t. */
+    const vfloat distance = positional ? v3_length(v3_sub(v3_from(where), hit->relative)) : (vfloat)(shading->shadow_max_t);
 #if defined(SHADING_MODEL_PBR)
     const Reflection lit = pbr_light(hit->normal, l, view, hit->albedo, hit->surface.x, hit->surface.y);
 #else
     const Reflection lit = classic_light(shading, hit->normal, l, view, hit->albedo);
 #endif
     vec3v reaching = v3_from(radiance);
+#if defined(SHAPED_LIGHTS)
+    reaching = v3_scale(reaching, light_reach(&lights[k], l, distance));
+#endif
 #if defined(SHADOW_MODE)
-    const vfloat t_end = is_point ? v3_length(v3_sub(v3_from(where), hit->relative)) : (vfloat)(shading->shadow_max_t);
-    reaching = v3_scale(reaching, shadow_factor(values, params, hit->point, hit->normal, l, t_end, live & MASK(v3_dot(hit->normal, l) > 0.0f)));
+    if (lights[k].casts_shadows) {
+      reaching = v3_scale(reaching, shadow_factor(values, params, hit->point, hit->normal, l, distance,
+                                                  live & MASK(v3_dot(hit->normal, l) > 0.0f)));
+    }
 #else
     (void)live;
+    (void)distance;
 #endif
     terms.diffuse = v3_add(terms.diffuse, v3_mul(lit.diffuse, reaching));
     terms.specular = v3_add(terms.specular, v3_mul(lit.specular, reaching));

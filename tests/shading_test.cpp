@@ -3,14 +3,19 @@
 // level ray, normal occlusion between two planes, shadows that must leave an unoccluded point
 // fully lit (also with an occluder beyond a point light) and an occluded one dark, a mirror's
 // reflection, tone mapping, the sky gradient.
+#include "check/cross_check.hpp"
 #include "reference/reference_renderer.hpp"
 #include "render/opencl_renderer.hpp"
 #include "scene/camera_model.hpp"
 #include "support/test_support.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
 
 namespace clmarch {
 namespace {
@@ -206,6 +211,96 @@ TEST(Shading, SkyGradientOfMisses) {
       "camera: {position: [0, 2, 0], look_at: [0, 5, 0], up: [0, 0, -1]}\n"
       "sdf: {sphere: {center: [0, -10, 0]}}\nshading: {sky: {horizon: [1, 1, 1], zenith: [0.1, 0.2, 0.6]}}\n");
   expect_color(c, glm::dvec3(0.1, 0.2, 0.6));
+}
+
+
+/// Looking straight down at the point (x, 0, 0) of the plane y = 0, white, Lambert with diffuse 1
+/// and no ambient light: the colour is the light's radiance there times n.l.
+std::string plane_at(double x, const std::string& lights) {
+  return fmt::format("camera: {{position: [{0}, 2, 0], look_at: [{0}, 0, 0], up: [0, 0, -1]}}\n"
+                     "sdf: {{plane: {{normal: [0, 1, 0], offset: 0}}}}\nlights: [{1}]\nshading: {{ambient: 0}}\n",
+                     x, lights);
+}
+
+// A point light 2 above the origin with intensity 4: I / d^2 times n.l = h / d at each point.
+TEST(Shading, InverseSquareFalloffAtKnownDistances) {
+  const double h = 2.0, intensity = 4.0;
+  for (double x : {0.0, 1.0, 3.0}) {
+    const double d = std::hypot(x, h);
+    const CentreColor c = centre_color(plane_at(x, "{point: {position: [0, 2, 0], intensity: 4, falloff: inverse_square}}"));
+    expect_color(c, glm::dvec3(intensity / (d * d) * h / d), 1e-5);
+  }
+  // falloff: none keeps today's light: I n.l at any distance.
+  const CentreColor none = centre_color(plane_at(3.0, "{point: {position: [0, 2, 0], intensity: 4, falloff: none}}"));
+  expect_color(none, glm::dvec3(intensity * h / std::hypot(3.0, h)), 1e-5);
+}
+
+// range R windows the light by clamp(1 - (d / R)^4, 0, 1)^2: beyond R nothing arrives.
+TEST(Shading, RangeWindowsTheLight) {
+  const double h = 2.0, range = 3.0;
+  for (double x : {0.0, 1.5, 2.5}) {
+    const double d = std::hypot(x, h);
+    const double q = (d / range) * (d / range);
+    const double window = std::max(1.0 - q * q, 0.0);
+    const CentreColor c = centre_color(plane_at(x, "{point: {position: [0, 2, 0], range: 3}}"));
+    expect_color(c, glm::dvec3(window * window * h / d), 1e-5);
+  }
+}
+
+// A spot light 2 above the origin pointing down, full inside 20 degrees, none past 30: at the
+// point x the ray from the light makes atan(x / 2) with the axis.
+TEST(Shading, SpotConeEdges) {
+  const double h = 2.0;
+  const double inner = std::cos(20.0 * M_PI / 180.0), outer = std::cos(30.0 * M_PI / 180.0);
+  const std::string spot = "{spot: {position: [0, 2, 0], direction: [0, -1, 0], inner_angle: 20, outer_angle: 30}}";
+  for (double degrees : {0.0, 10.0, 19.0, 22.0, 25.0, 28.0, 31.0, 45.0}) {
+    const double x = h * std::tan(degrees * M_PI / 180.0);
+    const double cosine = h / std::hypot(x, h);
+    const double s = std::clamp((cosine - outer) / (inner - outer), 0.0, 1.0);
+    const CentreColor c = centre_color(plane_at(x, spot));
+    expect_color(c, glm::dvec3(s * s * (3.0 - 2.0 * s) * cosine), 1e-5);
+  }
+  // Equal angles: a hard edge.
+  const std::string hard = "{spot: {position: [0, 2, 0], direction: [0, -1, 0], inner_angle: 25, outer_angle: 25}}";
+  expect_color(centre_color(plane_at(h * std::tan(24.0 * M_PI / 180.0), hard)), glm::dvec3(std::cos(24.0 * M_PI / 180.0)), 1e-5);
+  expect_color(centre_color(plane_at(h * std::tan(26.0 * M_PI / 180.0), hard)), glm::dvec3(0.0), 1e-5);
+}
+
+// Under a ball, a light that casts shadows is blocked and one that does not reaches the floor; a
+// light's shadows: true switches shadows on where the scene's shading has none.
+TEST(Shading, ShadowsPerLight) {
+  const std::string ball =
+      "camera: {position: [0, 0.5, 0], look_at: [0, 0, 0], up: [0, 0, -1]}\n"
+      "sdf: {union: [{plane: {normal: [0, 1, 0], offset: 0}}, {sphere: {center: [0, 2, 0], radius: 0.5}}]}\n";
+  const CentreColor blocked = centre_color(ball + "lights: [{directional: {direction: [0, 1, 0]}}]\nshading: {ambient: 0, shadows: {mode: hard}}\n");
+  expect_color(blocked, glm::dvec3(0.0));
+  const CentreColor through = centre_color(ball + "lights: [{directional: {direction: [0, 1, 0], shadows: false}}]\n"
+                                                  "shading: {ambient: 0, shadows: {mode: hard}}\n");
+  expect_color(through, glm::dvec3(1.0));
+  const CentreColor asked = centre_color(ball + "lights: [{directional: {direction: [0, 1, 0], shadows: true}}]\nshading: {ambient: 0}\n");
+  expect_color(asked, glm::dvec3(0.0));
+}
+
+// Spot, falloff, range and per-light shadows on a lit scene: the device agrees with the reference
+// (clmarch check), at one lane and sixteen, in float and in double.
+TEST(Shading, ShapedLightsPassTheCheck) {
+  const Scene scene = testing::scene_from_yaml(
+      "camera: {position: [0, 3, 6], look_at: [0, 0, 0]}\nrender: {width: 64, height: 36}\n"
+      "sdf: {union: [{plane: {normal: [0, 1, 0], offset: 0}}, {sphere: {center: [0.5, 0.6, 0], radius: 0.6}}]}\n"
+      "lights:\n"
+      "  - spot: {position: [0, 4, 0], direction: [0, -1, 0], inner_angle: 20, outer_angle: 30, intensity: 16, falloff: inverse_square}\n"
+      "  - point: {position: [-2, 1, 1], intensity: 0.8, range: 4, shadows: false}\n"
+      "  - directional: {direction: [1, 1, 0], intensity: 0.2}\n"
+      "shading: {model: blinn_phong, specular: 0.3, shadows: {mode: soft}, ambient: 0.05}\n");
+  for (const auto& [lanes, precision] : {std::pair{1, Precision::Float}, std::pair{16, Precision::Float}, std::pair{16, Precision::Double}}) {
+    Scene variant = scene;
+    variant.render.precision = precision;
+    OpenClOptions options;
+    options.lanes = lanes;
+    const FrameBuffers opencl = render_opencl(variant, options).buffers;
+    const CheckReport report = cross_check(variant, opencl, render_reference(variant), reshade_hits(variant, opencl));
+    EXPECT_TRUE(report.passed()) << "lanes " << lanes << "\n" << report.to_text();
+  }
 }
 
 }  // namespace

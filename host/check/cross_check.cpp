@@ -5,6 +5,7 @@
 #include "codegen/kernel_source.hpp"
 #include "codegen/sdf_codegen.hpp"
 #include "prune/operand_grid.hpp"
+#include "reference/reference_shading.hpp"
 #include "scene/camera_model.hpp"
 
 #include <fmt/format.h>
@@ -132,14 +133,55 @@ double pbr_color_per_radian(double roughness) {
   return 1.0 / M_PI + 2.0 * steepest + 30.0 * peak;
 }
 
-/// Largest change of the shaded color per radian of normal change: the lights' radiance times the
-/// slope of the diffuse and specular terms.
-double color_per_radian(const Scene& scene) {
-  const double radiance = light_radiance(scene);
+/// Largest change of the shaded color per radian of normal change per unit of radiance: the slope
+/// of the diffuse and specular terms (which also bounds their size).
+double lit_color_per_radian(const Scene& scene) {
   const Shading& s = scene.shading;
-  if (s.model == ShadingModel::Pbr) return radiance * pbr_color_per_radian(least_roughness(scene.sdf));
+  if (s.model == ShadingModel::Pbr) return pbr_color_per_radian(least_roughness(scene.sdf));
   const double specular_slope = s.model == ShadingModel::Lambert ? 0.0 : s.specular * s.shininess;
-  return radiance * (s.diffuse + specular_slope);
+  return s.diffuse + specular_slope;
+}
+
+/// How far a hit's lit color may move: per radian of its normal's error, and per unit of its
+/// point's displacement (the depths' difference), which turns the direction to a point or spot
+/// light d away by up to 1 / d radians a unit and moves the share of its radiance that arrives
+/// (falloff, range, cone: light_reach) by its gradient.
+struct LitColorSlopes {
+  double per_radian = 0.0;
+  double per_unit_shift = 0.0;
+};
+
+LitColorSlopes lit_color_slopes(const Scene& scene, double per_radian, const glm::dvec3& point) {
+  LitColorSlopes slopes;
+  for (const Light& light : scene.lights) {
+    const double radiance = light.intensity * std::max({light.color.r, light.color.g, light.color.b}) * per_radian;
+    if (light.kind == LightKind::Directional) {
+      slopes.per_radian += radiance;
+      continue;
+    }
+    const auto reach_at = [&](const glm::dvec3& p) {
+      const glm::dvec3 to_light = light.position - p;
+      const double d = glm::length(to_light);
+      return d > 0.0 ? light_reach(light, to_light / d, d) : 0.0;
+    };
+    const double d = glm::length(light.position - point);
+    const double reach = reach_at(point);
+    slopes.per_radian += radiance * reach;
+    if (d > 0.0) slopes.per_unit_shift += radiance * reach / d;
+    if (light.shaped()) {
+      // Central differences a millionth of the distance wide: the reach is smooth but for a spot's
+      // hard edge, where the gradient grows with 1 / h and fails nothing it should not.
+      const double h = 1e-6 * std::max(d, 1e-6);
+      glm::dvec3 gradient(0.0);
+      for (int axis = 0; axis < 3; ++axis) {
+        glm::dvec3 step(0.0);
+        step[axis] = h;
+        gradient[axis] = (reach_at(point + step) - reach_at(point - step)) / (2.0 * h);
+      }
+      slopes.per_unit_shift += radiance * glm::length(gradient);
+    }
+  }
+  return slopes;
 }
 
 /// Largest change of a miss's color per unit of its closest approach: Crum's glow adds
@@ -245,7 +287,7 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
   // smaller step would leave t + d == t: kernels/march_loop.cl); the double reference has no floor.
   const double spacing_of_t = 2.0 * unit;
   r.steps_one_sided = grid_union(scene) != nullptr;
-  const double color_slope = color_per_radian(scene);
+  const double color_per_radian = lit_color_per_radian(scene);
   const double glow_slope = color_per_closest_approach(scene.shading);
 
   std::vector<double> depth_abs, depth_rel, depth_eps, depth_tol, normal_deg, normal_tol, color_abs, color_tol;
@@ -325,8 +367,9 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
       normal_tol.push_back(angle / normal_tolerance);
       if (step_diff == 0.0) {
         const double diff = max_color_difference(opencl, reference, i, j);
+        const LitColorSlopes slopes = lit_color_slopes(scene, color_per_radian, basis.origin + dir * t_ref);
         color_abs.push_back(diff);
-        color_tol.push_back(diff / (color_slope * normal_tolerance + kColorQuantum));
+        color_tol.push_back(diff / (slopes.per_radian * normal_tolerance + slopes.per_unit_shift * (dt + rounding) + kColorQuantum));
       }
     }
   }

@@ -71,7 +71,12 @@ std::string feature_defines(const Scene& scene, const KernelOptions& options) {
     if (scene.render.normal_method == NormalMethod::Tetrahedral) out += "#define NORMAL_TETRAHEDRAL\n";
     if (scene.render.normal_method == NormalMethod::Forward) out += "#define NORMAL_FORWARD\n";
   }
-  if (outputs.color) out += "#define NEED_SHADING\n" + shading_defines(scene.shading);
+  if (outputs.color) {
+    out += "#define NEED_SHADING\n" + shading_defines(scene.shading);
+    if (std::any_of(scene.lights.begin(), scene.lights.end(), [](const Light& light) { return light.shaped(); })) {
+      out += "#define SHAPED_LIGHTS\n";
+    }
+  }
   if (uses_cone_pass(scene) && options.purpose != KernelPurpose::EvalPoints) out += "#define COARSE_PASS\n";
   if (scene.tiling && options.purpose != KernelPurpose::EvalPoints) {
     out += scene.tiling->method == TilingMethod::Cells ? "#define TILING_CELLS\n" : "#define TILING_MOD\n";

@@ -76,6 +76,27 @@ double normal_occlusion(const Scene& scene, const SurfacePoint& s) {
 
 }  // namespace
 
+double light_reach(const Light& light, const glm::dvec3& l, double distance) {
+  if (light.kind == LightKind::Directional) return 1.0;
+  double reach = light.falloff == Falloff::InverseSquare ? 1.0 / (distance * distance) : 1.0;
+  if (light.range) {
+    const double q = (distance / *light.range) * (distance / *light.range);
+    const double window = std::clamp(1.0 - q * q, 0.0, 1.0);
+    reach *= window * window;
+  }
+  if (light.kind == LightKind::Spot) {
+    const double cos_angle = glm::dot(-l, light.axis);
+    const double cos_inner = std::cos(light.inner_angle * M_PI / 180.0), cos_outer = std::cos(light.outer_angle * M_PI / 180.0);
+    if (cos_inner > cos_outer) {
+      const double s = std::clamp((cos_angle - cos_outer) / (cos_inner - cos_outer), 0.0, 1.0);
+      reach *= s * s * (3.0 - 2.0 * s);
+    } else {
+      reach *= cos_angle > cos_outer ? 1.0 : 0.0;
+    }
+  }
+  return reach;
+}
+
 glm::dvec3 normalize_or_zero(const glm::dvec3& v) {
   const double length = glm::length(v);
   return length > 0.0 ? v / length : glm::dvec3(0.0);
@@ -88,12 +109,13 @@ LightTerms reference_light_terms(const Scene& scene, const SurfacePoint& s, cons
   LightTerms terms;
   terms.ambient = s.material.albedo * sh.ambient * occlusion;
   for (const Light& light : scene.lights) {
-    const bool point = light.kind == LightKind::Point;
-    const glm::dvec3 l = point ? normalize_or_zero(light.position - s.world) : light.direction;
+    const bool positional = light.kind != LightKind::Directional;
+    const glm::dvec3 l = positional ? normalize_or_zero(light.position - s.world) : light.direction;
     const Reflection lit = sh.model == ShadingModel::Pbr ? pbr_light(s.normal, l, v, s.material) : classic_light(sh, s.normal, l, v, s.material);
-    glm::dvec3 reaching = light.color * light.intensity;
-    if (sh.shadows && glm::dot(s.normal, l) > 0.0) {
-      reaching *= shadow_factor(scene, s, l, point ? glm::length(light.position - s.world) : sh.shadows->max_t);
+    const double distance = positional ? glm::length(light.position - s.world) : 0.0;
+    glm::dvec3 reaching = light.color * light.intensity * light_reach(light, l, distance);
+    if (sh.shadows && light.shadows && glm::dot(s.normal, l) > 0.0) {
+      reaching *= shadow_factor(scene, s, l, positional ? distance : sh.shadows->max_t);
     }
     terms.diffuse += lit.diffuse * reaching;
     terms.specular += lit.specular * reaching;

@@ -25,6 +25,13 @@ struct SurfacePoint {
 /// Unit vector along v; a zero vector stays zero (as in the kernels) instead of becoming NaN.
 glm::dvec3 normalize_or_zero(const glm::dvec3& v);
 
+/// The share of a light's radiance that reaches a point distance away in direction l (unit,
+/// towards the light): 1 / distance^2 with the inverse-square falloff, times the range's window
+/// clamp(1 - (distance / range)^4, 0, 1)^2, times a spot light's cone, smoothstep from the cosine
+/// of its outer angle (0) to its inner one's (1), a step where they are equal. 1 for directional
+/// lights.
+double light_reach(const Light& light, const glm::dvec3& l, double distance);
+
 /// The terms of a hit's lit color (the --buffers layers ao, diffuse and specular): the ambient
 /// light the occlusion leaves, and the lights' diffuse and specular reflection with their shadows.
 struct LightTerms {

@@ -11,6 +11,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 namespace clmarch {
 namespace {
 
@@ -137,13 +139,27 @@ MarchParams march_params(const Scene& scene, const Dispatch& dispatch) {
   return params;
 }
 
+static_assert(static_cast<int>(LightKind::Point) == CLMARCH_LIGHT_POINT &&
+                  static_cast<int>(LightKind::Directional) == CLMARCH_LIGHT_DIRECTIONAL &&
+                  static_cast<int>(LightKind::Spot) == CLMARCH_LIGHT_SPOT,
+              "LightKind and the kernels' CLMARCH_LIGHT_* agree");
+static_assert(static_cast<int>(Falloff::None) == CLMARCH_FALLOFF_NONE &&
+                  static_cast<int>(Falloff::InverseSquare) == CLMARCH_FALLOFF_INVERSE_SQUARE,
+              "Falloff and the kernels' CLMARCH_FALLOFF_* agree");
+
 std::vector<LightParams> light_data(const Scene& scene) {
   std::vector<LightParams> data;
   for (const Light& light : scene.lights) {
     LightParams params{};
-    params.where = light.kind == LightKind::Point ? to_cl(light.position - scene.camera.position) : to_cl(light.direction);
-    params.where.s[3] = light.kind == LightKind::Point ? 1.0f : 0.0f;
+    params.kind = static_cast<cl_int>(light.kind);
+    params.where = light.kind == LightKind::Directional ? to_cl(light.direction) : to_cl(light.position - scene.camera.position);
     params.radiance = to_cl(light.color * light.intensity);
+    params.spot_axis = to_cl(light.axis);
+    params.falloff = static_cast<cl_int>(light.falloff);
+    params.casts_shadows = light.shadows ? 1 : 0;
+    params.inverse_range2 = light.range ? static_cast<float>(1.0 / (*light.range * *light.range)) : 0.0f;
+    params.cos_inner = static_cast<float>(std::cos(glm::radians(light.inner_angle)));
+    params.cos_outer = static_cast<float>(std::cos(glm::radians(light.outer_angle)));
     data.push_back(params);
   }
   if (data.empty()) data.push_back(LightParams{});  // a buffer may not be empty

@@ -188,16 +188,35 @@ struct RenderSettings {
   bool operator==(const RenderSettings&) const = default;
 };
 
-enum class LightKind { Point, Directional };
+enum class LightKind { Point, Directional, Spot };
+
+/// How a point or spot light's radiance falls with the distance d: not at all, or as 1 / d^2.
+enum class Falloff { None, InverseSquare };
+inline constexpr const char* kFalloffNames[] = {"none", "inverse_square"};
 
 struct Light {
   LightKind kind = LightKind::Point;
-  /// Point lights: where the light is.
+  /// Point and spot lights: where the light is.
   glm::dvec3 position{0.0};
   /// Directional lights: unit vector from the surface towards the light.
   glm::dvec3 direction{0.0, 1.0, 0.0};
+  /// Spot lights: unit vector the light points along (from the light into the scene).
+  glm::dvec3 axis{0.0, -1.0, 0.0};
+  /// Spot lights: degrees from the axis to the edge of the full light (inner) and of any light
+  /// (outer), 0 <= inner <= outer < 180; smoothstep between (reference/reference_shading.hpp, light_reach).
+  double inner_angle = 20.0;
+  double outer_angle = 30.0;
   glm::dvec3 color{1.0};
   double intensity = 1.0;
+  Falloff falloff = Falloff::None;
+  /// Point and spot lights: the distance where the light ends, windowed smoothly (Karis:
+  /// clamp(1 - (d / range)^4, 0, 1)^2); none: it reaches everywhere.
+  std::optional<double> range;
+  /// Whether the light casts shadows (the scene's shading.shadows then marches towards it).
+  bool shadows = true;
+
+  /// Whether its radiance depends on where the surface is (falloff, range or a spot's cone).
+  bool shaped() const { return kind == LightKind::Spot || falloff != Falloff::None || range.has_value(); }
 };
 
 enum class ShadingModel { Lambert, Phong, BlinnPhong, Pbr };

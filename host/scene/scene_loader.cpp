@@ -48,8 +48,11 @@ class SceneReader {
       if (const YAML::Node side = render["width"] ? render["width"] : render["height"]) scene.size_origin = yaml_.where(side);
     }
     scene.sdf = read_node(yaml_.required(root, "sdf", "sdf (the distance field tree)"), "sdf", 1);
-    if (const YAML::Node lights = root["lights"]) scene.lights = read_lights(lights);
+    bool asks_for_shadows = false;
+    if (const YAML::Node lights = root["lights"]) scene.lights = read_lights(lights, asks_for_shadows);
     if (const YAML::Node shading = root["shading"]) scene.shading = read_shading(shading);
+    // A light's shadows: true switches shadows on with their defaults where shading has none.
+    if (asks_for_shadows && !scene.shading.shadows) scene.shading.shadows = Shadows{};
     if (const YAML::Node tiling = root["tiling"]) {
       scene.tiling = read_tiling(tiling);
       if (uses_cells_tiling(scene) && scene.render.coarse_pass == CoarsePass::Cone) {
@@ -142,7 +145,8 @@ class SceneReader {
     }
   }
 
-  std::vector<Light> read_lights(const YAML::Node& node) {
+  /// The lights; asks_for_shadows is set when one says shadows: true.
+  std::vector<Light> read_lights(const YAML::Node& node, bool& asks_for_shadows) {
     if (!node.IsSequence()) yaml_.fail(node, fmt::format("lights must be a list (got {})", describe_yaml(node)));
     if (node.size() > static_cast<std::size_t>(kMaxLights)) {
       yaml_.fail(node, fmt::format("lights has too many entries (got {}, expected at most {})", node.size(), kMaxLights));
@@ -151,30 +155,48 @@ class SceneReader {
     for (std::size_t i = 0; i < node.size(); ++i) {
       const YAML::Node entry = node[i];
       const std::string what = fmt::format("lights[{}]", i);
-      yaml_.expect_map(entry, what, {"point", "directional"});
-      if (entry.size() != 1) yaml_.fail(entry, what + " must have exactly one key: point or directional");
+      yaml_.expect_map(entry, what, {"point", "directional", "spot"});
+      if (entry.size() != 1) yaml_.fail(entry, what + " must have exactly one key: point, directional or spot");
       Light light;
       const auto kind = entry.begin();
       const std::string kind_name = kind->first.Scalar();
       const YAML::Node params = kind->second;
       const std::string path = what + "." + kind_name;
-      if (kind_name == "point") {
-        light.kind = LightKind::Point;
-        yaml_.expect_map(params, path, {"position", "color", "intensity"});
-        light.position = yaml_.vec3(yaml_.required(params, "position", path + ".position"), path + ".position");
-      } else {
+      if (kind_name == "directional") {
         light.kind = LightKind::Directional;
-        yaml_.expect_map(params, path, {"direction", "color", "intensity"});
-        const YAML::Node direction = yaml_.required(params, "direction", path + ".direction");
-        light.direction = yaml_.vec3(direction, path + ".direction");
-        if (glm::length(light.direction) == 0.0) yaml_.fail(direction, path + ".direction must not be zero");
-        light.direction = glm::normalize(light.direction);
+        yaml_.expect_map(params, path, {"direction", "color", "intensity", "shadows"});
+        light.direction = unit_vector(yaml_.required(params, "direction", path + ".direction"), path + ".direction");
+      } else {
+        light.kind = kind_name == "point" ? LightKind::Point : LightKind::Spot;
+        if (light.kind == LightKind::Point) {
+          yaml_.expect_map(params, path, {"position", "color", "intensity", "falloff", "range", "shadows"});
+        } else {
+          yaml_.expect_map(params, path, {"position", "direction", "inner_angle", "outer_angle", "color", "intensity", "falloff",
+                                          "range", "shadows"});
+          read_spot_cone(params, path, light);
+        }
+        light.position = yaml_.vec3(yaml_.required(params, "position", path + ".position"), path + ".position");
+        if (const YAML::Node falloff = params["falloff"]) light.falloff = static_cast<Falloff>(yaml_.choice(falloff, path + ".falloff", kFalloffNames));
+        if (const YAML::Node range = params["range"]) light.range = yaml_.number(range, path + ".range", Range::positive());
       }
       if (params["color"]) light.color = yaml_.color(params["color"], path + ".color");
       yaml_.optional_number(params, "intensity", path + ".intensity", light.intensity, Range::non_negative());
+      if (const YAML::Node shadows = params["shadows"]) {
+        light.shadows = yaml_.boolean(shadows, path + ".shadows");
+        asks_for_shadows = asks_for_shadows || light.shadows;
+      }
       lights.push_back(light);
     }
     return lights;
+  }
+
+  /// A spot light's axis and cone: direction (where it points, required) and the angles from the
+  /// axis to the cone's edges, in degrees.
+  void read_spot_cone(const YAML::Node& params, const std::string& path, Light& light) {
+    light.axis = unit_vector(yaml_.required(params, "direction", path + ".direction"), path + ".direction");
+    yaml_.optional_number(params, "outer_angle", path + ".outer_angle", light.outer_angle, Range::open(0.0, 180.0));
+    yaml_.optional_number(params, "inner_angle", path + ".inner_angle", light.inner_angle, Range::closed(0.0, light.outer_angle));
+    if (!params["inner_angle"] && light.inner_angle > light.outer_angle) light.inner_angle = light.outer_angle;
   }
 
   Tiling read_tiling(const YAML::Node& node) {
