@@ -124,8 +124,6 @@ typedef struct ShadingParams {
   float4 height_fog_sun_color;
   float4 height_fog_sun_direction;
   CLMARCH_FLOAT diffuse;
-  CLMARCH_FLOAT specular;
-  CLMARCH_FLOAT shininess;
   CLMARCH_FLOAT step_ao;        /* steps^2 / step_ao darkens (STEP_AO) */
   CLMARCH_FLOAT fog_density;
   CLMARCH_FLOAT shadow_k;       /* the soft penumbra's sharpness */
@@ -144,7 +142,7 @@ typedef struct ShadingParams {
   CLMARCH_INT shadow_max_steps;
   CLMARCH_INT ao_samples;
   CLMARCH_INT reflection_bounces;
-  CLMARCH_INT padding[3];
+  CLMARCH_INT padding[1];
 } ShadingParams;
 
 /* Floats from a refining pass's sample points' x to their y (kernels/march.cl, sample_packet):
@@ -207,7 +205,7 @@ typedef struct MarchParams {
 #ifndef __OPENCL_VERSION__
 static_assert(sizeof(LightParams) == 3 * 16 + 8 * 4, "LightParams layout must match OpenCL C");
 static_assert(offsetof(LightParams, kind) == 3 * 16, "LightParams: the scalars after the float4s");
-static_assert(sizeof(ShadingParams) == 11 * 16 + 24 * 4, "ShadingParams layout must match OpenCL C");
+static_assert(sizeof(ShadingParams) == 11 * 16 + 20 * 4, "ShadingParams layout must match OpenCL C");
 static_assert(offsetof(ShadingParams, diffuse) == 11 * 16, "ShadingParams: scalars after the float4s");
 static_assert(sizeof(ShadingParams) % 16 == 0, "ShadingParams keeps the float4 alignment of what follows");
 static_assert(offsetof(MarchParams, shading) == 8 * 16 + 16 * 4, "MarchParams: the shading after the march limits");

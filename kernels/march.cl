@@ -15,9 +15,9 @@ SDF_INLINE Hit surface_at(SceneValues values, const MarchResult* m, vec3v relati
   hit.relative = v3_add(relative_origin, v3_scale(dir, m->t));
   hit.normal = estimate_normal(values, m->local_point, normal_epsilon);
 #if defined(WRITE_IDS)
-  map_color(values, m->local_point, &hit.albedo, &hit.surface, &hit.id);
+  map_color(values, m->local_point, &hit.albedo, &hit.surface, &hit.emission, &hit.id);
 #else
-  map_color(values, m->local_point, &hit.albedo, &hit.surface);
+  map_color(values, m->local_point, &hit.albedo, &hit.surface, &hit.emission);
 #endif
   hit.steps = m->steps;
   return hit;
@@ -285,9 +285,9 @@ SDF_INLINE void finish_packet(SceneValues values, const Packet* k, const MarchRe
   if (LANE_ANY(m->hit)) {
     normal = v3_select(normal, estimate_normal(values, m->local_point, params->normal_epsilon), m->hit);
 #if defined(WRITE_IDS)
-    vec3v albedo, surface;
+    vec3v albedo, surface, emission;
     vfloat hit_id;
-    map_color(values, m->local_point, &albedo, &surface, &hit_id);
+    map_color(values, m->local_point, &albedo, &surface, &emission, &hit_id);
     id = select(id, hit_id, m->hit);
 #endif
   }

@@ -57,16 +57,18 @@ SDF_INLINE vfloat grid_cell_distance(SceneValues values, int cell, vec3v p) {
   return d;
 }
 
-SDF_INLINE vfloat grid_cell_color(SceneValues values, int cell, vec3v p, vec3v* albedo, vec3v* surface, vfloat* id) {
+SDF_INLINE vfloat grid_cell_color(SceneValues values, int cell, vec3v p, vec3v* albedo, vec3v* surface, vec3v* emission,
+                                  vfloat* id) {
   const int cells = GRID_INT(CLMARCH_GRID_CELLS_AT), list = GRID_INT(CLMARCH_GRID_LIST_AT);
   const int first = GRID_INT(cells + cell), end = GRID_INT(cells + cell + 1);
-  vfloat d = grid_operand_color(values, GRID_INT(list + first), p, albedo, surface, id);
+  vfloat d = grid_operand_color(values, GRID_INT(list + first), p, albedo, surface, emission, id);
   for (int i = first + 1; i < end; ++i) {
-    vec3v next_albedo, next_surface;
+    vec3v next_albedo, next_surface, next_emission;
     vfloat next_id;
-    const vfloat next = grid_operand_color(values, GRID_INT(list + i), p, &next_albedo, &next_surface, &next_id);
+    const vfloat next = grid_operand_color(values, GRID_INT(list + i), p, &next_albedo, &next_surface, &next_emission, &next_id);
     *albedo = GRID_BLEND(*albedo, next_albedo, d, next);
     *surface = GRID_BLEND(*surface, next_surface, d, next);
+    *emission = GRID_BLEND(*emission, next_emission, d, next);
     *id = GRID_ID_BLEND(*id, next_id, d, next);
     d = GRID_COMBINE(d, next);
   }
@@ -89,24 +91,26 @@ GRID_ENTRY vfloat grid_distance(SceneValues values, vec3v p) {
   return d;
 }
 
-GRID_ENTRY vfloat grid_distance_color(SceneValues values, vec3v p, vec3v* albedo, vec3v* surface, vfloat* id) {
+GRID_ENTRY vfloat grid_distance_color(SceneValues values, vec3v p, vec3v* albedo, vec3v* surface, vec3v* emission, vfloat* id) {
   const vfloat cell = grid_cell_index(values, p);
   vfloat d = grid_outside_bound(values, p);
   *albedo = v3_splat(0.0f);
   *surface = v3_splat(0.0f);
+  *emission = v3_splat(0.0f);
   *id = (vfloat)(-1.0f);
   real cells[LANES];
   STORE_PRIVATE(cell, cells);
   for (int lane = 0; lane < LANES; ++lane) {
     const real c = cells[lane];
     if (c < 0) continue;
-    vec3v cell_albedo, cell_surface;
+    vec3v cell_albedo, cell_surface, cell_emission;
     vfloat cell_id;
-    const vfloat cell_d = grid_cell_color(values, (int)c, p, &cell_albedo, &cell_surface, &cell_id);
+    const vfloat cell_d = grid_cell_color(values, (int)c, p, &cell_albedo, &cell_surface, &cell_emission, &cell_id);
     const vint in_cell = MASK(cell == c);
     d = select(d, cell_d, in_cell);
     *albedo = v3_select(*albedo, cell_albedo, in_cell);
     *surface = v3_select(*surface, cell_surface, in_cell);
+    *emission = v3_select(*emission, cell_emission, in_cell);
     *id = select(*id, cell_id, in_cell);
     for (int other = lane; other < LANES; ++other) cells[other] = cells[other] == c ? -1 : cells[other];
   }

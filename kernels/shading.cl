@@ -14,7 +14,8 @@ typedef struct {
   vec3v relative; /* relative to the camera, for the lights */
   vec3v normal;
   vec3v albedo;
-  vec3v surface;  /* x = metallic, y = roughness, z = reflectivity */
+  vec3v surface;  /* PBR: x = metallic, y = roughness; the other models: x = specular, y = shininess; z = reflectivity */
+  vec3v emission; /* light the surface emits, added unlit (EMISSION) */
   vfloat steps;
 #if defined(WRITE_IDS)
   vfloat id;      /* the number of the primitive hit */
@@ -90,18 +91,19 @@ SDF_INLINE Reflection pbr_light(vec3v n, vec3v l, vec3v v, vec3v albedo, vfloat 
 /* x^shininess for x >= 0, as exp2(s log2 x): PoCL 3.1's double16 pow() returns inf for some
  * lanes on AVX-512 CPUs (seen on tiled_spheres with DOUBLE_PRECISION), while exp2 and log2 are
  * right; x = 0 gives exp2(-inf) = 0. */
-SDF_INLINE vfloat specular_power(const ShadingParams* shading, vfloat x) { return exp2((vfloat)(shading->shininess) * log2(x)); }
+SDF_INLINE vfloat specular_power(vfloat shininess, vfloat x) { return exp2(shininess * log2(x)); }
 
-SDF_INLINE vfloat specular_term(const ShadingParams* shading, vec3v n, vec3v l, vec3v v) {
+/* The specular model's term for the hit's shininess. */
+SDF_INLINE vfloat specular_term(vfloat shininess, vec3v n, vec3v l, vec3v v) {
 #if defined(SHADING_MODEL_PHONG)
   /* reflect(-l, n) = 2 dot(n, l) n - l */
   vec3v r = v3_sub(v3_scale(n, 2.0f * v3_dot(n, l)), l);
-  return specular_power(shading, fmax(v3_dot(r, v), 0.0f));
+  return specular_power(shininess, fmax(v3_dot(r, v), 0.0f));
 #elif defined(SHADING_MODEL_BLINN_PHONG)
   vec3v half_vector = v3_normalize(v3_add(l, v));
-  return specular_power(shading, fmax(v3_dot(n, half_vector), 0.0f));
+  return specular_power(shininess, fmax(v3_dot(n, half_vector), 0.0f));
 #else
-  (void)shading;
+  (void)shininess;
   (void)n;
   (void)l;
   (void)v;
@@ -109,11 +111,12 @@ SDF_INLINE vfloat specular_term(const ShadingParams* shading, vec3v n, vec3v l, 
 #endif
 }
 
-/* Lambert, and the specular model where n.l > 0, for one light. */
-SDF_INLINE Reflection classic_light(const ShadingParams* shading, vec3v n, vec3v l, vec3v v, vec3v albedo) {
+/* Lambert, and the specular model where n.l > 0, for one light; the hit's surface holds its
+ * specular weight and shininess. */
+SDF_INLINE Reflection classic_light(const ShadingParams* shading, vec3v n, vec3v l, vec3v v, vec3v albedo, vec3v surface) {
   const vfloat n_dot_l = fmax(v3_dot(n, l), 0.0f);
-  const vfloat specular = select((vfloat)(0.0f), specular_term(shading, n, l, v), MASK(n_dot_l > 0.0f));
-  const vfloat white = shading->specular * specular;
+  const vfloat specular = select((vfloat)(0.0f), specular_term(surface.y, n, l, v), MASK(n_dot_l > 0.0f));
+  const vfloat white = surface.x * specular;
   const Reflection r = {v3_scale(albedo, shading->diffuse * n_dot_l), v3(white, white, white)};
   return r;
 }
@@ -174,6 +177,10 @@ SDF_INLINE LightTerms light_terms(SceneValues values, const MarchParams* params,
 #endif
   LightTerms terms;
   terms.ambient = v3_scale(v3_mul(hit->albedo, v3_from(shading->ambient)), ambient_occlusion);
+#if defined(EMISSION)
+  /* Emitted light is unlit: the ambient layer carries it. */
+  terms.ambient = v3_add(terms.ambient, hit->emission);
+#endif
   terms.diffuse = v3_splat(0.0f);
   terms.specular = v3_splat(0.0f);
   for (int k = 0; k < shading->light_count; ++k) {
@@ -186,7 +193,7 @@ SDF_INLINE LightTerms light_terms(SceneValues values, const MarchParams* params,
 #if defined(SHADING_MODEL_PBR)
     const Reflection lit = pbr_light(hit->normal, l, view, hit->albedo, hit->surface.x, hit->surface.y);
 #else
-    const Reflection lit = classic_light(shading, hit->normal, l, view, hit->albedo);
+    const Reflection lit = classic_light(shading, hit->normal, l, view, hit->albedo, hit->surface);
 #endif
     vec3v reaching = v3_from(radiance);
 #if defined(SHAPED_LIGHTS)

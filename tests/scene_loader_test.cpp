@@ -177,7 +177,8 @@ TEST(SceneLoader, RejectsBadScenes) {
             std::string::npos);
   EXPECT_NE(error_of("sdf: {sphere: {}}\ncamera: {fov: 180}\n").find("camera.fov must be in (0, 180)"), std::string::npos);
   EXPECT_NE(error_of("sdf: {sphere: {}}\nshading: {model: toon}\n").find("lambert, phong, blinn_phong"), std::string::npos);
-  EXPECT_NE(error_of("sdf: {sphere: {}}\nlights: [{spot: {}}]\n").find("unknown key 'spot'"), std::string::npos);
+  EXPECT_NE(error_of("sdf: {sphere: {}}\nlights: [{lamp: {}}]\n").find("unknown key 'lamp'"), std::string::npos);
+  EXPECT_NE(error_of("sdf: {sphere: {}}\nlights: [{spot: {}}]\n").find("lights[0].spot.direction"), std::string::npos);
   EXPECT_NE(error_of("sdf: {sphere: {color: [1, -1, 0]}}\n").find("must be >= 0"), std::string::npos);
 }
 

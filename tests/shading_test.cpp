@@ -303,5 +303,158 @@ TEST(Shading, ShapedLightsPassTheCheck) {
   }
 }
 
+
+// Per-node materials (issue 29): a node's specular and shininess replace the scene's for Phong
+// and Blinn-Phong, inherited down the tree; its emission adds unlit.
+TEST(Shading, SpecularAndShininessPerNode) {
+  const glm::dvec3 albedo(0.8, 0.6, 0.4);
+  const double cos30 = std::sqrt(3.0) / 2.0;
+  // The plane's own 0.25 and 4 win over the scene's 0.5 and 8; a parent's apply where the node sets none.
+  const std::string own = "camera: {position: [0, 2, 0], look_at: [0, 0, 0], up: [0, 0, -1]}\n"
+                          "sdf: {plane: {normal: [0, 1, 0], offset: 0, color: [0.8, 0.6, 0.4], specular: 0.25, shininess: 4}}\n";
+  const std::string inherited = "camera: {position: [0, 2, 0], look_at: [0, 0, 0], up: [0, 0, -1]}\n"
+                                "sdf: {union: {specular: 0.25, shininess: 4, children: [{plane: {normal: [0, 1, 0], offset: 0, "
+                                "color: [0.8, 0.6, 0.4]}}, {sphere: {center: [0, -5, 0], radius: 1}}]}}\n";
+  for (const std::string& scene : {own, inherited}) {
+    const CentreColor c = centre_color(scene + kLitAtSixtyDegrees + "shading: {model: blinn_phong, ambient: 0.1, diffuse: 0.9, specular: 0.5, shininess: 8}\n");
+    expect_color(c, albedo * (0.1 + 0.9 * 0.5 * 2.0) + glm::dvec3(0.25 * std::pow(cos30, 4.0) * 2.0), 1e-4);
+  }
+}
+
+TEST(Shading, EmissionAddsUnlit) {
+  // No light and no ambient: only the emission shows; with a light it adds to the lit color.
+  const std::string plane = "camera: {position: [0, 2, 0], look_at: [0, 0, 0], up: [0, 0, -1]}\n"
+                            "sdf: {plane: {normal: [0, 1, 0], offset: 0, color: [0.8, 0.6, 0.4], emission: [0.2, 0.3, 0.4]}}\n";
+  expect_color(centre_color(plane + "shading: {ambient: 0}\n"), glm::dvec3(0.2, 0.3, 0.4));
+  expect_color(centre_color(plane + "lights: [{directional: {direction: [0, 1, 0]}}]\nshading: {ambient: 0}\n"),
+               glm::dvec3(0.8 + 0.2, 0.6 + 0.3, 0.4 + 0.4));
+}
+
+// Materials per node through a smooth blend, an emissive operand, an operand grid of glossy and
+// glowing balls: the device agrees with the reference at one lane and sixteen.
+TEST(Shading, MaterialsPerNodePassTheCheck) {
+  std::string balls;
+  for (int i = 0; i < 60; ++i) {
+    balls += fmt::format("      - sphere: {{center: [{}, 0.2, {}], radius: 0.15, specular: {}, shininess: {}{}}}\n", -2.0 + 0.5 * (i % 10),
+                         -1.0 - 0.5 * (i / 10), 0.1 * (i % 5), 4 + 10 * (i % 3), i % 7 == 0 ? ", emission: [1, 0.5, 0.2]" : "");
+  }
+  for (const char* model : {"blinn_phong", "phong", "pbr"}) {
+    const Scene scene = testing::scene_from_yaml(
+        "camera: {position: [0, 1.5, 5], look_at: [0, 0.3, -1]}\nrender: {width: 64, height: 36, pruning: grid}\n"
+        "sdf:\n  union:\n    - plane: {normal: [0, 1, 0], offset: 0, specular: 0}\n"
+        "    - smooth_union: {k: 0.3, children: [{sphere: {center: [-0.6, 0.6, 0], radius: 0.5, specular: 1, shininess: 64, "
+        "roughness: 0.2}}, {sphere: {center: [0.4, 0.6, 0], radius: 0.5, specular: 0.1, shininess: 4, metallic: 1}}]}\n"
+        "    - sphere: {center: [1.6, 0.4, 0.5], radius: 0.3, emission: [2, 1.5, 0.5]}\n"
+        "    - union:\n" + balls +
+        "lights: [{point: {position: [2, 3, 3]}}]\nshading: {model: " + model + ", specular: 0.5, shininess: 16, ambient: 0.1}\n");
+    for (int lanes : {1, 16}) {
+      OpenClOptions options;
+      options.lanes = lanes;
+      const FrameBuffers opencl = render_opencl(scene, options).buffers;
+      const CheckReport report = cross_check(scene, opencl, render_reference(scene), reshade_hits(scene, opencl));
+      EXPECT_TRUE(report.passed()) << model << " lanes " << lanes << "\n" << report.to_text();
+    }
+  }
+}
+
+
+/// Looking straight down at the point (x, 0, z) of a floor whose color is pattern, seen under the
+/// ambient light alone (1): the color there.
+CentreColor floor_color_at(double x, double z, const std::string& floor, double time = 0.0) {
+  const std::string yaml = fmt::format("camera: {{position: [{0}, 2, {1}], look_at: [{0}, 0, {1}], up: [0, 0, -1]}}\n"
+                                       "sdf: {2}\nshading: {{ambient: 1}}\n"
+                                       "render: {{width: 1, height: 1, max_steps: 500, epsilon: 1.0e-6}}\n",
+                                       x, z, floor);
+  const Scene scene = testing::scene_from_yaml(yaml, time);
+  const FrameBuffers b = render_opencl(scene, {}).buffers;
+  const CameraBasis basis = camera_basis(scene.camera, 1, 1);
+  const RayResult r = reference_trace(scene, basis.origin, pixel_ray_direction(basis, 0, 0));
+  return {{b.at(Channel::R, 0, 0), b.at(Channel::G, 0, 0), b.at(Channel::B, 0, 0)}, r.color};
+}
+
+const glm::dvec3 kLight(0.9, 0.8, 0.7), kDark(0.1, 0.2, 0.3);
+
+// The checker's color at known points: a where floor(x) + floor(y) + floor(z) is even (y = 0 on
+// the floor), b where odd; in the frame of the node that sets it, here a union moved by 0.5 in x
+// over the floor, so the world point x is the local x + 0.5.
+TEST(ColorPattern, CheckerAtKnownPointsInBothFrames) {
+  const std::string world = "{plane: {normal: [0, 1, 0], offset: 0, color: {checker: {size: 1, colors: [[0.9, 0.8, 0.7], [0.1, 0.2, 0.3]]}}}}";
+  const std::string moved = "{union: {translate: [0.5, 0, 0], color: {checker: {size: 1, colors: [[0.9, 0.8, 0.7], [0.1, 0.2, 0.3]]}}, "
+                            "children: [{plane: {normal: [0, 1, 0], offset: 0}}]}}";
+  expect_color(floor_color_at(0.25, 0.25, world), kLight);
+  expect_color(floor_color_at(1.25, 0.25, world), kDark);
+  expect_color(floor_color_at(-0.25, 0.25, world), kDark);
+  expect_color(floor_color_at(-0.25, -0.75, world), kLight);
+  {
+    SCOPED_TRACE("local x = -0.25");
+    expect_color(floor_color_at(0.25, 0.25, moved), kDark);
+  }
+  {
+    SCOPED_TRACE("local x = 0.25");
+    expect_color(floor_color_at(0.75, 0.25, moved), kLight);
+  }
+  const std::string half = "{plane: {normal: [0, 1, 0], offset: 0, color: {checker: {size: 0.5, colors: [[0.9, 0.8, 0.7], [0.1, 0.2, 0.3]]}}}}";
+  expect_color(floor_color_at(0.6, 0.1, half), kDark);
+}
+
+TEST(ColorPattern, StripesAndGrid) {
+  const std::string stripes = "{plane: {normal: [0, 1, 0], offset: 0, color: {stripes: {size: 0.5, axis: z, colors: [[0.9, 0.8, 0.7], [0.1, 0.2, 0.3]]}}}}";
+  expect_color(floor_color_at(3.0, 0.25, stripes), kLight);
+  expect_color(floor_color_at(3.0, 0.75, stripes), kDark);
+  expect_color(floor_color_at(-7.0, -0.25, stripes), kDark);
+  const std::string grid = "{plane: {normal: [0, 1, 0], offset: 0, color: {grid: {size: 1, line_width: 0.1, colors: [[0.9, 0.8, 0.7], [0.1, 0.2, 0.3]]}}}}";
+  {
+    SCOPED_TRACE("a cell's middle");
+    expect_color(floor_color_at(0.5, 0.5, grid), kLight);
+  }
+  {
+    SCOPED_TRACE("0.02 from the line x = 1");
+    expect_color(floor_color_at(1.02, 0.5, grid), kDark);
+  }
+  {
+    SCOPED_TRACE("0.03 from the line z = -3");
+    expect_color(floor_color_at(0.5, -2.97, grid), kDark);
+  }
+  {
+    SCOPED_TRACE("0.07 from z = 0, past half the width");
+    expect_color(floor_color_at(0.5, 0.07, grid), kLight);
+  }
+}
+
+// A color of expressions of the point and the time, at t = 0.25.
+TEST(ColorPattern, ExpressionsOfThePoint) {
+  const std::string floor = "{plane: {normal: [0, 1, 0], offset: 0, color: [\"0.5 + 0.5 * sin(x)\", \"fract(z)\", \"mod(t, 1) + length(x, z) * 0\"]}}";
+  expect_color(floor_color_at(1.0, 2.3, floor, 0.25), glm::dvec3(0.5 + 0.5 * std::sin(1.0), 0.3, 0.25), 1e-5);
+  expect_color(floor_color_at(-2.0, -0.4, floor, 1.25), glm::dvec3(0.5 + 0.5 * std::sin(-2.0), 0.6, 0.25), 1e-5);
+}
+
+// Patterns, inherited through a rotated union, on the operands of an operand grid, with a smooth
+// blend and anti-aliased: the device agrees with the reference.
+TEST(ColorPattern, PatternsPassTheCheck) {
+  std::string balls;
+  for (int i = 0; i < 50; ++i) {
+    balls += fmt::format("      - sphere: {{center: [{}, 0.2, {}], radius: 0.15, color: {{stripes: {{size: 0.05, axis: y}}}}}}\n",
+                         -2.0 + 0.5 * (i % 10), -1.0 - 0.5 * (i / 10));
+  }
+  for (int samples : {1, 4}) {
+    const Scene scene = testing::scene_from_yaml(
+        "camera: {position: [0, 1.5, 5], look_at: [0, 0.3, -1]}\n"
+        "render: {width: 64, height: 36, pruning: grid, samples: " + std::to_string(samples) + "}\n"
+        "sdf:\n  union:\n"
+        "    - union: {rotate: [0, 30, 0], color: {checker: {size: 0.5}}, children: [{plane: {normal: [0, 1, 0], offset: 0}}]}\n"
+        "    - smooth_union: {k: 0.3, children: [{sphere: {center: [-0.6, 0.6, 0], radius: 0.5, color: {grid: {size: 0.2, axes: [x, y, z]}}}},\n"
+        "                                        {sphere: {center: [0.4, 0.6, 0], radius: 0.5, color: [\"0.5 + 0.5 * sin(8 * x)\", \"smoothstep(0, 1, y)\", 0.3]}}]}\n"
+        "    - union:\n" + balls +
+        "lights: [{point: {position: [2, 3, 3]}}]\nshading: {ambient: 0.2}\n");
+    for (int lanes : {1, 16}) {
+      OpenClOptions options;
+      options.lanes = lanes;
+      const FrameBuffers opencl = render_opencl(scene, options).buffers;
+      const CheckReport report = cross_check(scene, opencl, render_reference(scene), reshade_hits(scene, opencl));
+      EXPECT_TRUE(report.passed()) << "samples " << samples << " lanes " << lanes << "\n" << report.to_text();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace clmarch

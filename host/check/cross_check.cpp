@@ -115,6 +115,15 @@ double least_roughness(const Node& node) {
   return least;
 }
 
+/// The largest specular weight times shininess of the tree's materials (the specular term's
+/// slope per radian), from the scene's defaults where no node sets them.
+double largest_specular_slope(const Node& node, const Material& inherited) {
+  const Material m = node.material_over(inherited);
+  double largest = m.specular * m.shininess;
+  for (const Node& child : node.children) largest = std::max(largest, largest_specular_slope(child, m));
+  return largest;
+}
+
 /// Largest change of PBR's lit color per radian of normal change, per unit of radiance. The GGX
 /// distribution D = a^2 / (pi q^2), q = a^2 + (1 - a^2) sin^2(theta), a = roughness^2, peaks at
 /// 1 / (pi a^2) and changes with the normal's angle theta to the half vector at most
@@ -138,7 +147,7 @@ double pbr_color_per_radian(double roughness) {
 double lit_color_per_radian(const Scene& scene) {
   const Shading& s = scene.shading;
   if (s.model == ShadingModel::Pbr) return pbr_color_per_radian(least_roughness(scene.sdf));
-  const double specular_slope = s.model == ShadingModel::Lambert ? 0.0 : s.specular * s.shininess;
+  const double specular_slope = s.model == ShadingModel::Lambert ? 0.0 : largest_specular_slope(scene.sdf, root_material(scene));
   return s.diffuse + specular_slope;
 }
 
@@ -461,7 +470,8 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
   const Shading& shading = scene.shading;
   const bool powered = shading.model == ShadingModel::Phong || shading.model == ShadingModel::BlinnPhong;
   const double power_rounding =
-      powered ? kRoundingSteps * unit_roundoff(scene) * light_radiance(scene) * shading.specular * shading.shininess : 0.0;
+      powered ? kRoundingSteps * unit_roundoff(scene) * light_radiance(scene) * largest_specular_slope(scene.sdf, root_material(scene))
+              : 0.0;
   std::vector<double> diffs, ratios;
   int pixels_compared = 0;
   // The color, and each of the layers (ao, diffuse, specular) as a color of its own where both

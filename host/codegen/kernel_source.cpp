@@ -76,6 +76,7 @@ std::string feature_defines(const Scene& scene, const KernelOptions& options) {
     if (std::any_of(scene.lights.begin(), scene.lights.end(), [](const Light& light) { return light.shaped(); })) {
       out += "#define SHAPED_LIGHTS\n";
     }
+    if (uses_emission(scene.sdf)) out += "#define EMISSION\n";
   }
   if (uses_cone_pass(scene) && options.purpose != KernelPurpose::EvalPoints) out += "#define COARSE_PASS\n";
   if (scene.tiling && options.purpose != KernelPurpose::EvalPoints) {
@@ -84,10 +85,13 @@ std::string feature_defines(const Scene& scene, const KernelOptions& options) {
   return out;
 }
 
+/// How the scene's map_color returns its materials.
+MaterialLayout material_layout(const Scene& scene) { return {root_material(scene), scene.shading.model, uses_emission(scene.sdf)}; }
+
 /// The scene's code as eval_points has it: world points, every literal spelled.
 SdfCode eval_points_scene_code(const Scene& scene) {
   return generate_sdf_code(scene.sdf, glm::dvec3(0.0), scene.render.subtree_bounds == SceneBounds::Sphere, grid_union(scene),
-                           true);
+                           true, material_layout(scene));
 }
 
 /// The scene's code as a program built with options has it.
@@ -165,6 +169,7 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
   if (uses_kind(scene.sdf, {NodeKind::Mandelbulb, NodeKind::Menger})) src += kernel_file("fractals.cl");
   if (uses_kind(scene.sdf, {NodeKind::Terrain})) src += kernel_file("noise.cl");
   src += kernel_file("operators.cl");
+  if (uses_patterns(scene.sdf)) src += kernel_file("patterns.cl");
   src += "#line 1 \"generated scene\"\n";
   if (options.purpose == KernelPurpose::EvalPoints) {
     if (!options.value_slots.empty()) throw std::invalid_argument("value slots are for march programs, not eval_points");
@@ -196,7 +201,7 @@ SdfCode scene_code(const Scene& scene, bool with_ids) {
   Literals literals;
   SdfCode code;
   code.source = sdf_functions(scene.sdf, map_frame_origin(scene), scene.render.subtree_bounds == SceneBounds::Sphere, literals,
-                              grid_union(scene), code.data, with_ids);
+                              grid_union(scene), code.data, with_ids, material_layout(scene));
   code.literal_rounding = literals.distance_rounding();
   if (scene.tiling) {
     // The cell is the scene's geometry, like map()'s literals: an animation may vary it.

@@ -2,6 +2,8 @@
 // so that the dumped kernel reads as the tree it came from.
 #include "codegen/sdf_codegen.hpp"
 
+#include "codegen/color_pattern_code.hpp"
+
 #include "codegen/cl_literals.hpp"
 #include "codegen/embedded_kernels.hpp"
 #include "common/available_memory.hpp"
@@ -34,14 +36,10 @@
 namespace clmarch {
 namespace {
 
-/// The material a node passes to its subtree: its own settings over the inherited ones.
-Material material_of(const Node& node, const Material& inherited) {
-  Material m = inherited;
-  if (node.color) m.albedo = *node.color;
-  if (node.metallic) m.metallic = *node.metallic;
-  if (node.roughness) m.roughness = *node.roughness;
-  if (node.reflectivity) m.reflectivity = *node.reflectivity;
-  return m;
+/// A material's surface vector as map_color returns it: the shading model's two numbers (PBR:
+/// metallic, roughness; the others: specular, shininess), then reflectivity.
+glm::dvec3 surface_vector(const Material& m, ShadingModel model) {
+  return model == ShadingModel::Pbr ? glm::dvec3(m.metallic, m.roughness, m.reflectivity) : glm::dvec3(m.specular, m.shininess, m.reflectivity);
 }
 
 /// A parameter as an argument of its sd_ function. Positions are baked relative to offset, in
@@ -119,7 +117,7 @@ struct GridEmission {
   std::shared_ptr<const std::vector<float>> data;
 
   void emit(const Node& union_node, int first_id, const Material& color, const glm::dvec3& offset, bool gate_subtrees,
-            Literals& lit);
+            const MaterialLayout& materials, Literals& lit);
 };
 
 /// The functions that blend an operator's operands' materials: select(second, first, mask), or
@@ -156,14 +154,17 @@ struct IdNumbering {
 /// with ids the number of the primitive the material is of.
 class SdfEmitter {
  public:
-  SdfEmitter(bool with_color, bool gate_subtrees, Literals& literals, GridEmission* grid = nullptr, IdNumbering ids = {})
-      : with_color_(with_color), gate_subtrees_(gate_subtrees), lit_(literals), grid_(grid), ids_(std::move(ids)) {}
+  SdfEmitter(bool with_color, bool gate_subtrees, Literals& literals, GridEmission* grid = nullptr, IdNumbering ids = {},
+             MaterialLayout materials = {})
+      : with_color_(with_color), gate_subtrees_(gate_subtrees), lit_(literals), grid_(grid), ids_(std::move(ids)),
+        materials_(materials) {}
 
   struct Value {
     std::string distance;
-    std::string color;    // empty without color
-    std::string surface;  // empty without color
-    std::string id;       // empty without ids
+    std::string color;     // empty without color
+    std::string surface;   // empty without color
+    std::string id;        // empty without ids
+    std::string emission;  // empty without color or without the scene's emission
   };
 
   /// The node's value at the point p + offset (offset: a constant the generator folds into the
@@ -171,10 +172,14 @@ class SdfEmitter {
   Value emit(const Node& node, const std::string& p, const Material& inherited, const glm::dvec3& offset) {
     // The node's first primitive number, which its operators' children change while they emit.
     const int first_id = first_id_;
-    const Material color = material_of(node, inherited);
+    const Material color = node.material_over(inherited);
     const auto [local_p, local_offset] = emit_transform(node, p, offset);
+    // A pattern is a function of the point in the frame of the node that sets it.
+    const std::string outer_pattern_frame = pattern_frame_;
+    if (with_color_ && node.color_pattern) set_pattern_frame(local_p, local_offset);
     Value value = is_primitive(node.kind) ? emit_primitive(node, local_p, color, local_offset)
                                           : emit_operator(node, local_p, color, local_offset);
+    pattern_frame_ = outer_pattern_frame;
     if (node.transform.scale != 1.0) {
       // p was divided by the scale, so distances in the local frame are scaled back.
       const std::string scaled = fresh("d");
@@ -192,6 +197,16 @@ class SdfEmitter {
   }
 
   std::string body() const { return body_; }
+
+  /// Makes p + offset the point the patterns of the nodes below are evaluated at.
+  void set_pattern_frame(const std::string& p, const glm::dvec3& offset) {
+    if (offset == glm::dvec3(0.0)) {
+      pattern_frame_ = p;
+      return;
+    }
+    pattern_frame_ = fresh("q");
+    line(fmt::format("vec3v {} = v3_add({}, v3_from({}));  /* the pattern's frame */", pattern_frame_, p, lit_.f4(offset)));
+  }
 
   /// The blend of the material of an operator's operands, as combine() writes it: {0} and {1} are
   /// the first and second operand's colors, a and b their distances, k the blend radius's mark.
@@ -305,15 +320,22 @@ class SdfEmitter {
   }
 
   Value emit_primitive(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
-    Value value{fresh("d"), "", "", ""};
+    Value value{fresh("d"), "", "", "", ""};
     const std::string call = node.kind == NodeKind::Terrain ? terrain_call(node, p, offset) : primitive_call(node, p, offset, lit_);
     line(fmt::format("vfloat {} = {};  /* {} */", value.distance, call, node_kind_name(node.kind)));
     if (with_color_) {
       value.color = fresh("c");
-      line(fmt::format("vec3v {} = v3_from({});", value.color, lit_.f4(color.albedo)));
+      if (color.pattern) {
+        line(fmt::format("vec3v {} = {};  /* color pattern */", value.color, pattern_color_code(*color.pattern, pattern_frame_, lit_)));
+      } else {
+        line(fmt::format("vec3v {} = v3_from({});", value.color, lit_.f4(color.albedo)));
+      }
       value.surface = fresh("s");
-      line(fmt::format("vec3v {} = v3_from({});", value.surface,
-                       lit_.f4(glm::dvec3(color.metallic, color.roughness, color.reflectivity))));
+      line(fmt::format("vec3v {} = v3_from({});", value.surface, lit_.f4(surface_vector(color, materials_.model))));
+      if (materials_.emission) {
+        value.emission = fresh("e");
+        line(fmt::format("vec3v {} = v3_from({});", value.emission, lit_.f4(color.emission)));
+      }
     }
     if (with_color_ && ids_.on) {
       // Spelled, not a literal: numbers never vary between frames, and literals keep their indices.
@@ -412,7 +434,7 @@ class SdfEmitter {
                    const std::string& skip_limit) {
     if (!worth_a_bound(child)) return emit(child, p, color, offset);
     const BoundingSphere sphere = *node_bounds(child);
-    Value out{fresh("d"), "", "", ""};
+    Value out{fresh("d"), "", "", "", ""};
     line(fmt::format("vfloat {} = sd_bound({}, {}, {}, {});  /* bound of {} */", out.distance, p,
                      lit_.f4(sphere.center - offset), lit_.f(sphere.radius), lit_.f(1.0 / sphere.gain),
                      node_kind_name(child.kind)));
@@ -420,6 +442,10 @@ class SdfEmitter {
       out.color = fresh("c");
       out.surface = fresh("s");
       line(fmt::format("vec3v {} = v3_splat(0.0f), {} = v3_splat(0.0f);", out.color, out.surface));
+      if (materials_.emission) {
+        out.emission = fresh("e");
+        line(fmt::format("vec3v {} = v3_splat(0.0f);", out.emission));
+      }
     }
     if (with_color_ && ids_.on) {
       out.id = fresh("i");
@@ -430,6 +456,7 @@ class SdfEmitter {
     const Value inside = emit(child, p, color, offset);
     line(fmt::format("{} = {};", out.distance, inside.distance));
     if (with_color_) line(fmt::format("{} = {}; {} = {};", out.color, inside.color, out.surface, inside.surface));
+    if (!out.emission.empty()) line(fmt::format("{} = {};", out.emission, inside.emission));
     if (!out.id.empty()) line(fmt::format("{} = {};", out.id, inside.id));
     indent_.resize(indent_.size() - 2);
     line("}");
@@ -459,7 +486,7 @@ class SdfEmitter {
     // mod 2 pi here in double, so the kernel's sines take only the small p in float.
     glm::dvec3 phase;
     for (int axis = 0; axis < 3; ++axis) phase[axis] = std::fmod(displace.frequency * offset[axis], 2.0 * std::numbers::pi);
-    Value out{fresh("d"), child.color, child.surface, child.id};
+    Value out{fresh("d"), child.color, child.surface, child.id, child.emission};
     line(fmt::format("vfloat {} = ({} + displacement({}, {}, {}, {})) * {};  /* displace */", out.distance, child.distance, p,
                      lit_.f4(phase), lit_.f(displace.amplitude), lit_.f(displace.frequency),
                      lit_.f(1.0 / displacement_lipschitz(node))));
@@ -484,7 +511,7 @@ class SdfEmitter {
   Value emit_distance_map(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset,
                           const char* format, double amount) {
     const Value child = emit(node.children.front(), p, color, offset);
-    Value out{fresh("d"), child.color, child.surface, child.id};
+    Value out{fresh("d"), child.color, child.surface, child.id, child.emission};
     line(fmt::format("vfloat {} = {};  /* {} */", out.distance, fmt::format(fmt::runtime(format), child.distance, lit_.f(amount)),
                      node_kind_name(node.kind)));
     return out;
@@ -539,7 +566,7 @@ class SdfEmitter {
   }
 
   Value combine(const Node& node, const Value& a, const Value& b) {
-    Value out{fresh("d"), "", "", ""};
+    Value out{fresh("d"), "", "", "", ""};
     const std::string k = blend_radius(node);
     if (with_color_) {
       const std::string blend = blend_rule(node.kind, a.distance, b.distance, k);
@@ -547,6 +574,10 @@ class SdfEmitter {
       line(fmt::format("vec3v {} = {};", out.color, fmt::format(fmt::runtime(blend), a.color, b.color)));
       out.surface = fresh("s");
       line(fmt::format("vec3v {} = {};", out.surface, fmt::format(fmt::runtime(blend), a.surface, b.surface)));
+      if (materials_.emission) {
+        out.emission = fresh("e");
+        line(fmt::format("vec3v {} = {};", out.emission, fmt::format(fmt::runtime(blend), a.emission, b.emission)));
+      }
     }
     if (with_color_ && ids_.on) {
       out.id = fresh("i");
@@ -559,18 +590,27 @@ class SdfEmitter {
 
   /// The union of many operands, read from its operand grid (kernels/operand_grid.cl).
   Value emit_grid(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
-    if (!grid_->emitted) grid_->emit(node, first_id_, color, offset, gate_subtrees_, lit_);
-    Value out{fresh("d"), "", "", ""};
+    if (color.pattern && !node.color_pattern) {
+      // Its operands' code sees the union's point only.
+      throw InputError(fmt::format("a color pattern set above a {} of {} operands evaluated from an operand grid: set it on the {} "
+                                   "or on its operands, or render.pruning: none",
+                                   node_kind_name(node.kind), node.children.size(), node_kind_name(node.kind)));
+    }
+    if (!grid_->emitted) grid_->emit(node, first_id_, color, offset, gate_subtrees_, materials_, lit_);
+    Value out{fresh("d"), "", "", "", ""};
     const std::string what = fmt::format("{} of {} operands, from its operand grid", node_kind_name(node.kind), node.children.size());
     if (with_color_) {
       out.color = fresh("c");
       out.surface = fresh("s");
       // The grid's operands always number their primitives; programs without ids drop the number.
       const std::string id = fresh("i");
-      line(fmt::format("vec3v {}, {};", out.color, out.surface));
+      // Scenes without emission give the grid a vector it fills with 0, which the compiler drops.
+      const std::string emission = fresh("e");
+      line(fmt::format("vec3v {}, {}, {};", out.color, out.surface, emission));
       line(fmt::format("vfloat {};", id));
-      line(fmt::format("vfloat {} = grid_distance_color(values, {}, &{}, &{}, &{});  /* {} */", out.distance, p, out.color,
-                       out.surface, id, what));
+      line(fmt::format("vfloat {} = grid_distance_color(values, {}, &{}, &{}, &{}, &{});  /* {} */", out.distance, p, out.color,
+                       out.surface, emission, id, what));
+      if (materials_.emission) out.emission = emission;
       if (ids_.on) out.id = id;
     } else {
       line(fmt::format("vfloat {} = grid_distance(values, {});  /* {} */", out.distance, p, what));
@@ -583,6 +623,9 @@ class SdfEmitter {
   Literals& lit_;
   GridEmission* grid_;
   IdNumbering ids_;
+  MaterialLayout materials_;
+  /// The point the current pattern is evaluated at (set_pattern_frame).
+  std::string pattern_frame_;
   /// The number of the first primitive of the node being emitted, from the emitter's base.
   int first_id_ = 0;
   int counter_ = 0;
@@ -698,7 +741,7 @@ PackedGrid packed_grid_for(const Node& union_node, const glm::dvec3& offset, std
 }
 
 void GridEmission::emit(const Node& union_node, int first_id, const Material& color, const glm::dvec3& offset,
-                        bool gate_subtrees, Literals& lit) {
+                        bool gate_subtrees, const MaterialLayout& materials, Literals& lit) {
   // Each operand's code, its literals left open: operands whose code reads alike share a shape.
   std::map<std::string, std::uint32_t> distance_ids, color_ids;
   std::vector<std::string> distance_shapes, color_shapes;
@@ -717,14 +760,16 @@ void GridEmission::emit(const Node& union_node, int first_id, const Material& co
     Literals distance_literals, color_literals;
     SdfEmitter distance(false, gate_subtrees, distance_literals);
     const SdfEmitter::Value d = distance.emit(operand, "p", color, offset);
-    SdfEmitter colored(true, gate_subtrees, color_literals, nullptr, record_ids);
+    SdfEmitter colored(true, gate_subtrees, color_literals, nullptr, record_ids, materials);
+    if (color.pattern) colored.set_pattern_frame("p", offset);
     const SdfEmitter::Value c = colored.emit(operand, "p", color, offset);
     const std::uint32_t distance_shape =
         shape_of(distance_ids, distance_shapes, distance.body() + fmt::format("  return {};\n", d.distance));
     const std::uint32_t color_shape = shape_of(
         color_ids, color_shapes,
         colored.body() +
-            fmt::format("  *albedo = {};\n  *surface = {};\n  *id = {};\n  return {};\n", c.color, c.surface, c.id, c.distance));
+            fmt::format("  *albedo = {};\n  *surface = {};\n  *emission = {};\n  *id = {};\n  return {};\n", c.color, c.surface,
+                        c.emission.empty() ? "v3_splat(0.0f)" : c.emission, c.id, c.distance));
     const std::vector<float> distance_values = distance_literals.take(), color_values = color_literals.take();
     record_at.push_back(static_cast<std::uint32_t>(records.size()));
     records.push_back(int_word(distance_shape));
@@ -759,7 +804,8 @@ void GridEmission::emit(const Node& union_node, int first_id, const Material& co
   functions += shape_function("SDF_INLINE vfloat grid_operand_distance(SceneValues values, int at, vec3v p)",
                               "at + CLMARCH_GRID_RECORD_WORDS", "SCENE_DATA[at]", distance_shapes);
   functions += shape_function(
-      "SDF_INLINE vfloat grid_operand_color(SceneValues values, int at, vec3v p, vec3v* albedo, vec3v* surface, vfloat* id)",
+      "SDF_INLINE vfloat grid_operand_color(SceneValues values, int at, vec3v p, vec3v* albedo, vec3v* surface, vec3v* emission,\n"
+      "                                     vfloat* id)",
       "at + as_int(SCENE_DATA[at + 2])", "SCENE_DATA[at + 1]", color_shapes);
   functions += kernel_file("operand_grid.cl");
   functions += "#line 1 \"generated scene\"\n";
@@ -788,14 +834,16 @@ std::string Literals::f4(const glm::dvec3& v) {
 }
 
 std::string sdf_functions(const Node& root, const glm::dvec3& frame_origin, bool gate_subtrees, Literals& literals,
-                          const Node* grid_node, std::shared_ptr<const std::vector<float>>& data, bool with_ids) {
+                          const Node* grid_node, std::shared_ptr<const std::vector<float>>& data, bool with_ids,
+                          const MaterialLayout& materials) {
   GridEmission grid;
   grid.node = grid_node;
-  SdfEmitter distance_only(false, gate_subtrees, literals, &grid);
-  const SdfEmitter::Value d = distance_only.emit(root, "p", Material{}, frame_origin);
+  // Both walks know the materials: the first to reach the operand grid writes its records.
+  SdfEmitter distance_only(false, gate_subtrees, literals, &grid, {}, materials);
+  const SdfEmitter::Value d = distance_only.emit(root, "p", materials.root, frame_origin);
   literals.end_distance();
-  SdfEmitter with_color(true, gate_subtrees, literals, &grid, IdNumbering{with_ids, ""});
-  const SdfEmitter::Value dc = with_color.emit(root, "p", Material{}, frame_origin);
+  SdfEmitter with_color(true, gate_subtrees, literals, &grid, IdNumbering{with_ids, ""}, materials);
+  const SdfEmitter::Value dc = with_color.emit(root, "p", materials.root, frame_origin);
   data = std::move(grid.data);
   const std::string frame = frame_origin == glm::dvec3(0.0)
                                 ? std::string()
@@ -813,13 +861,14 @@ std::string sdf_functions(const Node& root, const glm::dvec3& frame_origin, bool
   return frame + values_type + grid.functions + fmt::format(
       "/* Distance to the scene. */\n"
       "SDF_INLINE vfloat map(SceneValues values, vec3v p) {{\n{}  return {};\n}}\n\n"
-      "/* Distance to the scene and the material there: albedo, surface = (metallic, roughness,\n"
-      " * reflectivity){}. */\n"
-      "SDF_INLINE vfloat map_color(SceneValues values, vec3v p, vec3v* albedo, vec3v* surface{}) {{\n{}  *albedo = {};\n"
-      "  *surface = {};\n{}  return {};\n}}\n",
-      distance_only.body(), d.distance, with_ids ? ", and id, the number of the primitive it is of" : "",
-      with_ids ? ", vfloat* id" : "", with_color.body(), dc.color, dc.surface,
-      with_ids ? fmt::format("  *id = {};\n", dc.id) : std::string(), dc.distance);
+      "/* Distance to the scene and the material there: albedo, surface = ({}, reflectivity), the\n"
+      " * light it emits{}. */\n"
+      "SDF_INLINE vfloat map_color(SceneValues values, vec3v p, vec3v* albedo, vec3v* surface, vec3v* emission{}) {{\n{}"
+      "  *albedo = {};\n  *surface = {};\n  *emission = {};\n{}  return {};\n}}\n",
+      distance_only.body(), d.distance, materials.model == ShadingModel::Pbr ? "metallic, roughness" : "specular, shininess",
+      with_ids ? ", and id, the number of the primitive it is of" : "", with_ids ? ", vfloat* id" : "", with_color.body(), dc.color,
+      dc.surface, dc.emission.empty() ? "v3_splat(0.0f)" : dc.emission, with_ids ? fmt::format("  *id = {};\n", dc.id) : std::string(),
+      dc.distance);
 }
 
 bool takes_absolute_points(const Node& root, const glm::dvec3& frame_origin) {
@@ -835,10 +884,10 @@ bool takes_absolute_points(const Node& root, const glm::dvec3& frame_origin) {
 }
 
 SdfCode generate_sdf_code(const Node& root, const glm::dvec3& frame_origin, bool gate_subtrees, const Node* grid_node,
-                          bool with_ids) {
+                          bool with_ids, const MaterialLayout& materials) {
   Literals literals;
   SdfCode code;
-  code.source = sdf_functions(root, frame_origin, gate_subtrees, literals, grid_node, code.data, with_ids);
+  code.source = sdf_functions(root, frame_origin, gate_subtrees, literals, grid_node, code.data, with_ids, materials);
   code.literal_rounding = literals.distance_rounding();
   code.literals = literals.take();
   return code;

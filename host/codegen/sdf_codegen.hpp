@@ -53,10 +53,21 @@ class Literals {
   double distance_rounding_ = 0.0;
 };
 
+/// How map_color lays out the materials it returns: the root's (whose specular and shininess are
+/// the scene's), the shading model, which picks the surface vector's two numbers (PBR: metallic,
+/// roughness; the others: specular, shininess), and whether any node emits (EMISSION: else
+/// map_color's emission is 0 and no node carries one).
+struct MaterialLayout {
+  Material root;
+  ShadingModel model = ShadingModel::Lambert;
+  bool emission = false;
+};
+
 /// map and map_color for this tree, their literals written to literals and the operand grid's data
 /// to data (see generate_sdf_code).
 std::string sdf_functions(const Node& root, const glm::dvec3& frame_origin, bool gate_subtrees, Literals& literals,
-                          const Node* grid_node, std::shared_ptr<const std::vector<float>>& data, bool with_ids);
+                          const Node* grid_node, std::shared_ptr<const std::vector<float>>& data, bool with_ids,
+                          const MaterialLayout& materials);
 
 /// Whether the generated map() of this tree, measured from frame_origin, takes absolute world points
 /// somewhere (the point plus the frame origin, in float: a terrain whose octaves' lattice points
@@ -73,7 +84,7 @@ bool takes_absolute_points(const Node& root, const glm::dvec3& frame_origin);
 /// channel; scene/scene.hpp, primitive_count), spelled in the code, so that literals keep their
 /// indices with and without.
 SdfCode generate_sdf_code(const Node& root, const glm::dvec3& frame_origin = glm::dvec3(0.0), bool gate_subtrees = true,
-                          const Node* grid_node = nullptr, bool with_ids = false);
+                          const Node* grid_node = nullptr, bool with_ids = false, const MaterialLayout& materials = {});
 
 /// Indices into SdfCode::literals, ascending: the literals a program reads from its values
 /// (values[j] is the j-th of them that the source reads, in the source's order).

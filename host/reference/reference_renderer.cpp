@@ -50,8 +50,14 @@ glm::dvec3 normal_of(const Field& f, const glm::dvec3& p, NormalMethod method, d
 
 /// The material of the tree at the surface's point (in its frame), and the primitive it is of.
 void set_material(const Scene& scene, SurfacePoint& s) {
-  const SdfSample sample = reference_sample(scene.sdf, s.local);
-  s.material = Material{sample.color, sample.surface.x, sample.surface.y, sample.surface.z};
+  const SdfSample sample = reference_sample(scene.sdf, s.local, root_material(scene));
+  s.material.albedo = sample.color;
+  s.material.metallic = sample.surface.x;
+  s.material.roughness = sample.surface.y;
+  s.material.reflectivity = sample.surface.z;
+  s.material.specular = sample.finish.x;
+  s.material.shininess = sample.finish.y;
+  s.material.emission = sample.emission;
   s.primitive = sample.primitive;
 }
 

@@ -2,6 +2,8 @@
 // recursive walk of the node tree with transforms and inherited colors.
 #include "reference/reference_sdf.hpp"
 
+#include "reference/reference_patterns.hpp"
+
 #include "reference/reference_fractals.hpp"
 #include "reference/reference_noise.hpp"
 
@@ -206,13 +208,18 @@ SdfSample sample_node(const Node& node, const glm::dvec3& p_parent, const Materi
   // Skipping the identity rotation is only a speed-up: R would be exactly the identity matrix.
   if (xf.rotate_degrees != glm::dvec3(0.0)) p = glm::transpose(xf.world_from_local_rotation()) * p;
   p /= xf.scale;
-  Material material = parent;
-  if (node.color) material.albedo = *node.color;
-  if (node.metallic) material.metallic = *node.metallic;
-  if (node.roughness) material.roughness = *node.roughness;
-  if (node.reflectivity) material.reflectivity = *node.reflectivity;
+  Material material = node.material_over(parent);
+  if (node.color_pattern) {
+    // One color at this point for the whole subtree: the pattern's, in this node's frame.
+    material.albedo = reference_pattern_color(*node.color_pattern, p);
+    material.pattern = nullptr;
+  }
   SdfSample s = sample_local(node, p, material);
-  if (is_primitive(node.kind)) s.surface = {material.metallic, material.roughness, material.reflectivity};
+  if (is_primitive(node.kind)) {
+    s.surface = {material.metallic, material.roughness, material.reflectivity};
+    s.finish = {material.specular, material.shininess};
+    s.emission = material.emission;
+  }
   s.distance *= xf.scale;
   // A bound for fields steeper than 1 (terrain, fractals): the march takes shorter steps.
   s.distance *= node.step_factor;
@@ -223,7 +230,9 @@ SdfSample sample_node(const Node& node, const glm::dvec3& p_parent, const Materi
 
 double reference_distance(const Node& root, const glm::dvec3& p) { return reference_sample(root, p).distance; }
 
-SdfSample reference_sample(const Node& root, const glm::dvec3& p) { return sample_node(root, p, Material{}); }
+SdfSample reference_sample(const Node& root, const glm::dvec3& p, const Material& root_material) {
+  return sample_node(root, p, root_material);
+}
 
 double sd_sphere(const glm::dvec3& p, const Sphere& sphere) { return glm::length(p - sphere.center) - sphere.radius; }
 
@@ -339,25 +348,25 @@ SdfSample op_intersection(const SdfSample& a, const SdfSample& b) { return b.dis
 
 SdfSample op_subtraction(const SdfSample& a, const SdfSample& b) {
   const SdfSample& kept = a.distance >= -b.distance ? a : b;
-  return {op_subtraction(a.distance, b.distance), kept.color, kept.surface, kept.primitive};
+  return {op_subtraction(a.distance, b.distance), kept.color, kept.surface, kept.primitive, kept.finish, kept.emission};
 }
 
 SdfSample op_smooth_union(const SdfSample& a, const SdfSample& b, double k) {
   const double h = smooth_union_weight(a.distance, b.distance, k);
   return {op_smooth_union(a.distance, b.distance, k), mix(b.color, a.color, h), mix(b.surface, a.surface, h),
-          h >= 0.5 ? a.primitive : b.primitive};
+          h >= 0.5 ? a.primitive : b.primitive, mix(b.finish, a.finish, h), mix(b.emission, a.emission, h)};
 }
 
 SdfSample op_smooth_intersection(const SdfSample& a, const SdfSample& b, double k) {
   const double h = smooth_intersection_weight(a.distance, b.distance, k);
   return {op_smooth_intersection(a.distance, b.distance, k), mix(b.color, a.color, h), mix(b.surface, a.surface, h),
-          h >= 0.5 ? a.primitive : b.primitive};
+          h >= 0.5 ? a.primitive : b.primitive, mix(b.finish, a.finish, h), mix(b.emission, a.emission, h)};
 }
 
 SdfSample op_smooth_subtraction(const SdfSample& a, const SdfSample& b, double k) {
   const double h = smooth_subtraction_weight(a.distance, b.distance, k);
   return {op_smooth_subtraction(a.distance, b.distance, k), mix(a.color, b.color, h), mix(a.surface, b.surface, h),
-          h >= 0.5 ? b.primitive : a.primitive};
+          h >= 0.5 ? b.primitive : a.primitive, mix(a.finish, b.finish, h), mix(a.emission, b.emission, h)};
 }
 
 }  // namespace clmarch

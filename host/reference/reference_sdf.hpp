@@ -18,6 +18,9 @@ struct SdfSample {
   /// The primitive whose material it is (its number in the subtree, primitive_count's order): the
   /// color rules' operand, or the heavier one of a smooth blend (the first at weight 1/2).
   int primitive = 0;
+  /// Phong and Blinn-Phong's specular weight and shininess, and the light emitted, blended like color.
+  glm::dvec2 finish{0.0, 32.0};
+  glm::dvec3 emission{0.0};
 };
 
 /// Signed distance of the whole tree at the world point p (throws std::invalid_argument on a
@@ -25,7 +28,7 @@ struct SdfSample {
 double reference_distance(const Node& root, const glm::dvec3& p);
 /// Distance and albedo at p, and the primitive they are of; colors follow the rules of op_union
 /// and friends below.
-SdfSample reference_sample(const Node& root, const glm::dvec3& p);
+SdfSample reference_sample(const Node& root, const glm::dvec3& p, const Material& root_material = Material{});
 
 // Primitives, p in the primitive's local frame: sd_<name>(p, parameters) for each primitive of
 // scene/node_kinds.def, which says whether it is exact.

@@ -47,8 +47,8 @@ Reflection pbr_light(const glm::dvec3& n, const glm::dvec3& l, const glm::dvec3&
 
 Reflection classic_light(const Shading& sh, const glm::dvec3& n, const glm::dvec3& l, const glm::dvec3& v, const Material& m) {
   const double n_dot_l = std::max(glm::dot(n, l), 0.0);
-  const double specular = n_dot_l > 0.0 ? specular_term(sh.model, n, l, v, sh.shininess) : 0.0;
-  return {m.albedo * (sh.diffuse * n_dot_l), glm::dvec3(sh.specular * specular)};
+  const double specular = n_dot_l > 0.0 ? specular_term(sh.model, n, l, v, m.shininess) : 0.0;
+  return {m.albedo * (sh.diffuse * n_dot_l), glm::dvec3(m.specular * specular)};
 }
 
 // Light reaching the surface from direction l over distance t_end (Inigo Quilez's shadows).
@@ -107,7 +107,8 @@ LightTerms reference_light_terms(const Scene& scene, const SurfacePoint& s, cons
   const glm::dvec3 v = -direction;
   const double occlusion = sh.ambient_occlusion ? normal_occlusion(scene, s) : 1.0;
   LightTerms terms;
-  terms.ambient = s.material.albedo * sh.ambient * occlusion;
+  // Emitted light is unlit: the ambient layer carries it.
+  terms.ambient = s.material.albedo * sh.ambient * occlusion + s.material.emission;
   for (const Light& light : scene.lights) {
     const bool positional = light.kind != LightKind::Directional;
     const glm::dvec3 l = positional ? normalize_or_zero(light.position - s.world) : light.direction;

@@ -38,8 +38,6 @@ ShadingParams shading_params(const Scene& scene) {
   p.background = to_cl(s.background);
   p.ambient = to_cl(s.ambient);
   p.diffuse = static_cast<float>(s.diffuse);
-  p.specular = static_cast<float>(s.specular);
-  p.shininess = static_cast<float>(s.shininess);
   p.step_ao = static_cast<float>(s.step_ao);
   if (s.fog) {
     p.fog_color = to_cl(s.fog->color);

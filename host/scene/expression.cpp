@@ -2,10 +2,14 @@
 #include "scene/expression.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <muParser.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstdlib>
+#include <iterator>
 
 namespace clmarch {
 namespace {
@@ -89,6 +93,166 @@ std::string expression_vocabulary(const std::vector<ExpressionVariable>& variabl
   for (const auto& [name, value] : variables) names.push_back(name);
   return fmt::format("an expression may use the variable{} {}, the constant pi and the functions {}",
                      names.size() == 1 ? "" : "s", fmt::join(names, ", "), fmt::join(function_names(), ", "));
+}
+
+namespace {
+
+/// The functions a tree may call, and how many arguments each takes (at least, at most).
+struct TreeFunction {
+  const char* name;
+  int least;
+  int most;
+};
+constexpr TreeFunction kTreeFunctions[] = {
+    {"abs", 1, 1},   {"sign", 1, 1},  {"floor", 1, 1}, {"ceil", 1, 1}, {"fract", 1, 1}, {"mod", 2, 2},   {"min", 2, 2},
+    {"max", 2, 2},   {"clamp", 3, 3}, {"mix", 3, 3},   {"step", 2, 2}, {"smoothstep", 3, 3}, {"pow", 2, 2}, {"sqrt", 1, 1},
+    {"exp", 1, 1},   {"log", 1, 1},   {"sin", 1, 1},   {"cos", 1, 1},  {"tan", 1, 1},  {"asin", 1, 1},  {"acos", 1, 1},
+    {"atan", 1, 2},  {"length", 1, 3},
+};
+
+/// Recursive descent with muparser's precedence: unary minus binds looser than ^ (-2^2 = -4), ^ is
+/// right-associative and takes a unary operand (2^-1).
+class TreeParser {
+ public:
+  TreeParser(const std::string& text, const std::vector<std::string>& variables) : text_(text), variables_(variables) {}
+
+  ExpressionTree parse() {
+    ExpressionTree tree = sum();
+    skip_space();
+    if (at_ < text_.size()) fail(fmt::format("'{}' is not taken here", text_[at_]));
+    return tree;
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& what) const {
+    throw ExpressionError(fmt::format("{} at character {} (a color expression takes numbers, the variables {}, pi, + - * / ^, "
+                                      "parentheses and GLSL's functions)",
+                                      what, at_ + 1, fmt::join(variables_, ", ")));
+  }
+
+  void skip_space() {
+    while (at_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[at_]))) ++at_;
+  }
+
+  bool take(char c) {
+    skip_space();
+    if (at_ < text_.size() && text_[at_] == c) {
+      ++at_;
+      return true;
+    }
+    return false;
+  }
+
+  static ExpressionTree node(ExpressionTree::Kind kind, std::vector<ExpressionTree> operands) {
+    ExpressionTree tree;
+    tree.kind = kind;
+    tree.operands = std::move(operands);
+    return tree;
+  }
+
+  ExpressionTree sum() {
+    ExpressionTree tree = product();
+    for (;;) {
+      if (take('+')) {
+        tree = node(ExpressionTree::Kind::Add, {std::move(tree), product()});
+      } else if (take('-')) {
+        tree = node(ExpressionTree::Kind::Subtract, {std::move(tree), product()});
+      } else {
+        return tree;
+      }
+    }
+  }
+
+  ExpressionTree product() {
+    ExpressionTree tree = unary();
+    for (;;) {
+      if (take('*')) {
+        tree = node(ExpressionTree::Kind::Multiply, {std::move(tree), unary()});
+      } else if (take('/')) {
+        tree = node(ExpressionTree::Kind::Divide, {std::move(tree), unary()});
+      } else {
+        return tree;
+      }
+    }
+  }
+
+  ExpressionTree unary() {
+    if (take('-')) return node(ExpressionTree::Kind::Negate, {unary()});
+    if (take('+')) return unary();
+    return power();
+  }
+
+  ExpressionTree power() {
+    ExpressionTree base = primary();
+    if (take('^')) return node(ExpressionTree::Kind::Power, {std::move(base), unary()});
+    return base;
+  }
+
+  ExpressionTree primary() {
+    skip_space();
+    if (take('(')) {
+      ExpressionTree inner = sum();
+      if (!take(')')) fail("a ')' is missing");
+      return inner;
+    }
+    if (at_ < text_.size() && (std::isdigit(static_cast<unsigned char>(text_[at_])) || text_[at_] == '.')) {
+      const char* start = text_.c_str() + at_;
+      char* end = nullptr;
+      ExpressionTree number;
+      number.number = std::strtod(start, &end);
+      at_ += static_cast<std::size_t>(end - start);
+      return number;
+    }
+    const std::size_t start = at_;
+    while (at_ < text_.size() && (std::isalnum(static_cast<unsigned char>(text_[at_])) || text_[at_] == '_')) ++at_;
+    if (start == at_) fail(at_ < text_.size() ? fmt::format("'{}' is not taken here", text_[at_]) : std::string("the expression ends early"));
+    const std::string name = text_.substr(start, at_ - start);
+    if (take('(')) return call(name, start);
+    if (name == "pi") {
+      ExpressionTree number;
+      number.number = M_PI;
+      return number;
+    }
+    if (std::find(variables_.begin(), variables_.end(), name) == variables_.end()) {
+      at_ = start;
+      fail(fmt::format("'{}' is no variable", name));
+    }
+    ExpressionTree variable;
+    variable.kind = ExpressionTree::Kind::Variable;
+    variable.name = name;
+    return variable;
+  }
+
+  ExpressionTree call(const std::string& name, std::size_t start) {
+    const auto function = std::find_if(std::begin(kTreeFunctions), std::end(kTreeFunctions),
+                                       [&](const TreeFunction& f) { return name == f.name; });
+    ExpressionTree tree;
+    tree.kind = ExpressionTree::Kind::Call;
+    tree.name = name;
+    if (!take(')')) {
+      do {
+        tree.operands.push_back(sum());
+      } while (take(','));
+      if (!take(')')) fail("a ')' is missing");
+    }
+    const int count = static_cast<int>(tree.operands.size());
+    if (function == std::end(kTreeFunctions) || count < function->least || count > function->most) {
+      at_ = start;
+      fail(function == std::end(kTreeFunctions) ? fmt::format("'{}' is not a function a color expression takes", name)
+                                                : fmt::format("{} does not take {} arguments", name, count));
+    }
+    return tree;
+  }
+
+  const std::string& text_;
+  const std::vector<std::string>& variables_;
+  std::size_t at_ = 0;
+};
+
+}  // namespace
+
+ExpressionTree parse_expression_tree(const std::string& text, const std::vector<std::string>& variable_names) {
+  return TreeParser(text, variable_names).parse();
 }
 
 }  // namespace clmarch

@@ -29,4 +29,20 @@ double evaluate_expression(const std::string& text, const std::vector<Expression
 /// may name, for error messages.
 std::string expression_vocabulary(const std::vector<ExpressionVariable>& variables);
 
+/// An expression as a tree, for the code generator (a color expression becomes OpenCL C): numbers,
+/// variables, + - * / ^, unary minus and calls of GLSL's functions. muparser's other syntax
+/// (comparisons, ?:, its own functions) has no tree.
+struct ExpressionTree {
+  enum class Kind { Number, Variable, Negate, Add, Subtract, Multiply, Divide, Power, Call };
+  Kind kind = Kind::Number;
+  double number = 0.0;
+  /// Variable: its name (pi is the number); Call: the function's.
+  std::string name;
+  std::vector<ExpressionTree> operands;
+};
+
+/// The tree of text, whose variables are among variable_names; throws ExpressionError naming
+/// what it cannot take and where (the 1-based character).
+ExpressionTree parse_expression_tree(const std::string& text, const std::vector<std::string>& variable_names);
+
 }  // namespace clmarch

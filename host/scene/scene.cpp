@@ -138,6 +138,38 @@ double camera_over_relaxation(const Scene& scene) {
   return scene.shading.step_ao > 0.0 || uses_cells_tiling(scene) ? 1.0 : kAutoOverRelaxation;
 }
 
+Material Node::material_over(const Material& inherited) const {
+  Material m = inherited;
+  if (color) {
+    m.albedo = *color;
+    m.pattern = nullptr;
+  }
+  if (color_pattern) m.pattern = &*color_pattern;
+  if (metallic) m.metallic = *metallic;
+  if (roughness) m.roughness = *roughness;
+  if (reflectivity) m.reflectivity = *reflectivity;
+  if (specular) m.specular = *specular;
+  if (shininess) m.shininess = *shininess;
+  if (emission) m.emission = *emission;
+  return m;
+}
+
+Material root_material(const Scene& scene) {
+  Material m;
+  m.specular = scene.shading.specular;
+  m.shininess = scene.shading.shininess;
+  return m;
+}
+
+bool uses_patterns(const Node& node) {
+  return node.color_pattern || std::any_of(node.children.begin(), node.children.end(), [](const Node& child) { return uses_patterns(child); });
+}
+
+bool uses_emission(const Node& node) {
+  if (node.emission && *node.emission != glm::dvec3(0.0)) return true;
+  return std::any_of(node.children.begin(), node.children.end(), [](const Node& child) { return uses_emission(child); });
+}
+
 bool Transform::is_identity() const {
   return translate == glm::dvec3(0.0) && rotate_degrees == glm::dvec3(0.0) && scale == 1.0;
 }

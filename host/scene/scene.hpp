@@ -60,6 +60,45 @@ struct Transform {
   glm::dmat3 world_from_local_rotation() const;
 };
 
+/// A color that varies over the surface: a function of the point (x, y, z) in the local frame of
+/// the node that sets it, so that it moves with the node.
+struct ColorPattern {
+  enum class Kind { Checker, Stripes, Grid, Expression };
+  Kind kind = Kind::Checker;
+  /// Checker, stripes, grid: the side of a cell (the period).
+  double size = 1.0;
+  /// Checker: a where floor(x/size) + floor(y/size) + floor(z/size) is even, b where odd. Stripes:
+  /// a where floor(coordinate/size) is even. Grid: the fill, then the lines.
+  glm::dvec3 colors[2] = {glm::dvec3(1.0), glm::dvec3(0.0)};
+  /// Stripes: the axis across the stripes (0 x, 1 y, 2 z).
+  int axis = 0;
+  /// Grid: the axes whose multiples of size draw lines (a floor's: x and z), and the lines' width.
+  bool grid_axes[3] = {true, false, true};
+  double line_width = 0.05;
+  /// Expression: r, g and b as expressions of x, y, z and t (muparser syntax, GLSL's functions),
+  /// and the t they are evaluated at.
+  std::string expressions[3];
+  double time = 0.0;
+};
+
+/// Material of a surface point: albedo, the PBR parameters, the Phong and Blinn-Phong ones, the
+/// mirror's share and the light it emits.
+struct Material {
+  glm::dvec3 albedo{1.0};
+  /// A pattern in place of the albedo, from the node that sets it (a node of the tree, which
+  /// outlives the material); null: the albedo.
+  const ColorPattern* pattern = nullptr;
+  double metallic = 0.0;
+  double roughness = 0.5;
+  double reflectivity = 0.0;
+  /// Phong and Blinn-Phong: the specular weight and exponent (the scene's shading.specular and
+  /// shading.shininess where no node sets them: root_material).
+  double specular = 0.0;
+  double shininess = 32.0;
+  /// Light the surface adds whatever lights it (unlit), linear RGB.
+  glm::dvec3 emission{0.0};
+};
+
 /// One node of the SDF tree.
 struct Node {
   NodeKind kind = NodeKind::Sphere;
@@ -71,14 +110,23 @@ struct Node {
   /// Multiplies the node's distance (after its scale), in (0, 1]: makes a field that is not
   /// 1-Lipschitz (terrain, mandelbulb, deep smooth unions) a bound the march cannot overshoot.
   double step_factor = 1.0;
-  /// Albedo of this subtree, unless a descendant sets its own.
+  /// Albedo of this subtree, unless a descendant sets its own: a color, or a pattern of the point.
   std::optional<glm::dvec3> color;
+  std::optional<ColorPattern> color_pattern;
   /// PBR metalness in [0, 1] of this subtree (inherited like color; default 0).
   std::optional<double> metallic;
   /// PBR roughness in [0.02, 1] (inherited; default 0.5).
   std::optional<double> roughness;
   /// Share of the mirror bounce added to the color, in [0, 1] (inherited; default 0).
   std::optional<double> reflectivity;
+  /// Phong and Blinn-Phong specular weight and exponent (inherited; default the scene's shading's).
+  std::optional<double> specular;
+  std::optional<double> shininess;
+  /// Light emitted, added unlit (inherited; default none).
+  std::optional<glm::dvec3> emission;
+
+  /// This node's material: its own settings over the inherited ones.
+  Material material_over(const Material& inherited) const;
 };
 
 /// The parameters of a node of kind T; throws std::logic_error if the node is of another kind.
@@ -222,14 +270,6 @@ struct Light {
 enum class ShadingModel { Lambert, Phong, BlinnPhong, Pbr };
 inline constexpr const char* kShadingModelNames[] = {"lambert", "phong", "blinn_phong", "pbr"};
 
-/// Material of a surface point: albedo plus the PBR and mirror parameters.
-struct Material {
-  glm::dvec3 albedo{1.0};
-  double metallic = 0.0;
-  double roughness = 0.5;
-  double reflectivity = 0.0;
-};
-
 enum class ShadowMode { Hard, Soft, SoftImproved };
 inline constexpr const char* kShadowModeNames[] = {"hard", "soft", "soft_improved"};
 
@@ -367,5 +407,13 @@ inline bool uses_cells_tiling(const Scene& scene) { return scene.tiling && scene
 /// step-count occlusion, whose step counts it shortens, and the cells tiling.
 inline constexpr double kAutoOverRelaxation = 1.2;
 double camera_over_relaxation(const Scene& scene);
+
+/// The material the tree's root inherits: Material's defaults, with the scene's shading.specular
+/// and shading.shininess.
+Material root_material(const Scene& scene);
+/// Whether a node of the tree emits light (emission set, and not black): the EMISSION feature.
+bool uses_emission(const Node& node);
+/// Whether a node of the tree sets a color pattern (kernels/patterns.cl).
+bool uses_patterns(const Node& node);
 
 }  // namespace clmarch

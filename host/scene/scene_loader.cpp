@@ -4,6 +4,7 @@
 #include "common/cancellation.hpp"
 #include "common/errors.hpp"
 #include "common/nearest_name.hpp"
+#include "scene/color_pattern_reader.hpp"
 #include "scene/instance_file.hpp"
 #include "scene/yaml_reader.hpp"
 
@@ -30,7 +31,8 @@ constexpr int kMaxImageSide = 65536;
 constexpr int kMaxStepBudget = 1000000;
 
 // Keys every SDF node accepts besides its own parameters.
-#define CLMARCH_COMMON_NODE_KEYS "color", "metallic", "roughness", "reflectivity", "translate", "rotate", "scale", "step_factor"
+#define CLMARCH_COMMON_NODE_KEYS \
+  "color", "metallic", "roughness", "reflectivity", "specular", "shininess", "emission", "translate", "rotate", "scale", "step_factor"
 
 class SceneReader {
  public:
@@ -358,12 +360,15 @@ class SceneReader {
   }
 
   void read_common(Node& node, const YAML::Node& params, const std::string& path) {
-    if (params["color"]) node.color = yaml_.color(params["color"], path + ".color");
+    if (params["color"]) read_node_color(yaml_, params["color"], path + ".color", node);
     if (params["metallic"]) node.metallic = yaml_.number(params["metallic"], path + ".metallic", Range::closed(0.0, 1.0));
     if (params["roughness"]) node.roughness = yaml_.number(params["roughness"], path + ".roughness", Range::closed(0.02, 1.0));
     if (params["reflectivity"]) {
       node.reflectivity = yaml_.number(params["reflectivity"], path + ".reflectivity", Range::closed(0.0, 1.0));
     }
+    if (params["specular"]) node.specular = yaml_.number(params["specular"], path + ".specular", Range::non_negative());
+    if (params["shininess"]) node.shininess = yaml_.number(params["shininess"], path + ".shininess", Range::positive());
+    if (params["emission"]) node.emission = yaml_.color(params["emission"], path + ".emission");
     yaml_.optional_vec3(params, "translate", path + ".translate", node.transform.translate);
     yaml_.optional_vec3(params, "rotate", path + ".rotate", node.transform.rotate_degrees);
     // The kernels divide by the scale in float: 1 / scale must be a float too.

@@ -23,6 +23,8 @@ class YamlReader {
   /// time is the value of t in expressions (animation).
   YamlReader(std::string source_name, double time) : source_(std::move(source_name)), time_(time) {}
 
+  /// The value of t in expressions.
+  double time() const { return time_; }
   /// The document the nodes come from; lets where() place an empty value at its key.
   void set_document(const YAML::Node& root) { document_ = root; }
   /// "file:line:col" of a node, or "file (--set)" for values that came from an override.

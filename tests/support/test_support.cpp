@@ -52,7 +52,7 @@ std::string shell_quote(const std::string& s) {
   return out;
 }
 
-Scene scene_from_yaml(const std::string& yaml) { return load_scene_text(yaml, "test.yaml"); }
+Scene scene_from_yaml(const std::string& yaml, double time) { return load_scene_text(yaml, "test.yaml", {}, time); }
 
 std::string error_of(const std::string& yaml, const std::vector<SceneOverride>& overrides) {
   try {

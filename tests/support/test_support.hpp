@@ -11,7 +11,7 @@
 namespace clmarch::testing {
 
 /// A scene from YAML text (messages name it "test.yaml").
-Scene scene_from_yaml(const std::string& yaml);
+Scene scene_from_yaml(const std::string& yaml, double time = 0.0);
 
 /// The loader's message for YAML text named "s.yaml" with overrides, or "no error".
 std::string error_of(const std::string& yaml, const std::vector<SceneOverride>& overrides = {});
