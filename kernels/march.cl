@@ -28,7 +28,7 @@ SDF_INLINE Hit surface_at(SceneValues values, const MarchResult* m, vec3v relati
 /* Adds the mirror bounces of the PBR course: each bounce's color weighted by the product of the
  * reflectivities met so far; a bounce that misses shows the sky. */
 SDF_INLINE vec3v add_reflections(SceneValues values, vec3v color, Hit hit, vec3v dir, vint live, const MarchParams* params,
-                                 __constant LightParams* lights) {
+                                 __global const LightParams* lights) {
   const ShadingParams* shading = &params->shading;
   /* Mirror rays march plainly with the fixed epsilon: the pixel cone is the camera's, and their t
    * starts again at the mirror. */
@@ -211,7 +211,7 @@ SDF_INLINE vec3v fogged_term(const ShadingParams* shading, vec3v term, vec3v dir
  * their hits (0 where they miss), with WRITE_IDS the numbers of the primitives hit (-1 where they
  * miss) and with WRITE_LAYERS the terms of their lit colors through the fog (0 where they miss). */
 SDF_INLINE vec3v packet_color(SceneValues values, const Packet* k, const MarchResult* m, const MarchParams* params,
-                              __constant LightParams* lights, vec3v* normal, vfloat* id, LightTerms* layers) {
+                              __global const LightParams* lights, vec3v* normal, vfloat* id, LightTerms* layers) {
   const ShadingParams* shading = &params->shading;
   *normal = v3_splat(0.0f);
   *id = (vfloat)(-1.0f);
@@ -244,7 +244,7 @@ SDF_INLINE vec3v packet_color(SceneValues values, const Packet* k, const MarchRe
 /* Writes what the march of packet k found: depth, steps (and wall steps), and as the program
  * needs them the normal and the shaded color. */
 SDF_INLINE void finish_packet(SceneValues values, const Packet* k, const MarchResult* m, const MarchParams* params, __global float* out,
-                              __constant LightParams* lights) {
+                              __global const LightParams* lights) {
   const int stride = params->plane_stride;
   const int at = k->row0 * params->width + k->x0;
 #define STORE_PLANE(channel, v) store_tile((v), at, params->width, k->columns, k->rows, out + (channel) * stride)
@@ -384,7 +384,7 @@ SDF_INLINE Packet sample_packet(const MarchParams* params, int packet, __global 
  * slot (a pair that starts the packet or its pixel's samples); the other pairs' slots are left
  * alone: the host adds about one slot a packet instead of one a sample. */
 SDF_INLINE void store_samples(SceneValues values, const Packet* k, const MarchResult* m, const MarchParams* params,
-                              __constant LightParams* lights, int packet, __global float4* samples) {
+                              __global const LightParams* lights, int packet, __global float4* samples) {
   const int pairs = (int)params->sampling.z * ((int)params->sampling.y - 1);
   /* Per lane: r, g, b, hit, then the layers' r, g, b, a float4 each */
   float lane_sums[REFINED_FLOAT4S * 4][LANES];
@@ -438,7 +438,7 @@ SDF_INLINE void store_samples(SceneValues values, const Packet* k, const MarchRe
 
 /* A refining pass's work-item: sample packets item and item + 1 (PACKETS_PER_ITEM = 2, marched
  * interleaved, as on the centre pass) or item, their sums into samples (store_samples). */
-SDF_INLINE void refine_item(const MarchParams* params, vec3v origin, __constant LightParams* lights, SceneValues values, int item,
+SDF_INLINE void refine_item(const MarchParams* params, vec3v origin, __global const LightParams* lights, SceneValues values, int item,
                             __global const int* pixels, __constant float* sample_points, __global float4* samples) {
   const MarchRecord record = {0};
   const int pairs = (int)params->sampling.z * ((int)params->sampling.y - 1);
@@ -467,7 +467,7 @@ SDF_INLINE void refine_item(const MarchParams* params, vec3v origin, __constant 
  * steps interleave (march_plain_pair), one on GPUs and under the cells tiling. values holds the
  * scene's numbers that the program reads instead of spelling them (an animation's; NULL when it
  * spells them all). */
-__kernel void march(const MarchParams params, __global float* out, __constant LightParams* lights, SceneValues values
+__kernel void march(const MarchParams params, __global float* out, __global const LightParams* lights, SceneValues values
 #if defined(COARSE_PASS)
                     , __global const float* coarse_starts
 #endif

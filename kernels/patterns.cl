@@ -1,5 +1,7 @@
 /* Colors as patterns of the point q in the frame of the node that sets them (host/scene/scene.hpp,
- * ColorPattern; the generated map_color calls these). */
+ * ColorPattern; the generated map_color calls these). A surface lying on a cell wall (a floor at
+ * y = 0 under a checker) takes the cell on its outside: the march ends outside the surface, and
+ * the hit point's coordinate keeps that sign (tests/shading_test.cpp, AFloorOnTheWallsTakesOneCell). */
 
 /* Whether floor(v) is odd, for the integer-valued floor v. */
 SDF_INLINE vint is_odd(vfloat v) { return MASK(v - 2.0f * floor(0.5f * v) != 0.0f); }

@@ -1,6 +1,6 @@
 /* Direct lighting of a surface point: Lambert diffuse with Phong or Blinn-Phong specular, or a
  * PBR material (Cook-Torrance: GGX distribution, Smith-Schlick geometry, Fresnel-Schlick) with
- * metallic and roughness; the point, directional and spot lights of a constant buffer, with
+ * metallic and roughness; the point, directional and spot lights of a global buffer (as many as 1024 pass constant memory), with
  * falloff and range (SHAPED_LIGHTS); hard or soft shadows by marching towards each light that
  * casts them (SHADOW_MODE); ambient occlusion by marching along the normal
  * (AMBIENT_OCCLUSION) and from the step count (STEP_AO). The numbers are MarchParams.shading's
@@ -147,7 +147,7 @@ typedef struct {
  * towards the light): 1 / d^2 with the inverse-square falloff, times the range's window
  * clamp(1 - (d / range)^4, 0, 1)^2, times a spot's cone: smoothstep from its outer angle (0) to its
  * inner one (1). Directional lights: 1. */
-SDF_INLINE vfloat light_reach(__constant LightParams* light, vec3v l, vfloat d) {
+SDF_INLINE vfloat light_reach(__global const LightParams* light, vec3v l, vfloat d) {
   vfloat reach = (vfloat)(1.0f);
   if (light->kind == CLMARCH_LIGHT_DIRECTIONAL) return reach;
   if (light->falloff == CLMARCH_FALLOFF_INVERSE_SQUARE) reach = 1.0f / (d * d);
@@ -169,7 +169,7 @@ SDF_INLINE vfloat light_reach(__constant LightParams* light, vec3v l, vfloat d) 
 
 /* The terms of the surface's lit color, seen along -view (unit). */
 SDF_INLINE LightTerms light_terms(SceneValues values, const MarchParams* params, const Hit* hit, vec3v view, vint live,
-                                  __constant LightParams* lights) {
+                                  __global const LightParams* lights) {
   const ShadingParams* shading = &params->shading;
   vfloat ambient_occlusion = (vfloat)(1.0f);
 #if defined(AMBIENT_OCCLUSION)
@@ -222,7 +222,7 @@ SDF_INLINE vec3v lit_color(const ShadingParams* shading, const LightTerms* terms
 
 /* Lit color of the surface, seen along -view (unit). */
 SDF_INLINE vec3v shade(SceneValues values, const MarchParams* params, const Hit* hit, vec3v view, vint live,
-                       __constant LightParams* lights) {
+                       __global const LightParams* lights) {
   const LightTerms terms = light_terms(values, params, hit, view, live, lights);
   return lit_color(&params->shading, &terms, hit->steps);
 }

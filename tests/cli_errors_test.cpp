@@ -95,6 +95,8 @@ const std::vector<BadInputCase>& bad_input_cases() {
        {"DIR/scene.yaml:2:", "frac", "the functions abs,", "fract", "smoothstep", "the variable t"}},
       {"atan_three_arguments", "sdf:\n  sphere: {radius: \"atan(1, 2, 3)\"}\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
        {"DIR/scene.yaml:2:", "atan takes one argument (y) or two (y, x), not 3"}},
+      {"set_empty_value", kValidScene, {"render", "DIR/scene.yaml", "--set", "render.epsilon=", "-o", "DIR/out.png"},
+       {"--set render.epsilon=: the value is empty (null removes the key: --set render.epsilon=null)"}},
       {"set_null_absent_key", kValidScene + "shading: {specular: 0.5}\n", {"render", "DIR/scene.yaml", "--set", "shading.shadows=null", "-o", "DIR/out.png"},
        {"--set shading.shadows=null", "the scene has no shading.shadows to remove"}},
       // Issue 29's lights.

@@ -79,7 +79,7 @@ TEST(FirstHour, ColorsPastTenWarnOnceNamingTheKey) {
                                        "    - box: {center: [2, 0, 0], color: [10, 10, 10]}\nrender: {width: 16, height: 8}\n";
   const auto result = run_clmarch({"render", (dir / "scene.yaml").string(), "--frames", "0:2", "-o", (dir / "f_#.png").string()});
   ASSERT_EQ(result.exit_code, 0) << result.err;
-  const std::string expected = "color has a channel of 255";
+  const std::string expected = "sdf.union[0].sphere.color has a channel above 10";
   EXPECT_NE(result.err.find(expected), std::string::npos) << result.err;
   EXPECT_EQ(result.err.find(expected), result.err.rfind(expected)) << "once over the three frames:\n" << result.err;
   EXPECT_EQ(result.err.find("union[1]"), std::string::npos) << result.err;

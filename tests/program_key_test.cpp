@@ -4,7 +4,9 @@
 #include "codegen/kernel_source.hpp"
 #include "render/opencl_renderer.hpp"
 #include "scene/scene_loader.hpp"
+#include "support/test_support.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <initializer_list>
@@ -86,6 +88,21 @@ TEST(ProgramKey, FeaturesLiteralsAndShapesMakeAnotherProgram) {
   KernelOptions slots = shaded();
   slots.value_slots = {0};
   EXPECT_NE(program_key(lit(), slots), key) << "a literal read from the values is no longer spelled";
+}
+
+// Comments spell numbers for the reader (an operand grid's cells, the map frame's origin) that
+// change no program: two frames of a grid whose cells differ share one.
+TEST(ProgramKey, CommentsAreNoPartOfTheShape) {
+  EXPECT_EQ(code_shape("vfloat d = 1; /* 12 cells */ return d; /* end */"), "vfloat d = 1;  return d; ");
+  const auto spheres = [](double spacing) {
+    std::string yaml = "render: {pruning: grid}\nsdf:\n  union:\n";
+    for (int i = 0; i < 60; ++i) yaml += fmt::format("    - sphere: {{center: [{}, 0, 0], radius: 0.2}}\n", spacing * i);
+    return testing::scene_from_yaml(yaml);
+  };
+  const Scene near = spheres(0.5), far = spheres(1.5);
+  const KernelOptions options = shaded();
+  ASSERT_NE(march_scene_code(near).source, march_scene_code(far).source) << "the grid's comment names its cells";
+  EXPECT_EQ(program_key(near, options), program_key(far, options));
 }
 
 // A renderer made for one frame renders the next, whose numbers all differ and which has a light

@@ -456,5 +456,31 @@ TEST(ColorPattern, PatternsPassTheCheck) {
   }
 }
 
+
+// A floor at y = 0 lies on the checker's walls y = 0: seen from straight above and 300 away, where
+// float's rounding (3e-5) is close to epsilon, every pixel still takes the color of its cell
+// above the wall: the march ends outside the surface, and the hit point keeps that side.
+TEST(ColorPattern, AFloorOnTheWallsTakesOneCell) {
+  const Scene scene = testing::scene_from_yaml(
+      "camera: {position: [0.3, 300, 0.2], look_at: [0.3, 0, 0.2], up: [0, 0, -1], fov: 1.5}\n"
+      "render: {width: 96, height: 96, over_relaxation: 1, max_distance: 1000}\n"
+      "sdf: {plane: {normal: [0, 1, 0], offset: 0, color: {checker: {size: 1, colors: [[1, 1, 1], [0, 0, 0]]}}}}\n"
+      "shading: {ambient: 1}\n");
+  const FrameBuffers b = render_opencl(scene, {}).buffers;
+  const CameraBasis basis = camera_basis(scene.camera, 96, 96);
+  int checked = 0;
+  for (int j = 0; j < 96; ++j) {
+    for (int i = 0; i < 96; ++i) {
+      const glm::dvec3 hit = basis.origin + pixel_ray_direction(basis, i, j) * static_cast<double>(b.at(Channel::Depth, i, j));
+      // Pixels near a wall in x or z may take either side: their hit points are known to 1e-4.
+      if (std::abs(hit.x - std::round(hit.x)) < 0.02 || std::abs(hit.z - std::round(hit.z)) < 0.02) continue;
+      const bool odd = static_cast<long long>(std::floor(hit.x) + std::floor(hit.z)) % 2 != 0;
+      EXPECT_EQ(b.at(Channel::R, i, j), odd ? 0.0f : 1.0f) << "pixel " << i << ", " << j << " at y " << hit.y;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 8000);
+}
+
 }  // namespace
 }  // namespace clmarch

@@ -226,7 +226,7 @@ SdfCode march_scene_code(const Scene& scene, bool with_ids) {
 
 ProgramKey program_key(const Scene& scene, const KernelOptions& options) {
   SdfCode code = program_scene_code(scene, options);
-  ProgramKey key{feature_defines(scene, options), std::move(code.source), {}};
+  ProgramKey key{feature_defines(scene, options), code_shape(code.source), {}};
   const ValueSlots& slots = options.value_slots;
   for (std::size_t k = 0; k < code.literals.size(); ++k) {
     if (!std::binary_search(slots.begin(), slots.end(), static_cast<int>(k))) {

@@ -101,7 +101,8 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
 SdfCode march_scene_code(const Scene& scene, bool with_ids = false);
 
 /// What tells programs apart: their feature switches (the #defines), the shape of the scene's code
-/// (march_scene_code's source, literals open) and the bits of the literals it spells (those outside
+/// (code_shape of march_scene_code's source: literals open, comments out) and the bits of the
+/// literals it spells (those outside
 /// the value slots). Two scenes with equal keys under the same options run on one program; what
 /// else differs between them (MarchParams: the camera, march limits and shading numbers; the
 /// lights; the slots' values) reaches the device as data.

@@ -149,9 +149,10 @@ struct IdNumbering {
   std::string base;
 };
 
-/// Emits the statements of one function body; with_color also tracks the material (albedo and
-/// surface = metallic, roughness, reflectivity), blended by the same rules as the albedo, and
-/// with ids the number of the primitive the material is of.
+/// Emits the statements of one function body; with_color also tracks the material (albedo or its
+/// pattern, the surface vector of MaterialLayout, and the emission where the scene has any),
+/// blended by the same rules as the albedo, and with ids the number of the primitive the material
+/// is of.
 class SdfEmitter {
  public:
   SdfEmitter(bool with_color, bool gate_subtrees, Literals& literals, GridEmission* grid = nullptr, IdNumbering ids = {},
@@ -813,6 +814,20 @@ void GridEmission::emit(const Node& union_node, int first_id, const Material& co
 }
 
 }  // namespace
+
+std::string code_shape(const std::string& source) {
+  std::string shape;
+  shape.reserve(source.size());
+  for (std::size_t at = 0; at < source.size();) {
+    if (source.compare(at, 2, "/*") == 0) {
+      const std::size_t end = source.find("*/", at + 2);
+      at = end == std::string::npos ? source.size() : end + 2;
+      continue;
+    }
+    shape.push_back(source[at++]);
+  }
+  return shape;
+}
 
 std::string Literals::f(double value) {
   // Each value of the file is a float, but numbers made from them (a position relative to the

@@ -33,6 +33,10 @@ struct SdfCode {
   std::shared_ptr<const std::vector<float>> data;
 };
 
+/// The source without its comments, which spell numbers for the reader (the map frame's origin, an
+/// operand grid's cells) that change no program: what decides whether frames share one.
+std::string code_shape(const std::string& source);
+
 /// Writes float literals as their marks "@k@" and keeps their values, for SdfCode.
 class Literals {
  public:

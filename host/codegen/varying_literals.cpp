@@ -11,7 +11,7 @@ namespace clmarch {
 
 ValueSlots VaryingLiterals::add(const Scene& frame) {
   SdfCode code = march_scene_code(frame);
-  const auto [it, is_new] = shapes_.try_emplace(std::move(code.source));
+  const auto [it, is_new] = shapes_.try_emplace(code_shape(code.source));
   Shape& shape = it->second;
   if (is_new) {
     shape.first = std::move(code.literals);
@@ -25,7 +25,7 @@ ValueSlots VaryingLiterals::add(const Scene& frame) {
 }
 
 ValueSlots VaryingLiterals::slots_for(const Scene& frame) const {
-  const auto it = shapes_.find(march_scene_code(frame).source);
+  const auto it = shapes_.find(code_shape(march_scene_code(frame).source));
   return it == shapes_.end() ? ValueSlots{} : it->second.slots();
 }
 

@@ -30,7 +30,7 @@ class VaryingLiterals {
 
     ValueSlots slots() const;
   };
-  std::map<std::string, Shape> shapes_;  // by SdfCode::source
+  std::map<std::string, Shape> shapes_;  // by code_shape of SdfCode::source
 };
 
 }  // namespace clmarch

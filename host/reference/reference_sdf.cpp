@@ -50,7 +50,7 @@ const T& params(const Node& node) {
   malformed(node, "carries the parameters of another kind");
 }
 
-SdfSample sample_node(const Node& node, const glm::dvec3& p_parent, const Material& parent);
+SdfSample sample_node(const Node& node, const glm::dvec3& p_parent, const Material& parent, bool colored);
 
 /// The distance from p to the segment a-b (in the plane or in space).
 template <class Vec>
@@ -93,13 +93,13 @@ double extrude(double d, double y, double h) {
 }
 
 template <class Op>
-SdfSample fold_children(const Node& node, const glm::dvec3& p, const Material& color, Op op) {
+SdfSample fold_children(const Node& node, const glm::dvec3& p, const Material& color, bool colored, Op op) {
   if (node.children.empty()) malformed(node, "has no children");
-  SdfSample acc = sample_node(node.children.front(), p, color);
+  SdfSample acc = sample_node(node.children.front(), p, color, colored);
   // Each child numbers its own primitives from 0: the later ones follow the earlier children's.
   int first_primitive = primitive_count(node.children.front());
   for (std::size_t i = 1; i < node.children.size(); ++i) {
-    SdfSample next = sample_node(node.children[i], p, color);
+    SdfSample next = sample_node(node.children[i], p, color, colored);
     next.primitive += first_primitive;
     first_primitive += primitive_count(node.children[i]);
     acc = op(acc, next);
@@ -108,19 +108,19 @@ SdfSample fold_children(const Node& node, const glm::dvec3& p, const Material& c
 }
 
 template <class Op>
-SdfSample fold_smooth(const Node& node, double k, const glm::dvec3& p, const Material& color, Op op) {
+SdfSample fold_smooth(const Node& node, double k, const glm::dvec3& p, const Material& color, bool colored, Op op) {
   if (!(k > 0.0)) malformed(node, "needs k > 0 (got " + std::to_string(k) + ")");
-  return fold_children(node, p, color, [&](const SdfSample& a, const SdfSample& b) { return op(a, b, k); });
+  return fold_children(node, p, color, colored, [&](const SdfSample& a, const SdfSample& b) { return op(a, b, k); });
 }
 
-SdfSample only_child(const Node& node, const glm::dvec3& p, const Material& color) {
+SdfSample only_child(const Node& node, const glm::dvec3& p, const Material& color, bool colored) {
   if (node.children.size() != 1) malformed(node, "needs exactly one child");
-  return sample_node(node.children.front(), p, color);
+  return sample_node(node.children.front(), p, color, colored);
 }
 
 // The node's own kind in its local frame p; material is its effective material (leaves get their
 // surface parameters in sample_node).
-SdfSample sample_local(const Node& node, const glm::dvec3& p, const Material& material) {
+SdfSample sample_local(const Node& node, const glm::dvec3& p, const Material& material, bool colored) {
   using S = SdfSample;
   const glm::dvec3& color = material.albedo;
   // One switch over every kind, without default, so -Wswitch flags a kind added to the list.
@@ -129,19 +129,19 @@ SdfSample sample_local(const Node& node, const glm::dvec3& p, const Material& ma
   case NodeKind::Kind: return S{sd_##name(p, params<Kind>(node)), color};
 #include "scene/node_kinds.def"
     case NodeKind::Union:
-      return fold_children(node, p, material, [](const S& a, const S& b) { return op_union(a, b); });
+      return fold_children(node, p, material, colored, [](const S& a, const S& b) { return op_union(a, b); });
     case NodeKind::Intersection:
-      return fold_children(node, p, material, [](const S& a, const S& b) { return op_intersection(a, b); });
+      return fold_children(node, p, material, colored, [](const S& a, const S& b) { return op_intersection(a, b); });
     case NodeKind::Subtraction:
-      return fold_children(node, p, material, [](const S& a, const S& b) { return op_subtraction(a, b); });
+      return fold_children(node, p, material, colored, [](const S& a, const S& b) { return op_subtraction(a, b); });
     case NodeKind::SmoothUnion:
-      return fold_smooth(node, params<SmoothUnion>(node).k, p, material,
+      return fold_smooth(node, params<SmoothUnion>(node).k, p, material, colored,
                          [](const S& a, const S& b, double k) { return op_smooth_union(a, b, k); });
     case NodeKind::SmoothIntersection:
-      return fold_smooth(node, params<SmoothIntersection>(node).k, p, material,
+      return fold_smooth(node, params<SmoothIntersection>(node).k, p, material, colored,
                          [](const S& a, const S& b, double k) { return op_smooth_intersection(a, b, k); });
     case NodeKind::SmoothSubtraction:
-      return fold_smooth(node, params<SmoothSubtraction>(node).k, p, material,
+      return fold_smooth(node, params<SmoothSubtraction>(node).k, p, material, colored,
                          [](const S& a, const S& b, double k) { return op_smooth_subtraction(a, b, k); });
     case NodeKind::Repeat: {
       glm::dvec3 q = p;
@@ -149,10 +149,10 @@ SdfSample sample_local(const Node& node, const glm::dvec3& p, const Material& ma
         const double c = params<Repeat>(node).period[a];
         if (c > 0.0) q[a] = p[a] - c * std::floor(p[a] / c + 0.5);
       }
-      return only_child(node, q, material);
+      return only_child(node, q, material, colored);
     }
     case NodeKind::Displace: {
-      S s = only_child(node, p, material);
+      S s = only_child(node, p, material, colored);
       const Displace& displace = params<Displace>(node);
       const double f = displace.frequency;
       const double texture = displace.amplitude * std::sin(f * p.x) * std::sin(f * p.y) * std::sin(f * p.z);
@@ -161,15 +161,15 @@ SdfSample sample_local(const Node& node, const glm::dvec3& p, const Material& ma
     }
     case NodeKind::Elongate: {
       const glm::dvec3& h = params<Elongate>(node).h;
-      return only_child(node, p - glm::clamp(p, -h, h), material);
+      return only_child(node, p - glm::clamp(p, -h, h), material, colored);
     }
     case NodeKind::Onion: {
-      S s = only_child(node, p, material);
+      S s = only_child(node, p, material, colored);
       s.distance = std::abs(s.distance) - params<Onion>(node).thickness;
       return s;
     }
     case NodeKind::Round: {
-      S s = only_child(node, p, material);
+      S s = only_child(node, p, material, colored);
       s.distance -= params<Round>(node).radius;
       return s;
     }
@@ -179,7 +179,7 @@ SdfSample sample_local(const Node& node, const glm::dvec3& p, const Material& ma
       for (int a = 0; a < 3; ++a) {
         if (axes[a]) q[a] = std::abs(p[a]);
       }
-      return only_child(node, q, material);
+      return only_child(node, q, material, colored);
     }
     case NodeKind::RepeatPolar: {
       // The nearest copy's angle, and p in that copy's frame: the rotation by minus that angle.
@@ -187,7 +187,7 @@ SdfSample sample_local(const Node& node, const glm::dvec3& p, const Material& ma
       const double turn = sector * std::round(std::atan2(p.z, p.x) / sector);
       const double radius = std::hypot(p.x, p.z);
       const double angle = std::atan2(p.z, p.x) - turn;
-      return only_child(node, {radius * std::cos(angle), p.y, radius * std::sin(angle)}, material);
+      return only_child(node, {radius * std::cos(angle), p.y, radius * std::sin(angle)}, material, colored);
     }
     case NodeKind::RepeatLimited: {
       const RepeatLimited& repeat = params<RepeatLimited>(node);
@@ -196,25 +196,25 @@ SdfSample sample_local(const Node& node, const glm::dvec3& p, const Material& ma
         const double c = repeat.period[a];
         if (c > 0.0) q[a] = p[a] - c * std::clamp(std::round(p[a] / c), double(repeat.min[a]), double(repeat.max[a]));
       }
-      return only_child(node, q, material);
+      return only_child(node, q, material, colored);
     }
   }
   malformed(node, "has an unknown kind");
 }
 
-SdfSample sample_node(const Node& node, const glm::dvec3& p_parent, const Material& parent) {
+SdfSample sample_node(const Node& node, const glm::dvec3& p_parent, const Material& parent, bool colored) {
   const Transform& xf = node.transform;
   glm::dvec3 p = p_parent - xf.translate;
   // Skipping the identity rotation is only a speed-up: R would be exactly the identity matrix.
   if (xf.rotate_degrees != glm::dvec3(0.0)) p = glm::transpose(xf.world_from_local_rotation()) * p;
   p /= xf.scale;
   Material material = node.material_over(parent);
-  if (node.color_pattern) {
+  if (node.color_pattern && colored) {
     // One color at this point for the whole subtree: the pattern's, in this node's frame.
     material.albedo = reference_pattern_color(*node.color_pattern, p);
     material.pattern = nullptr;
   }
-  SdfSample s = sample_local(node, p, material);
+  SdfSample s = sample_local(node, p, material, colored);
   if (is_primitive(node.kind)) {
     s.surface = {material.metallic, material.roughness, material.reflectivity};
     s.finish = {material.specular, material.shininess};
@@ -228,10 +228,14 @@ SdfSample sample_node(const Node& node, const glm::dvec3& p_parent, const Materi
 
 }  // namespace
 
-double reference_distance(const Node& root, const glm::dvec3& p) { return reference_sample(root, p).distance; }
+double reference_distance(const Node& root, const glm::dvec3& p) {
+  // The march and the normals need no material: a color pattern (a parse of its expressions)
+  // costs more than the distance.
+  return sample_node(root, p, Material{}, false).distance;
+}
 
 SdfSample reference_sample(const Node& root, const glm::dvec3& p, const Material& root_material) {
-  return sample_node(root, p, root_material);
+  return sample_node(root, p, root_material, true);
 }
 
 double sd_sphere(const glm::dvec3& p, const Sphere& sphere) { return glm::length(p - sphere.center) - sphere.radius; }

@@ -88,6 +88,34 @@ double evaluate_expression(const std::string& text, const std::vector<Expression
   }
 }
 
+struct CompiledExpression::Parser {
+  mu::Parser parser;
+  std::vector<double> values;
+};
+
+CompiledExpression::CompiledExpression(const std::string& text, const std::vector<std::string>& variable_names)
+    : parser_(std::make_unique<Parser>()) {
+  parser_->values.resize(variable_names.size());
+  try {
+    add_glsl_functions(parser_->parser);
+    for (std::size_t i = 0; i < variable_names.size(); ++i) parser_->parser.DefineVar(variable_names[i], &parser_->values[i]);
+    parser_->parser.SetExpr(text);
+  } catch (const mu::Parser::exception_type& e) {
+    throw ExpressionError(e.GetMsg());
+  }
+}
+
+CompiledExpression::~CompiledExpression() = default;
+
+double CompiledExpression::operator()(const std::vector<double>& values) {
+  std::copy(values.begin(), values.end(), parser_->values.begin());
+  try {
+    return parser_->parser.Eval();
+  } catch (const mu::Parser::exception_type& e) {
+    throw ExpressionError(e.GetMsg());
+  }
+}
+
 std::string expression_vocabulary(const std::vector<ExpressionVariable>& variables) {
   std::vector<std::string> names;
   for (const auto& [name, value] : variables) names.push_back(name);

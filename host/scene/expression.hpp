@@ -2,6 +2,7 @@
 // author's `fract(t)`, `mod(t, 2)` or `smoothstep(0, 1, t)` reads as it does in a shader.
 #pragma once
 
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -24,6 +25,23 @@ using ExpressionVariable = std::pair<std::string, double>;
 /// acos, atan (of y, or of y and x), length (of one to three values), muparser's other functions
 /// and the constant pi. Throws ExpressionError.
 double evaluate_expression(const std::string& text, const std::vector<ExpressionVariable>& variables);
+
+/// An expression parsed once and evaluated at many values of its variables: the reference's color
+/// expressions, at every hit. Not thread-safe: one a thread.
+class CompiledExpression {
+ public:
+  /// Throws ExpressionError as evaluate_expression does.
+  CompiledExpression(const std::string& text, const std::vector<std::string>& variable_names);
+  ~CompiledExpression();
+  CompiledExpression(const CompiledExpression&) = delete;
+  CompiledExpression& operator=(const CompiledExpression&) = delete;
+  /// The value with the variables at values, in the order of variable_names.
+  double operator()(const std::vector<double>& values);
+
+ private:
+  struct Parser;
+  std::unique_ptr<Parser> parser_;
+};
 
 /// "variables t; constants pi; functions abs, acos, ...": what an expression with these variables
 /// may name, for error messages.

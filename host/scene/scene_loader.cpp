@@ -368,7 +368,7 @@ class SceneReader {
     }
     if (params["specular"]) node.specular = yaml_.number(params["specular"], path + ".specular", Range::non_negative());
     if (params["shininess"]) node.shininess = yaml_.number(params["shininess"], path + ".shininess", Range::positive());
-    if (params["emission"]) node.emission = yaml_.color(params["emission"], path + ".emission");
+    if (params["emission"]) node.emission = yaml_.color(params["emission"], path + ".emission", false);
     yaml_.optional_vec3(params, "translate", path + ".translate", node.transform.translate);
     yaml_.optional_vec3(params, "rotate", path + ".rotate", node.transform.rotate_degrees);
     // The kernels divide by the scale in float: 1 / scale must be a float too.
@@ -695,6 +695,9 @@ std::string quoted_option(const SceneOverride& override_) {
 
 void apply_override(YAML::Node& root, const SceneOverride& override_) {
   const std::string option = quoted_option(override_);
+  if (override_.value.find_first_not_of(" \t") == std::string::npos) {
+    throw InputError(fmt::format("{}: the value is empty (null removes the key: --set {}=null)", option, override_.path));
+  }
   YAML::Node value;
   try {
     // One document, as in a scene file: a second one ('---') would be dropped unseen.

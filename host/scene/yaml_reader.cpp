@@ -228,17 +228,18 @@ glm::dvec3 YamlReader::vec3(const YAML::Node& node, const std::string& what, Ran
           number(node[2], what + "[2]", range)};
 }
 
-glm::dvec3 YamlReader::color(const YAML::Node& node, const std::string& what) const {
+glm::dvec3 YamlReader::color(const YAML::Node& node, const std::string& what, bool warn_past_plausible) const {
   const std::string& text = node.IsScalar() ? node.Scalar() : std::string();
   const bool is_word = !text.empty() && std::all_of(text.begin(), text.end(), [](unsigned char c) { return std::isalpha(c) || c == '_'; });
   if (is_word && text != "t" && text != "pi") {
     fail(node, fmt::format("{} must be a color: [r, g, b], linear with 1 the full channel, or one number for gray (got '{}')", what, text));
   }
   const glm::dvec3 color = node.IsScalar() ? glm::dvec3(number(node, what, Range::non_negative())) : vec3(node, what, Range::non_negative());
-  if (std::max({color.r, color.g, color.b}) > kPlausibleColor) {
-    log_warning(fmt::format("{}: {} has a channel of {:g}: colors are linear with 1 the full channel (as in a shader), so this "
-                            "one blows out; [255, 0, 0] red is [1, 0, 0]",
-                            where(node), what, std::max({color.r, color.g, color.b})));
+  if (warn_past_plausible && std::max({color.r, color.g, color.b}) > kPlausibleColor) {
+    // Without the value, so that an animated color warns once, not once a frame.
+    log_warning(fmt::format("{}: {} has a channel above {:g}: colors are linear with 1 the full channel (as in a shader), so "
+                            "this one blows out; [255, 0, 0] red is [1, 0, 0]",
+                            where(node), what, kPlausibleColor));
   }
   return color;
 }

@@ -45,8 +45,9 @@ class YamlReader {
   glm::dvec3 vec3(const YAML::Node& node, const std::string& what, Range range = Range::any()) const;
   /// Above this a color's channel is more likely 0..255 than linear light: a warning says so.
   static constexpr double kPlausibleColor = 10.0;
-  /// A color: [r, g, b] or one number for gray; components >= 0; a word (red) fails saying so.
-  glm::dvec3 color(const YAML::Node& node, const std::string& what) const;
+  /// A color: [r, g, b] or one number for gray; components >= 0; a word (red) fails saying so. A
+  /// channel past kPlausibleColor warns unless told not to (emitted light may be that bright).
+  glm::dvec3 color(const YAML::Node& node, const std::string& what, bool warn_past_plausible = true) const;
   /// Index of node's text in names, else fails listing them.
   template <std::size_t N>
   int choice(const YAML::Node& node, const std::string& what, const char* const (&names)[N]) const {
