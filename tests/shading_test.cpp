@@ -281,6 +281,21 @@ TEST(Shading, ShadowsPerLight) {
   expect_color(asked, glm::dvec3(0.0));
 }
 
+/// The device against the reference as clmarch check compares them, at one lane and sixteen in
+/// float and at sixteen in double.
+void expect_check_passes(const Scene& scene, const std::string& label) {
+  for (const auto& [lanes, precision] : {std::pair{1, Precision::Float}, std::pair{16, Precision::Float}, std::pair{16, Precision::Double}}) {
+    Scene variant = scene;
+    variant.render.precision = precision;
+    OpenClOptions options;
+    options.lanes = lanes;
+    const FrameBuffers opencl = render_opencl(variant, options).buffers;
+    const CheckReport report = cross_check(variant, opencl, render_reference(variant), reshade_hits(variant, opencl));
+    EXPECT_TRUE(report.passed()) << label << " lanes " << lanes << " " << kPrecisionNames[static_cast<int>(precision)] << "\n"
+                                 << report.to_text();
+  }
+}
+
 // Spot, falloff, range and per-light shadows on a lit scene: the device agrees with the reference
 // (clmarch check), at one lane and sixteen, in float and in double.
 TEST(Shading, ShapedLightsPassTheCheck) {
@@ -292,15 +307,7 @@ TEST(Shading, ShapedLightsPassTheCheck) {
       "  - point: {position: [-2, 1, 1], intensity: 0.8, range: 4, shadows: false}\n"
       "  - directional: {direction: [1, 1, 0], intensity: 0.2}\n"
       "shading: {model: blinn_phong, specular: 0.3, shadows: {mode: soft}, ambient: 0.05}\n");
-  for (const auto& [lanes, precision] : {std::pair{1, Precision::Float}, std::pair{16, Precision::Float}, std::pair{16, Precision::Double}}) {
-    Scene variant = scene;
-    variant.render.precision = precision;
-    OpenClOptions options;
-    options.lanes = lanes;
-    const FrameBuffers opencl = render_opencl(variant, options).buffers;
-    const CheckReport report = cross_check(variant, opencl, render_reference(variant), reshade_hits(variant, opencl));
-    EXPECT_TRUE(report.passed()) << "lanes " << lanes << "\n" << report.to_text();
-  }
+  expect_check_passes(scene, "shaped lights");
 }
 
 
@@ -347,13 +354,7 @@ TEST(Shading, MaterialsPerNodePassTheCheck) {
         "    - sphere: {center: [1.6, 0.4, 0.5], radius: 0.3, emission: [2, 1.5, 0.5]}\n"
         "    - union:\n" + balls +
         "lights: [{point: {position: [2, 3, 3]}}]\nshading: {model: " + model + ", specular: 0.5, shininess: 16, ambient: 0.1}\n");
-    for (int lanes : {1, 16}) {
-      OpenClOptions options;
-      options.lanes = lanes;
-      const FrameBuffers opencl = render_opencl(scene, options).buffers;
-      const CheckReport report = cross_check(scene, opencl, render_reference(scene), reshade_hits(scene, opencl));
-      EXPECT_TRUE(report.passed()) << model << " lanes " << lanes << "\n" << report.to_text();
-    }
+    expect_check_passes(scene, model);
   }
 }
 
@@ -446,16 +447,9 @@ TEST(ColorPattern, PatternsPassTheCheck) {
         "                                        {sphere: {center: [0.4, 0.6, 0], radius: 0.5, color: [\"0.5 + 0.5 * sin(8 * x)\", \"smoothstep(0, 1, y)\", 0.3]}}]}\n"
         "    - union:\n" + balls +
         "lights: [{point: {position: [2, 3, 3]}}]\nshading: {ambient: 0.2}\n");
-    for (int lanes : {1, 16}) {
-      OpenClOptions options;
-      options.lanes = lanes;
-      const FrameBuffers opencl = render_opencl(scene, options).buffers;
-      const CheckReport report = cross_check(scene, opencl, render_reference(scene), reshade_hits(scene, opencl));
-      EXPECT_TRUE(report.passed()) << "samples " << samples << " lanes " << lanes << "\n" << report.to_text();
-    }
+    expect_check_passes(scene, "samples " + std::to_string(samples));
   }
 }
-
 
 // A floor at y = 0 lies on the checker's walls y = 0: seen from straight above and 300 away, where
 // float's rounding (3e-5) is close to epsilon, every pixel still takes the color of its cell

@@ -101,10 +101,19 @@ double angle_between(const glm::dvec3& a, const glm::dvec3& b) {
   return std::acos(std::clamp(glm::dot(a, b) / (la * lb), -1.0, 1.0));
 }
 
-/// The lights' radiance, summed over their brightest channels.
-double light_radiance(const Scene& scene) {
+/// The lights' radiance reaching the world point, summed over their brightest channels (a light's
+/// falloff, range and cone: light_reach).
+double light_radiance_at(const Scene& scene, const glm::dvec3& point) {
   double radiance = 0.0;
-  for (const Light& light : scene.lights) radiance += light.intensity * std::max({light.color.r, light.color.g, light.color.b});
+  for (const Light& light : scene.lights) {
+    double reach = 1.0;
+    if (light.kind != LightKind::Directional) {
+      const glm::dvec3 to_light = light.position - point;
+      const double d = glm::length(to_light);
+      reach = d > 0.0 ? light_reach(light, to_light / d, d) : 0.0;
+    }
+    radiance += light.intensity * std::max({light.color.r, light.color.g, light.color.b}) * reach;
+  }
   return radiance;
 }
 
@@ -469,9 +478,9 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
   // which the 1 % the p99 leaves out allows for.
   const Shading& shading = scene.shading;
   const bool powered = shading.model == ShadingModel::Phong || shading.model == ShadingModel::BlinnPhong;
-  const double power_rounding =
-      powered ? kRoundingSteps * unit_roundoff(scene) * light_radiance(scene) * largest_specular_slope(scene.sdf, root_material(scene))
-              : 0.0;
+  const double power_slope = powered ? kRoundingSteps * unit_roundoff(scene) * largest_specular_slope(scene.sdf, root_material(scene)) : 0.0;
+  const CameraBasis basis = camera_basis(scene.camera, opencl.width, opencl.height);
+  double power_rounding = 0.0;
   std::vector<double> diffs, ratios;
   int pixels_compared = 0;
   // The color, and each of the layers (ao, diffuse, specular) as a color of its own where both
@@ -486,6 +495,8 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
       // An anti-aliased pixel's color is the mean of its rays, not its centre hit's shading.
       if (!is_hit(opencl, i, j) || opencl.at(Channel::Samples, i, j) > 1.0f) continue;
       ++pixels_compared;
+      const glm::dvec3 hit = basis.origin + pixel_ray_direction(basis, i, j) * static_cast<double>(opencl.at(Channel::Depth, i, j));
+      power_rounding = power_slope * light_radiance_at(scene, hit);
       for (std::size_t t = 0; t < triples_compared; ++t) {
         const Channel (&triple)[3] = triples[t];
         double size = 1.0, diff = 0.0;

@@ -321,10 +321,12 @@ int run_render_command(const RenderCommandOptions& given) {
                           scene.render.height, scene.render.max_steps));
   log_verbose(march_summary(scene));
   const FrameFiles files{output, options.buffers, options.dump_kernel};
-  if (world.distributed() && options.backend == "opencl") {
+  const bool kernel_only = output.empty() && options.buffers.empty() && !options.stats;
+  if (world.distributed() && options.backend == "opencl" && !kernel_only) {
     render_image_in_tiles(options, scene, files);
   } else if (world.rank == 0) {
-    // The CPU reference renders whole images only: under MPI, rank 0 renders it alone.
+    // The CPU reference renders whole images only, and a --dump-kernel run renders nothing: under
+    // MPI, rank 0 does either alone.
     render_image(options, scene, files, std::nullopt);
   }
   return kExitOk;
