@@ -86,6 +86,30 @@ SDF_INLINE vfloat sd_mandelbulb8(vec3v p, float4 center, int iterations, float b
   return fmax(v3_length(c) - radius, fmin(estimate, MANDELBULB_ESTIMATE_CAP));
 }
 
+/* The Sierpinski tetrahedron (Knighty's kaleidoscopic IFS): folds across the planes x + y = 0,
+ * x + z = 0 and y + z = 0 (the tetrahedron's symmetries) bring the point next to the copy at the
+ * vertex (1, 1, 1), which z = scale z - (scale - 1) (1, 1, 1) maps onto the whole. The estimate is
+ * the distance to the last level's tetrahedron by its face planes, scaled back; never below the
+ * distance to the ball of radius sqrt(3) size that holds the set, so far away it is that. */
+SDF_INLINE vfloat sd_sierpinski(vec3v p, float4 center, float size, int iterations, float scale) {
+  const vec3v c = v3_sub(p, v3_from(center));
+  vec3v z = v3_scale(c, (vfloat)(1.0f / size));
+  vfloat shrink = (vfloat)(1.0f);
+  for (int i = 0; i < iterations; ++i) {
+    const vint fold_xy = MASK(z.x + z.y < 0.0f);
+    const vfloat x1 = select(z.x, -z.y, fold_xy), y1 = select(z.y, -z.x, fold_xy);
+    const vint fold_xz = MASK(x1 + z.z < 0.0f);
+    const vfloat x2 = select(x1, -z.z, fold_xz), z2 = select(z.z, -x1, fold_xz);
+    const vint fold_yz = MASK(y1 + z2 < 0.0f);
+    const vfloat y3 = select(y1, -z2, fold_yz), z3 = select(z2, -y1, fold_yz);
+    z = v3(x2 * scale - (scale - 1.0f), y3 * scale - (scale - 1.0f), z3 * scale - (scale - 1.0f));
+    shrink *= 1.0f / scale;
+  }
+  const vfloat planes = fmax(fmax(-z.x - z.y - z.z, z.x + z.y - z.z), fmax(-z.x + z.y + z.z, z.x - z.y + z.z));
+  const vfloat estimate = (planes - 1.0f) * 0.57735026918962576f * shrink * size;
+  return fmax(v3_length(c) - 1.7320508075688772f * size, estimate);
+}
+
 /* Floor-based mod, as GLSL's (OpenCL's fmod truncates towards zero). */
 SDF_INLINE vfloat menger_mod2(vfloat x) { return x - 2.0f * floor(x * 0.5f); }
 

@@ -62,6 +62,24 @@ INSTANTIATE_TEST_SUITE_P(Scenes, CheckScene, ::testing::ValuesIn(testing::shippe
 
 // Shadow rays under the cells tiling start at min_t past the surface: the only rays of that march
 // with a start other than 0 (the cone pass is off with cells). No shipped tiled scene has shadows.
+// The Sierpinski tetrahedron (issue 25) at the IFS scales 2 and 3, in float and in double, over a
+// checkered floor with soft shadows: the device agrees with the reference.
+TEST(CheckFeatures, TheSierpinskiTetrahedron) {
+  for (const char* scale : {"2", "3"}) {
+    for (const char* precision : {"float", "double"}) {
+      const Scene scene = testing::scene_from_yaml(
+          std::string("camera: {position: [2.2, 1.6, 2.6], look_at: [0, -0.1, 0], fov: 45}\n"
+                      "render: {width: 96, height: 54, max_steps: 300, precision: ") + precision + "}\n"
+          "sdf: {union: [{sierpinski: {size: 1, iterations: 8, scale: " + scale + ", step_factor: 0.8}},\n"
+          "              {plane: {normal: [0, 1, 0], offset: 1.2}}]}\n"
+          "lights: [{directional: {direction: [1, 2, 1]}}]\nshading: {ambient: 0.2, shadows: {mode: soft}}\n");
+      const CheckReport report = check_against(scene, scene);
+      EXPECT_TRUE(report.passed()) << "scale " << scale << " " << precision << "\n" << report.to_text();
+      EXPECT_GT(report.both_hit, 500);
+    }
+  }
+}
+
 TEST(CheckFeatures, ShadowsUnderTheCellsTiling) {
   const Scene scene = small_scene("tiled_spheres.yaml", {{"shading.shadows", "{mode: soft, min_t: 0.3}"}});
   ASSERT_EQ(scene.tiling->method, TilingMethod::Cells);

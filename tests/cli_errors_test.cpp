@@ -145,6 +145,9 @@ const std::vector<BadInputCase>& bad_input_cases() {
       {"pattern_above_grid", "render: {pruning: grid}\nsdf:\n  union:\n    color: {checker: {}}\n    rotate: [0, 10, 0]\n    children:\n"
        "      - union: [{sphere: {center: [0, 0, 0]}}, {sphere: {center: [3, 0, 0]}}, {sphere: {center: [6, 0, 0]}}]\n",
        {"render", "DIR/scene.yaml", "-o", "DIR/out.png"}, {"DIR/scene.yaml", "a color pattern set above a union of 3 operands"}},
+      // Issue 25's sierpinski: its scale is the IFS's, in (1, 4].
+      {"sierpinski_scale_one", "sdf:\n  sierpinski: {scale: 1}\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
+       {"DIR/scene.yaml:2:", "sdf.sierpinski.scale must be in (1, 4] (got 1)"}},
       {"no_image_nothing_else", kValidScene, {"render", "DIR/scene.yaml", "--no-image"}, {"--no-image leaves nothing to write"}},
       {"no_image_with_output", kValidScene, {"render", "DIR/scene.yaml", "--no-image", "--stats", "-o", "DIR/out.png"},
        {"--no-image and --output"}},

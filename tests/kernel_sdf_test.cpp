@@ -147,6 +147,11 @@ const std::vector<SdfCase>& sdf_cases() {
        {{{0.9, 0.9, 0.9}, -0.1}, {{0.5, 0.5, 0.5}, -1.0 / 6.0}, {{0.5, 0.5, 2}, 1.0}, {{0.3, 0, 0.5}, 1.0 / 30.0},
         {{0, 0, 0}, 1.0 / 3.0}, {{2, 0, 0}, 1.0}}},
       {"menger_scaled", "menger: {center: [0, 0, 5], half_size: 2, iterations: 3}", {{{1, 1, 9}, 2.0}, {{0, -6, 5}, 4.0}}},
+      // The tetrahedron's vertices are fixed points of every level: on the set. Far away the
+      // estimate is the distance to the ball of radius sqrt(3) size that holds it.
+      {"sierpinski", "sierpinski: {center: [1, 2, 3]}",
+       {{{2, 3, 4}, 0.0}, {{0, 1, 4}, 0.0}, {{11, 2, 3}, 10.0 - std::sqrt(3.0)}, {{1, 2, -7}, 10.0 - std::sqrt(3.0)}}},
+      {"sierpinski_sized", "sierpinski: {size: 2, iterations: 3, scale: 3}", {{{2, -2, -2}, 0.0}, {{0, 0, 12}, 12.0 - 2.0 * std::sqrt(3.0)}}},
       // Without amplitude the terrain is the flat ground y = height, times the step factor.
       {"terrain", "terrain: {height: 0.5, amplitude: 0, step_factor: 0.5}", {{{3, 10, -7}, 4.75}, {{100, -2, 50}, -1.25}}},
       {"terrain_derivative", "terrain: {height: -1, amplitude: 0, noise: derivative}", {{{-3, 2, 7}, 3.0}}},

@@ -41,6 +41,22 @@ double sd_mandelbulb(const glm::dvec3& p, const Mandelbulb& bulb) {
   return std::max(glm::length(c) - mandelbulb_radius(n), std::min(estimate, kEstimateCap));
 }
 
+double sd_sierpinski(const glm::dvec3& p, const Sierpinski& tetrahedron) {
+  const glm::dvec3 c = p - tetrahedron.center;
+  glm::dvec3 z = c / tetrahedron.size;
+  const double s = tetrahedron.scale;
+  for (int i = 0; i < tetrahedron.iterations; ++i) {
+    // Reflections across x + y = 0, x + z = 0, y + z = 0 where the point lies on their far side.
+    if (z.x + z.y < 0.0) z = glm::dvec3(-z.y, -z.x, z.z);
+    if (z.x + z.z < 0.0) z = glm::dvec3(-z.z, z.y, -z.x);
+    if (z.y + z.z < 0.0) z = glm::dvec3(z.x, -z.z, -z.y);
+    z = z * s - glm::dvec3(s - 1.0);
+  }
+  const double planes = std::max({-z.x - z.y - z.z, z.x + z.y - z.z, -z.x + z.y + z.z, z.x - z.y + z.z});
+  const double estimate = (planes - 1.0) / std::sqrt(3.0) * std::pow(s, -tetrahedron.iterations) * tetrahedron.size;
+  return std::max(glm::length(c) - std::sqrt(3.0) * tetrahedron.size, estimate);
+}
+
 double sd_menger(const glm::dvec3& p, const Menger& sponge) {
   const glm::dvec3 q = (p - sponge.center) / sponge.half_size;
   const glm::dvec3 b = glm::abs(q) - 1.0;

@@ -18,4 +18,9 @@ double sd_mandelbulb(const glm::dvec3& p, const Mandelbulb& bulb);
 /// edges of the holes).
 double sd_menger(const glm::dvec3& p, const Menger& sponge);
 
+/// The Sierpinski tetrahedron by its kaleidoscopic IFS: the distance to the last level's
+/// tetrahedron by its face planes, scaled back (an estimate: one copy of the level stands for
+/// all), never below the distance to the ball of radius sqrt(3) size around the centre.
+double sd_sierpinski(const glm::dvec3& p, const Sierpinski& tetrahedron);
+
 }  // namespace clmarch

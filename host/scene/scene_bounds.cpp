@@ -66,6 +66,10 @@ std::optional<BoundingSphere> primitive_bounds(const NodeParams& params) {
     std::optional<BoundingSphere> operator()(const Menger& m) const {
       return BoundingSphere{m.center, m.half_size * std::sqrt(3.0)};
     }
+    // Every level lies in the first tetrahedron, and the estimate is never below the ball's distance.
+    std::optional<BoundingSphere> operator()(const Sierpinski& s) const {
+      return BoundingSphere{s.center, s.size * std::sqrt(3.0)};
+    }
     std::optional<BoundingSphere> operator()(const Terrain&) const { return std::nullopt; }
     // Operators have operator_bounds instead.
 #define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) \

@@ -372,7 +372,9 @@ class SceneReader {
     yaml_.optional_vec3(params, "translate", path + ".translate", node.transform.translate);
     yaml_.optional_vec3(params, "rotate", path + ".rotate", node.transform.rotate_degrees);
     // The kernels divide by the scale in float: 1 / scale must be a float too.
-    yaml_.optional_number(params, "scale", path + ".scale", node.transform.scale, Range::closed(1.0 / kMaxSceneNumber, kMaxSceneNumber));
+    if (!has_param(node, "scale")) {
+      yaml_.optional_number(params, "scale", path + ".scale", node.transform.scale, Range::closed(1.0 / kMaxSceneNumber, kMaxSceneNumber));
+    }
     yaml_.optional_number(params, "step_factor", path + ".step_factor", node.step_factor, Range{0.0, 1.0, true, false});
   }
 
@@ -382,8 +384,19 @@ class SceneReader {
     std::vector<std::string_view> keys;
     for (const ParamSpec& spec : param_table(node.kind)) keys.push_back(spec.key);
     if (!is_primitive(node.kind)) keys.push_back("children");
-    for (std::string_view common : {CLMARCH_COMMON_NODE_KEYS}) keys.push_back(common);
+    for (std::string_view common : {CLMARCH_COMMON_NODE_KEYS}) {
+      if (!has_param(node, common)) keys.push_back(common);
+    }
     return keys;
+  }
+
+  /// Whether the node's kind declares a parameter named key: a fractal's scale is its own (the
+  /// IFS's), not the transform's.
+  static bool has_param(const Node& node, std::string_view key) {
+    for (const ParamSpec& spec : param_table(node.kind)) {
+      if (spec.key == key) return true;
+    }
+    return false;
   }
 
   /// Reads the parameters of the node's kind from map, by its declaration's table: the keys

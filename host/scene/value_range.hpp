@@ -22,6 +22,8 @@ struct Range {
   static constexpr Range non_negative() { return {0.0, std::numeric_limits<double>::infinity(), false, false}; }
   static constexpr Range closed(double lo, double hi) { return {lo, hi, false, false}; }
   static constexpr Range open(double lo, double hi) { return {lo, hi, true, true}; }
+  /// (lo, hi]
+  static constexpr Range left_open(double lo, double hi) { return {lo, hi, true, false}; }
   bool contains(double v) const;
   /// "> 0", "in [1, 65536]"
   std::string describe() const;
