@@ -130,10 +130,11 @@ TEST(Verbosity, VerboseShowsTheWarningsOfASuccessfulBuildVerbatim) {
 
 TEST(Verbosity, ProgressOnlyOnATerminalAndNotWhenQuiet) {
   TempDir dir;
-  // Grazing rays that march to max_steps: ~1.3 s of reference rows alone, more beside the piped
-  // run; the line appears after 1 s.
+  // Grazing rays that march to max_steps: ~3 s of reference rows alone on a quiet 2-vCPU machine
+  // (0.7 s at 256x256 was too close to the 1 s after which the line appears), more beside the
+  // piped run.
   std::ofstream(dir / "s.yaml") << "camera: {position: [0, 0.01, 0], look_at: [0, 0.01, -1], fov: 1}\n"
-                                   "render: {width: 256, height: 256, max_steps: 1000, max_distance: 1.0e6}\n"
+                                   "render: {width: 512, height: 512, max_steps: 1000, max_distance: 1.0e6}\n"
                                    "sdf: {plane: {normal: [0, 1, 0]}}\n";
   const auto args = [&](const std::string& output, bool quiet) {
     std::vector<std::string> a = {"render", (dir / "s.yaml").string(), "--backend", "reference", "-o", (dir / output).string()};
