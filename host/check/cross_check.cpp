@@ -101,19 +101,21 @@ double angle_between(const glm::dvec3& a, const glm::dvec3& b) {
   return std::acos(std::clamp(glm::dot(a, b) / (la * lb), -1.0, 1.0));
 }
 
-/// The lights' radiance reaching the world point, summed over their brightest channels (a light's
-/// falloff, range and cone: light_reach).
+/// A light's radiance in its brightest channel, before its reach.
+double brightest_radiance(const Light& light) { return light.intensity * std::max({light.color.r, light.color.g, light.color.b}); }
+
+/// The share of the light's radiance reaching the world point (light_reach; 1 for directional lights).
+double reach_at(const Light& light, const glm::dvec3& point) {
+  if (light.kind == LightKind::Directional) return 1.0;
+  const glm::dvec3 to_light = light.position - point;
+  const double d = glm::length(to_light);
+  return d > 0.0 ? light_reach(light, to_light / d, d) : 0.0;
+}
+
+/// The lights' radiance reaching the world point, summed over their brightest channels.
 double light_radiance_at(const Scene& scene, const glm::dvec3& point) {
   double radiance = 0.0;
-  for (const Light& light : scene.lights) {
-    double reach = 1.0;
-    if (light.kind != LightKind::Directional) {
-      const glm::dvec3 to_light = light.position - point;
-      const double d = glm::length(to_light);
-      reach = d > 0.0 ? light_reach(light, to_light / d, d) : 0.0;
-    }
-    radiance += light.intensity * std::max({light.color.r, light.color.g, light.color.b}) * reach;
-  }
+  for (const Light& light : scene.lights) radiance += brightest_radiance(light) * reach_at(light, point);
   return radiance;
 }
 
@@ -172,18 +174,13 @@ struct LitColorSlopes {
 LitColorSlopes lit_color_slopes(const Scene& scene, double per_radian, const glm::dvec3& point) {
   LitColorSlopes slopes;
   for (const Light& light : scene.lights) {
-    const double radiance = light.intensity * std::max({light.color.r, light.color.g, light.color.b}) * per_radian;
+    const double radiance = brightest_radiance(light) * per_radian;
     if (light.kind == LightKind::Directional) {
       slopes.per_radian += radiance;
       continue;
     }
-    const auto reach_at = [&](const glm::dvec3& p) {
-      const glm::dvec3 to_light = light.position - p;
-      const double d = glm::length(to_light);
-      return d > 0.0 ? light_reach(light, to_light / d, d) : 0.0;
-    };
     const double d = glm::length(light.position - point);
-    const double reach = reach_at(point);
+    const double reach = reach_at(light, point);
     slopes.per_radian += radiance * reach;
     if (d > 0.0) slopes.per_unit_shift += radiance * reach / d;
     if (light.shaped()) {
@@ -194,7 +191,7 @@ LitColorSlopes lit_color_slopes(const Scene& scene, double per_radian, const glm
       for (int axis = 0; axis < 3; ++axis) {
         glm::dvec3 step(0.0);
         step[axis] = h;
-        gradient[axis] = (reach_at(point + step) - reach_at(point - step)) / (2.0 * h);
+        gradient[axis] = (reach_at(light, point + step) - reach_at(light, point - step)) / (2.0 * h);
       }
       slopes.per_unit_shift += radiance * glm::length(gradient);
     }

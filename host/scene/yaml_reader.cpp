@@ -67,6 +67,15 @@ class NodeCounter : public YAML::EventHandler {
   int documents_ = 0;
 };
 
+/// Where YAML split an expression at its comma (a flow map reads `radius: max(0.1, t)` as the
+/// value "max(0.1" and a key "t)"), how to keep it whole; else empty. Such pieces are short: a
+/// long text with unbalanced parentheses is another mistake.
+std::string split_expression_hint(const std::string& text) {
+  constexpr std::size_t kLongestPiece = 200;
+  if (text.size() > kLongestPiece || std::count(text.begin(), text.end(), '(') == std::count(text.begin(), text.end(), ')')) return {};
+  return "; an expression with a comma must be quoted, as in radius: \"max(0.1, t)\", or YAML splits it at the comma";
+}
+
 }  // namespace
 
 void check_yaml_node_count(const std::string& text, const std::string& source_name, long long max_nodes) {
@@ -126,18 +135,6 @@ void YamlReader::fail(const YAML::Node& at, const std::string& message) const {
   throw InputError(fmt::format("{}: {}", where(at), shown));
 }
 
-namespace {
-
-/// Where YAML split an expression at its comma (a flow map reads `radius: max(0.1, t)` as the
-/// value "max(0.1" and a key "t)"), how to keep it whole; else empty. Such pieces are short: a
-/// long text with unbalanced parentheses is another mistake.
-std::string split_expression_hint(const std::string& text) {
-  constexpr std::size_t kLongestPiece = 200;
-  if (text.size() > kLongestPiece || std::count(text.begin(), text.end(), '(') == std::count(text.begin(), text.end(), ')')) return {};
-  return "; an expression with a comma must be quoted, as in radius: \"max(0.1, t)\", or YAML splits it at the comma";
-}
-
-}  // namespace
 
 void YamlReader::expect_map(const YAML::Node& node, const std::string& what,
                             std::initializer_list<std::string_view> allowed) const {
