@@ -152,6 +152,23 @@ const std::vector<SdfCase>& sdf_cases() {
       {"sierpinski", "sierpinski: {center: [1, 2, 3]}",
        {{{2, 3, 4}, 0.0}, {{0, 1, 4}, 0.0}, {{11, 2, 3}, 10.0 - std::sqrt(3.0)}, {{1, 2, -7}, 10.0 - std::sqrt(3.0)}}},
       {"sierpinski_sized", "sierpinski: {size: 2, iterations: 3, scale: 3}", {{{2, -2, -2}, 0.0}, {{0, 0, 12}, 12.0 - 2.0 * std::sqrt(3.0)}}},
+      // The Mandelbox's centre is a fixed point of its orbit (the sphere fold scales 0 to 0): |z| = 0.
+      // (6, 0, 0) is a cycle of two at scale 2 (6 -> -2 -> 6; dr -> 16 dr + 9 a cycle, 26843545
+      // after 12 iterations), (2, 0, 0) and (2, 2, 2) are fixed at scale -1.5 (dr -> 6 dr + 1,
+      // (6^13 - 1) / 5 after 12): on the set, |z| / dr. Far away at scale 2 the estimate is the
+      // distance to the ball round its cube of half side 6.
+      {"mandelbox", "mandelbox: {center: [1, 0, 0]}",
+       {{{1, 0, 0}, 0.0}, {{7, 0, 0}, 6.0 / 26843545.0}, {{41, 0, 0}, 40.0 - 6.0 * std::sqrt(3.0)},
+        {{1, 0, -30}, 30.0 - 6.0 * std::sqrt(3.0)}}},
+      {"mandelbox_negative", "mandelbox: {scale: -1.5, iterations: 12}",
+       {{{0, 0, 0}, 0.0}, {{2, 0, 0}, 2.0 / ((std::pow(6.0, 13) - 1.0) / 5.0)},
+        {{2, 2, 2}, 2.0 * std::sqrt(3.0) / ((std::pow(6.0, 13) - 1.0) / 5.0)}}},
+      // With c = 0 the Julia set is the unit sphere: outside, the estimate 0.5 r log r stays below
+      // the ball's distance r - 1 (or is capped at 1 when it is not); inside, orbits stay (0).
+      {"julia_sphere", "julia: {center: [0, 1, 0], c: [0, 0, 0, 0]}",
+       {{{2, 1, 0}, 1.0}, {{0, 2.5, 0}, 0.5}, {{0, 1, -4}, 3.0}, {{0.6, 1, 0}, 0.0}, {{0, 1, 1}, 0.0}}},
+      // Far from the default c's set the distance is that to its ball, R^2 - R = |c|.
+      {"julia", "julia: {}", {{{5, 0, 0}, 5.0 - 0.5 * (1.0 + std::sqrt(1.0 + 4.0 * std::sqrt(0.80658025)))}}},
       // Without amplitude the terrain is the flat ground y = height, times the step factor.
       {"terrain", "terrain: {height: 0.5, amplitude: 0, step_factor: 0.5}", {{{3, 10, -7}, 4.75}, {{100, -2, 50}, -1.25}}},
       {"terrain_derivative", "terrain: {height: -1, amplitude: 0, noise: derivative}", {{{-3, 2, 7}, 3.0}}},

@@ -43,6 +43,8 @@ const BoundCase kBoundedCases[] = {
     {"mandelbulb", "  mandelbulb: {power: 8, iterations: 6, bailout: 2, step_factor: 0.8}"},
     {"menger", "  menger: {half_size: 1, iterations: 3, translate: [0.5, 0, 0]}"},
     {"sierpinski", "  sierpinski: {size: 1.5, iterations: 6, step_factor: 0.8, translate: [0, 0.5, 0]}"},
+    {"mandelbox", "  mandelbox: {scale: -1.5, iterations: 8, step_factor: 0.8, translate: [0, 0.5, 0]}"},
+    {"julia", "  julia: {c: [-0.2, 0.6, 0.2, 0.1], iterations: 10, step_factor: 0.8}"},
     {"union", "  union:\n    - sphere: {center: [-1, 0, 0], radius: 0.5}\n    - box: {center: [1.5, 0, 0], half_size: [0.3, 0.3, 0.3]}"},
     {"smooth_union",
      "  smooth_union:\n    k: 0.8\n    children:\n      - sphere: {center: [-0.6, 0, 0], radius: 0.5}\n"

@@ -166,7 +166,7 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
   src += kernel_file("device_types.h");
   src += kernel_file("lanes.cl");
   src += kernel_file("primitives.cl");
-  if (uses_kind(scene.sdf, {NodeKind::Mandelbulb, NodeKind::Menger, NodeKind::Sierpinski})) src += kernel_file("fractals.cl");
+  if (uses_kind(scene.sdf, {NodeKind::Mandelbulb, NodeKind::Menger, NodeKind::Sierpinski, NodeKind::Mandelbox, NodeKind::Julia})) src += kernel_file("fractals.cl");
   if (uses_kind(scene.sdf, {NodeKind::Terrain})) src += kernel_file("noise.cl");
   src += kernel_file("operators.cl");
   if (uses_patterns(scene.sdf)) src += kernel_file("patterns.cl");

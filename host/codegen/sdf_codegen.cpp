@@ -47,6 +47,7 @@ glm::dvec3 surface_vector(const Material& m, ShadingModel model) {
 std::string argument(const ParamSpec& spec, const glm::dvec3& value, const glm::dvec3& offset, Literals& lit) {
   return lit.f4(spec.type == ParamType::Point ? value - offset : value);
 }
+std::string argument(const ParamSpec&, const glm::dvec4& value, const glm::dvec3&, Literals& lit) { return lit.f4(value); }
 std::string argument(const ParamSpec&, double value, const glm::dvec3&, Literals& lit) { return lit.f(value); }
 std::string argument(const ParamSpec&, int value, const glm::dvec3&, Literals&) { return std::to_string(value); }
 std::string argument(const ParamSpec&, std::uint32_t value, const glm::dvec3&, Literals&) { return fmt::format("{}u", value); }
@@ -846,6 +847,11 @@ std::string Literals::f4(const glm::dvec3& v) {
   // Numbered x, y, z whatever the compiler (it evaluates function arguments in no fixed order).
   const std::string x = f(v.x), y = f(v.y), z = f(v.z);
   return cl_float4_of(x, y, z);
+}
+
+std::string Literals::f4(const glm::dvec4& v) {
+  const std::string x = f(v.x), y = f(v.y), z = f(v.z), w = f(v.w);
+  return cl_float4_of(x, y, z, w);
 }
 
 std::string sdf_functions(const Node& root, const glm::dvec3& frame_origin, bool gate_subtrees, Literals& literals,

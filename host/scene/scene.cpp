@@ -11,6 +11,10 @@ namespace clmarch {
 
 double mandelbulb_radius(double power) { return std::pow(2.0, 1.0 / (power - 1.0)); }
 
+double mandelbox_half_size(double scale) { return scale < 0.0 ? 2.0 : 2.0 * (scale + 1.0) / (scale - 1.0); }
+
+double julia_radius(const glm::dvec4& c) { return 0.5 * (1.0 + std::sqrt(1.0 + 4.0 * glm::length(c))); }
+
 std::string_view node_kind_name(NodeKind kind) {
   switch (kind) {
 #define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind: return #name;

@@ -43,6 +43,14 @@ bool is_smooth_operator(NodeKind kind);
 /// estimator is never below the distance to this ball (kernels/fractals.cl, the reference).
 double mandelbulb_radius(double power);
 
+/// Half the side of the cube centred on the Mandelbox that holds it (fold limit 1): 2 for scales
+/// below -1, 2 (scale + 1) / (scale - 1) above 1 (knighty's sizes; tests sample orbits past it).
+double mandelbox_half_size(double scale);
+
+/// Radius of a ball about the centre that holds the quaternion Julia set of c: the root R of
+/// R^2 - R = |c|, beyond which |z^2 + c| >= |z|^2 - |c| > |z| and every orbit escapes.
+double julia_radius(const glm::dvec4& c);
+
 /// The fewest and most children an operator takes (0: no limit), from its declaration.
 int min_children(NodeKind kind);
 int max_children(NodeKind kind);

@@ -70,6 +70,11 @@ std::optional<BoundingSphere> primitive_bounds(const NodeParams& params) {
     std::optional<BoundingSphere> operator()(const Sierpinski& s) const {
       return BoundingSphere{s.center, s.size * std::sqrt(3.0)};
     }
+    // Both estimates are never below the distance to the ball that holds the set.
+    std::optional<BoundingSphere> operator()(const Mandelbox& m) const {
+      return BoundingSphere{m.center, mandelbox_half_size(m.scale) * std::sqrt(3.0)};
+    }
+    std::optional<BoundingSphere> operator()(const Julia& j) const { return BoundingSphere{j.center, julia_radius(j.c)}; }
     std::optional<BoundingSphere> operator()(const Terrain&) const { return std::nullopt; }
     // Operators have operator_bounds instead.
 #define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) \

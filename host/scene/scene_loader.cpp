@@ -423,6 +423,13 @@ class SceneReader {
       value = glm::normalize(value);
     }
   }
+  void read_param(const ParamSpec& spec, const YAML::Node& given, const std::string& what, glm::dvec4& value) {
+    if (!given.IsSequence() || given.size() != 4) {
+      yaml_.fail(given, fmt::format("{} must be a list of 4 numbers [x, y, z, w] (got {})", what,
+                                    given.IsSequence() ? fmt::format("{} items", given.size()) : describe_yaml(given)));
+    }
+    for (int i = 0; i < 4; ++i) value[i] = yaml_.number(given[i], fmt::format("{}[{}]", what, i), spec.range);
+  }
   void read_param(const ParamSpec& spec, const YAML::Node& given, const std::string& what, double& value) {
     value = yaml_.number(given, what, spec.range);
   }
@@ -495,6 +502,18 @@ class SceneReader {
       yaml_.fail(map["bailout"] ? map["bailout"] : map,
                  fmt::format("{}.bailout must be at most 10^(18/power) = {:.3g} for power {} so that |z|^2 stays finite in "
                              "float (got {})", path, largest_bailout, bulb.power, bulb.bailout));
+    }
+  }
+
+  void check_params(Mandelbox& box, const YAML::Node& map, const std::string& path) {
+    // Between -1 and 1 the scale folds everything into a bounded orbit: no surface to trace.
+    if (std::abs(box.scale) <= 1.0) {
+      yaml_.fail(map["scale"], fmt::format("{}.scale must be in [-4, -1) or (1, 4] (got {})", path, box.scale));
+    }
+    if (box.min_radius > box.fixed_radius) {
+      yaml_.fail(map["min_radius"] ? map["min_radius"] : map,
+                 fmt::format("{}.min_radius must be at most {}.fixed_radius (got {} > {})", path, path, box.min_radius,
+                             box.fixed_radius));
     }
   }
 
