@@ -21,10 +21,12 @@ namespace {
 std::string required_value(const ParamSpec& spec, int integer_vectors_before) {
   switch (spec.type) {
     case ParamType::Scalar:
+      // A twist's or bend's rate, in degrees a unit, wants more than 0.15.
+      if (spec.range.contains(30.0) && spec.range.contains(-30.0)) return "30";
       if (spec.range.contains(0.15)) return "0.15";
       break;
     case ParamType::Integer: return spec.range.contains(3.0) ? "3" : fmt::format("{}", spec.range.low);
-    case ParamType::Vector: return "[1.2, 0, 0]";
+    case ParamType::Vector: return spec.range.contains(0.0) ? "[1.2, 0, 0]" : "[1.2, 0.8, 1]";
     // min before max, as repeat_limited declares them.
     case ParamType::IntegerVector: return integer_vectors_before == 0 ? "[-1, 0, 0]" : "[1, 0, 0]";
     case ParamType::Axes: return "[x, z]";

@@ -95,6 +95,36 @@ const std::vector<SdfCase>& sdf_cases() {
        "repeat_limited: {period: [2, 0, 0], min: [-1, 0, 0], max: [1, 0, 0], children: [{sphere: {radius: 0.5}}]}",
        {{{2, 0, 0}, -0.5}, {{-2, 0, 0}, -0.5}, {{0, 0, 0}, -0.5}, {{4, 0, 0}, 1.5}, {{-6, 0, 0}, 3.5},
         {{0, 3, 0}, 2.5}}},
+      // The profiles (2D primitives), alone prisms along z: the distance in the xy plane.
+      {"circle", "circle: {center: [1, 2, 0], radius: 0.5}", {{{3, 2, 7}, 1.5}, {{1, 2, -4}, -0.5}}},
+      {"rectangle", "rectangle: {half_width: 0.5, half_height: 0.25}",
+       {{{2, 0, -3}, 1.5}, {{0, 1, 0}, 0.75}, {{1.5, 1.25, 5}, std::sqrt(2.0)}, {{0, 0, 9}, -0.25}}},
+      {"rounded_rectangle", "rounded_rectangle: {half_width: 0.5, half_height: 0.25, radius: 0.1}",
+       {{{0.8, 0.65, 0}, std::sqrt(0.41) - 0.1}, {{2, 0, 0}, 1.5}, {{0, 0, 0}, -0.25}}},
+      {"segment", "segment: {a: [-0.5, 0, 0], b: [0.5, 0, 0], radius: 0.05}", {{{0, 1, 9}, 0.95}, {{1.5, 0, 0}, 0.95}}},
+      // A hexagon of corner radius 0.5: a corner on +x, a flat side's middle at 30 degrees (apothem
+      // 0.5 cos 30).
+      {"regular_polygon", "regular_polygon: {radius: 0.5, sides: 6}",
+       {{{2, 0, 3}, 1.5}, {{2 * std::cos(M_PI / 6), 2 * std::sin(M_PI / 6), 0}, 2 - 0.5 * std::cos(M_PI / 6)},
+        {{0, 0, 0}, -0.5 * std::cos(M_PI / 6)}}},
+      // A circle of radius 0.25 at x = 0.5 turned about y 0.5 off the axis: the torus of radii 1 and
+      // 0.25.
+      {"revolve", "revolve: {offset: 0.5, children: [{circle: {center: [0.5, 0, 0], radius: 0.25}}]}",
+       {{{0, 0, 2}, 0.75}, {{0, 1, 0}, std::sqrt(2.0) - 0.25}, {{-1, 0, 0}, -0.25}}},
+      // A rectangle extruded: the box of half sizes 0.5, 0.25, 1.
+      {"extrude", "extrude: {half_length: 1, children: [{rectangle: {half_width: 0.5, half_height: 0.25}}]}",
+       {{{0, 0, 3}, 2.0}, {{2, 0, 0}, 1.5}, {{1.5, 1.25, 2}, std::sqrt(3.0)}, {{0, 0, 0}, -0.25}}},
+      // A unit sphere on the twist's axis: on the axis the factor is (a + sqrt(a^2 + 4)) / 2 with
+      // a = rate * 1 (the sphere's reach), and the turned sphere's ball (radius sqrt 2) gives more.
+      // At (1.2, 0, 0) the turn is 0: the sphere's distance 0.2 over the factor at a = 1.2 rate.
+      {"twist", "twist: {rate: 90, children: [{sphere: {radius: 1}}]}",
+       {{{0, 3, 0}, 3.0 - std::sqrt(2.0)}, {{1.2, 0, 0}, 0.2 / (0.5 * (0.6 * M_PI + std::sqrt(0.36 * M_PI * M_PI + 4.0)))}}},
+      // Bend's factor is 1 + rate max(r, reach): at (0, 1.2, 0) (x = 0, no turn) 0.2 / (1 + 1.2 rate).
+      {"bend", "bend: {rate: 30, children: [{sphere: {radius: 1}}]}",
+       {{{0, 1.2, 0}, 0.2 / (1.0 + 0.2 * M_PI)}, {{0, 0, 5}, 5.0 - std::sqrt(2.0)}}},
+      // A unit sphere stretched twice along x: its distance at p / (2, 1, 1), times 1.
+      {"nonuniform_scale", "nonuniform_scale: {factors: [2, 1, 1], children: [{sphere: {radius: 1}}]}",
+       {{{3, 0, 0}, 0.5}, {{0, 3, 0}, 2.0}, {{0, 0, 0}, -1.0}}},
       {"union", "union: [{sphere: {radius: 1}}, {sphere: {center: [1.5, 0, 0], radius: 1}}]",
        {{{0, 0, 0}, -1.0}, {{3, 0, 0}, 0.5}}},
       {"intersection", "intersection: [{sphere: {radius: 1}}, {sphere: {center: [1.5, 0, 0], radius: 1}}]",
@@ -224,7 +254,9 @@ INSTANTIATE_TEST_SUITE_P(AllKinds, SdfClosedForm, ::testing::ValuesIn(sdf_cases(
 // hexagon's and the trapezoid's edges). They must agree everywhere, not only at the probes above.
 TEST(SdfClosedForm, CatalogueKernelMatchesTheReferenceEverywhere) {
   const std::set<std::string> catalogue = {"octahedron", "hex_prism", "capped_cone", "capped_cone_frustum", "ellipsoid",
-                                           "elongate", "onion", "round", "mirror", "repeat_polar", "repeat_limited"};
+                                           "elongate", "onion", "round", "mirror", "repeat_polar", "repeat_limited",
+                                           "circle", "rectangle", "rounded_rectangle", "segment", "regular_polygon", "revolve",
+                                           "extrude", "twist", "bend", "nonuniform_scale"};
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> coord(-4.0, 4.0);
   std::vector<glm::dvec3> points(400);

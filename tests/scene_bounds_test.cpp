@@ -45,6 +45,14 @@ const BoundCase kBoundedCases[] = {
     {"sierpinski", "  sierpinski: {size: 1.5, iterations: 6, step_factor: 0.8, translate: [0, 0.5, 0]}"},
     {"mandelbox", "  mandelbox: {scale: -1.5, iterations: 8, step_factor: 0.8, translate: [0, 0.5, 0]}"},
     {"julia", "  julia: {c: [-0.2, 0.6, 0.2, 0.1], iterations: 10, step_factor: 0.8}"},
+    {"revolve", "  revolve:\n    offset: 0.6\n    children: [{rounded_rectangle: {center: [0.3, 0.2, 0], half_width: 0.4, half_height: 0.6}}]"},
+    {"revolve_of_sphere", "  revolve: {offset: 1, children: [{sphere: {center: [0.5, 0, 0.3], radius: 0.6}}]}"},
+    {"extrude", "  extrude:\n    half_length: 0.8\n    children: [{regular_polygon: {center: [0.4, 0, 3], radius: 1, sides: 5, rotate: [0, 0, 20], "
+     "translate: [0.2, 0.3, 4]}}]"},
+    {"extrude_of_segment", "  extrude: {half_length: 0.3, children: [{segment: {a: [-1, 0.5, 0], b: [1.5, -0.5, 0], radius: 0.2, scale: 1.5}}]}"},
+    {"twist", "  twist: {rate: 60, children: [{box: {center: [0.5, 0, 0], half_size: [0.6, 1.5, 0.3]}}]}"},
+    {"bend", "  bend: {rate: -40, children: [{box: {center: [0, 0.4, 0], half_size: [1.5, 0.2, 0.3]}}]}"},
+    {"nonuniform_scale", "  nonuniform_scale: {factors: [2, 0.5, 1], children: [{torus: {center: [0.5, 0, 0], major_radius: 1, minor_radius: 0.3}}]}"},
     {"union", "  union:\n    - sphere: {center: [-1, 0, 0], radius: 0.5}\n    - box: {center: [1.5, 0, 0], half_size: [0.3, 0.3, 0.3]}"},
     {"smooth_union",
      "  smooth_union:\n    k: 0.8\n    children:\n      - sphere: {center: [-0.6, 0, 0], radius: 0.5}\n"

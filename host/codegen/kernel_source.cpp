@@ -108,6 +108,11 @@ bool uses_kind(const Node& node, std::initializer_list<NodeKind> kinds) {
   return std::any_of(node.children.begin(), node.children.end(), [&](const Node& child) { return uses_kind(child, kinds); });
 }
 
+/// True if node or a descendant is a profile (a 2D primitive).
+bool uses_profiles(const Node& node) {
+  return is_profile(node.kind) || std::any_of(node.children.begin(), node.children.end(), uses_profiles);
+}
+
 }  // namespace
 
 bool uses_antialiasing(const Scene& scene, KernelPurpose purpose) {
@@ -166,7 +171,10 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
   src += kernel_file("device_types.h");
   src += kernel_file("lanes.cl");
   src += kernel_file("primitives.cl");
-  if (uses_kind(scene.sdf, {NodeKind::Mandelbulb, NodeKind::Menger, NodeKind::Sierpinski, NodeKind::Mandelbox, NodeKind::Julia})) src += kernel_file("fractals.cl");
+  if (uses_kind(scene.sdf, {NodeKind::Mandelbulb, NodeKind::Menger, NodeKind::Sierpinski, NodeKind::Mandelbox, NodeKind::Julia})) {
+    src += kernel_file("fractals.cl");
+  }
+  if (uses_profiles(scene.sdf)) src += kernel_file("profiles.cl");
   if (uses_kind(scene.sdf, {NodeKind::Terrain})) src += kernel_file("noise.cl");
   src += kernel_file("operators.cl");
   if (uses_patterns(scene.sdf)) src += kernel_file("patterns.cl");

@@ -358,6 +358,10 @@ class SdfEmitter {
     if (node.kind == NodeKind::Mirror) return emit_mirror(node, p, color, offset);
     if (node.kind == NodeKind::RepeatPolar) return emit_repeat_polar(node, p, color, offset);
     if (node.kind == NodeKind::RepeatLimited) return emit_repeat_limited(node, p, color, offset);
+    if (node.kind == NodeKind::Revolve) return emit_revolve(node, p, color, offset);
+    if (node.kind == NodeKind::Extrude) return emit_extrude(node, p, color, offset);
+    if (node.kind == NodeKind::Twist || node.kind == NodeKind::Bend) return emit_turn(node, p, color, offset);
+    if (node.kind == NodeKind::NonuniformScale) return emit_nonuniform_scale(node, p, color, offset);
     if (node.kind == NodeKind::Union) return emit_union(node, p, color, offset);
     const std::vector<int> firsts = child_first_ids(node, first_id_);
     Value acc = emit(node.children.front(), p, color, offset);
@@ -565,6 +569,61 @@ class SdfEmitter {
     const std::string q = fresh("p");
     line(fmt::format("vec3v {} = v3({}, {}, {});  /* repeat_limited */", q, axis("x", 0), axis("y", 1), axis("z", 2)));
     return emit(node.children.front(), q, color, child_offset);
+  }
+
+  /// The child's section at z = 0 at (length(p_local.xz) - offset, p_local.y): the radius needs
+  /// the absolute x and z; y keeps its offset.
+  Value emit_revolve(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
+    const std::string at = absolute_point(p, glm::dvec3(offset.x, 0.0, offset.z));
+    const std::string q = fresh("p");
+    line(fmt::format("vec3v {0} = v3(vsqrt({1}.x * {1}.x + {1}.z * {1}.z) - {2}, {1}.y, (vfloat)(0.0f));  /* revolve */", q, at,
+                     lit_.f(params_of<Revolve>(node).offset)));
+    return emit(node.children.front(), q, color, glm::dvec3(0.0, offset.y, 0.0));
+  }
+
+  /// The child's section at z = 0 extruded along the absolute z.
+  Value emit_extrude(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
+    const std::string q = fresh("p");
+    line(fmt::format("vec3v {0} = v3({1}.x, {1}.y, (vfloat)(0.0f));  /* extrude */", q, p));
+    const Value section = emit(node.children.front(), q, color, glm::dvec3(offset.x, offset.y, 0.0));
+    const std::string z = offset.z == 0.0 ? fmt::format("{}.z", p) : fmt::format("{}.z + {}", p, lit_.f(offset.z));
+    Value out{fresh("d"), section.color, section.surface, section.id, section.emission};
+    line(fmt::format("vfloat {} = op_extrude({}, {}, {});", out.distance, section.distance, z,
+                     lit_.f(params_of<Extrude>(node).half_length)));
+    return out;
+  }
+
+  /// Twist (about y) and bend (about z): the child at the turned absolute point, its distance
+  /// divided by the turn's Lipschitz factor there, and never below the distance to the sphere
+  /// holding the turned child (scene_bounds' turned_bounds).
+  Value emit_turn(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
+    const bool twist = node.kind == NodeKind::Twist;
+    const int axis = twist ? 1 : 2;
+    const double rate = (twist ? params_of<Twist>(node).rate : params_of<Bend>(node).rate) * std::numbers::pi / 180.0;
+    const BoundingSphere child_bounds = *node_bounds(node.children.front());
+    const BoundingSphere ball = turned_bounds(child_bounds, axis);
+    const std::string at = absolute_point(p, offset);
+    const std::string q = fresh("p");
+    line(fmt::format("vec3v {} = op_{}({}, {});  /* {} */", q, twist ? "twist" : "bend", at, lit_.f(rate), node_kind_name(node.kind)));
+    const Value child = emit(node.children.front(), q, color, glm::dvec3(0.0));
+    const std::string across = twist ? fmt::format("vsqrt({0}.x * {0}.x + {0}.z * {0}.z)", at) : fmt::format("vsqrt({0}.x * {0}.x + {0}.y * {0}.y)", at);
+    Value out{fresh("d"), child.color, child.surface, child.id, child.emission};
+    line(fmt::format("vfloat {} = fmax({} / op_{}_lipschitz({}, {}, {}), sd_bound({}, {}, {}, 1.0f));", out.distance, child.distance,
+                     twist ? "twist" : "bend", across, lit_.f(rate), lit_.f(turn_reach(child_bounds, axis)), p,
+                     lit_.f4(ball.center - offset), lit_.f(ball.radius)));
+    return out;
+  }
+
+  /// The child at p_local / factors (its offset divided too), its distance times the smallest factor.
+  Value emit_nonuniform_scale(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
+    const glm::dvec3& f = params_of<NonuniformScale>(node).factors;
+    const std::string q = fresh("p");
+    line(fmt::format("vec3v {0} = v3({1}.x * {2}, {1}.y * {3}, {1}.z * {4});  /* nonuniform_scale */", q, p, lit_.f(1.0 / f.x),
+                     lit_.f(1.0 / f.y), lit_.f(1.0 / f.z)));
+    const Value child = emit(node.children.front(), q, color, offset / f);
+    Value out{fresh("d"), child.color, child.surface, child.id, child.emission};
+    line(fmt::format("vfloat {} = {} * {};", out.distance, child.distance, lit_.f(std::min({f.x, f.y, f.z}))));
+    return out;
   }
 
   Value combine(const Node& node, const Value& a, const Value& b) {

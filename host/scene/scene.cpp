@@ -47,6 +47,16 @@ bool is_primitive(NodeKind kind) {
   return false;
 }
 
+bool is_profile(NodeKind kind) {
+  switch (kind) {
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind: return false;
+#define CLMARCH_PROFILE(Kind, name, quality, cost, params_list) case NodeKind::Kind: return true;
+#define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) case NodeKind::Kind: return false;
+#include "scene/node_kinds.def"
+  }
+  return false;
+}
+
 bool is_smooth_operator(NodeKind kind) {
   return kind == NodeKind::SmoothUnion || kind == NodeKind::SmoothIntersection ||
          kind == NodeKind::SmoothSubtraction;

@@ -36,6 +36,8 @@ std::string_view node_kind_name(NodeKind kind);
 std::optional<NodeKind> node_kind_from_name(std::string_view name);
 /// True for leaves (primitives), false for operators.
 bool is_primitive(NodeKind kind);
+/// True for the 2D primitives (profiles in the xy plane, for revolve and extrude).
+bool is_profile(NodeKind kind);
 /// True for the smooth operators, which take a blend radius k.
 bool is_smooth_operator(NodeKind kind);
 

@@ -76,12 +76,74 @@ std::optional<BoundingSphere> primitive_bounds(const NodeParams& params) {
     }
     std::optional<BoundingSphere> operator()(const Julia& j) const { return BoundingSphere{j.center, julia_radius(j.c)}; }
     std::optional<BoundingSphere> operator()(const Terrain&) const { return std::nullopt; }
+    // A profile alone is a prism along z without end; revolve and extrude bound its section
+    // (section_bounds).
+#define CLMARCH_PROFILE(Kind, name, quality, cost, params_list) \
+  std::optional<BoundingSphere> operator()(const Kind&) const { return std::nullopt; }
     // Operators have operator_bounds instead.
 #define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) \
   std::optional<BoundingSphere> operator()(const Kind&) const { return std::nullopt; }
 #include "scene/node_kinds.def"
   };
   return std::visit(Visitor{}, params);
+}
+
+}  // namespace
+
+BoundingSphere turned_bounds(const BoundingSphere& child, int axis) {
+  glm::dvec3 center(0.0);
+  center[axis] = child.center[axis];
+  return BoundingSphere{center, std::hypot(turn_reach(child, axis), child.radius), 1.0};
+}
+
+double turn_reach(const BoundingSphere& child, int axis) {
+  glm::dvec3 across = child.center;
+  across[axis] = 0.0;
+  return glm::length(across) + child.radius;
+}
+
+namespace {
+
+/// The disc in the xy plane that holds a profile (as a sphere centred in that plane).
+std::optional<BoundingSphere> profile_disc(const NodeParams& params) {
+  struct Visitor {
+    std::optional<BoundingSphere> operator()(const Circle& c) const { return BoundingSphere{c.center, c.radius}; }
+    std::optional<BoundingSphere> operator()(const Rectangle& r) const {
+      return BoundingSphere{r.center, std::hypot(r.half_width, r.half_height)};
+    }
+    std::optional<BoundingSphere> operator()(const RoundedRectangle& r) const {
+      return BoundingSphere{r.center, std::hypot(r.half_width, r.half_height)};
+    }
+    std::optional<BoundingSphere> operator()(const Segment& s) const {
+      return BoundingSphere{0.5 * (s.a + s.b), 0.5 * glm::length(glm::dvec2(s.b - s.a)) + s.radius};
+    }
+    std::optional<BoundingSphere> operator()(const RegularPolygon& r) const { return BoundingSphere{r.center, r.radius}; }
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) \
+  std::optional<BoundingSphere> operator()(const Kind&) const { return std::nullopt; }
+#define CLMARCH_PROFILE(Kind, name, quality, cost, params_list)
+#define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) \
+  std::optional<BoundingSphere> operator()(const Kind&) const { return std::nullopt; }
+#include "scene/node_kinds.def"
+  };
+  std::optional<BoundingSphere> disc = std::visit(Visitor{}, params);
+  if (disc) disc->center.z = 0.0;
+  return disc;
+}
+
+/// Where the child's section at z = 0 (what revolve and extrude take of it) has its field below a
+/// threshold: a profile's disc, placed by its transform when that keeps the xy plane (a turn
+/// about z; a shift along z changes no profile), or the child's bounding sphere.
+std::optional<BoundingSphere> section_bounds(const Node& child) {
+  if (!is_profile(child.kind)) return node_bounds(child);
+  const Transform& t = child.transform;
+  if (t.rotate_degrees.x != 0.0 || t.rotate_degrees.y != 0.0) return std::nullopt;
+  std::optional<BoundingSphere> b = profile_disc(child.params);
+  if (!b) return std::nullopt;
+  b->center = t.translate + t.world_from_local_rotation() * (t.scale * b->center);
+  b->center.z = 0.0;
+  b->radius *= t.scale;
+  b->gain /= child.step_factor;
+  return b;
 }
 
 std::optional<BoundingSphere> operator_bounds(const Node& node) {
@@ -166,6 +228,41 @@ std::optional<BoundingSphere> operator_bounds(const Node& node) {
       }
       child->radius += glm::length(half_span);
       return child;
+    }
+    case NodeKind::Revolve: {
+      // The child's section at z = 0 lies in its sphere: profile x' = length(p.xz) - offset within
+      // r of c.x, y within r of c.y. (d < tau puts (x', y) within r + gain tau of (c.x, c.y), so
+      // the point within sqrt(2) gain tau more of the sphere's.)
+      const std::optional<BoundingSphere> child = section_bounds(node.children.front());
+      if (!child) return std::nullopt;
+      const double reach = std::abs(child->center.x + params_of<Revolve>(node).offset) + child->radius;
+      return BoundingSphere{{0.0, child->center.y, 0.0}, std::hypot(reach, child->radius), std::sqrt(2.0) * child->gain};
+    }
+    case NodeKind::Extrude: {
+      // The section's disc, extruded to |z| <= half_length (d < tau: the section's field and
+      // |z| - half_length are both below tau).
+      const std::optional<BoundingSphere> child = section_bounds(node.children.front());
+      if (!child) return std::nullopt;
+      return BoundingSphere{{child->center.x, child->center.y, 0.0}, std::hypot(child->radius, params_of<Extrude>(node).half_length),
+                            std::sqrt(2.0) * std::max(child->gain, 1.0)};
+    }
+    case NodeKind::Twist:
+    case NodeKind::Bend: {
+      // Both turn points about an axis (y, z), keeping their distance from it and their height
+      // along it: the child's surface stays in the cylinder round its sphere. Their fields are never
+      // below the distance to this sphere (the code generator and the reference take the larger of the
+      // two), so its gain is 1.
+      const std::optional<BoundingSphere> child = node_bounds(node.children.front());
+      if (!child) return std::nullopt;
+      return turned_bounds(*child, node.kind == NodeKind::Twist ? 1 : 2);
+    }
+    case NodeKind::NonuniformScale: {
+      // p = factors q: the sphere stretched by the largest factor; the field scaled by the smallest.
+      std::optional<BoundingSphere> child = node_bounds(node.children.front());
+      if (!child) return std::nullopt;
+      const glm::dvec3& f = params_of<NonuniformScale>(node).factors;
+      const double largest = std::max({f.x, f.y, f.z}), smallest = std::min({f.x, f.y, f.z});
+      return BoundingSphere{child->center * f, child->radius * largest, child->gain * largest / smallest};
     }
     // Primitives have primitive_bounds instead.
 #define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind:

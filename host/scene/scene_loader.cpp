@@ -6,6 +6,7 @@
 #include "common/nearest_name.hpp"
 #include "scene/color_pattern_reader.hpp"
 #include "scene/instance_file.hpp"
+#include "scene/scene_bounds.hpp"
 #include "scene/yaml_reader.hpp"
 
 #include <fmt/format.h>
@@ -505,6 +506,21 @@ class SceneReader {
     }
   }
 
+  void check_params(RoundedRectangle& rectangle, const YAML::Node& map, const std::string& path) {
+    const double smallest = std::min(rectangle.half_width, rectangle.half_height);
+    if (map["radius"]) {
+      rectangle.radius = yaml_.number(map["radius"], path + ".radius", Range::closed(0.0, smallest));
+    } else {
+      rectangle.radius = std::min(rectangle.radius, smallest);
+    }
+  }
+
+  void check_params(Segment& segment, const YAML::Node& map, const std::string& path) {
+    if (segment.a.x == segment.b.x && segment.a.y == segment.b.y) {
+      yaml_.fail(map, path + ".a and " + path + ".b must differ in x or y (use a circle for a point)");
+    }
+  }
+
   void check_params(Mandelbox& box, const YAML::Node& map, const std::string& path) {
     // Between -1 and 1 the scale folds everything into a bounded orbit: no surface to trace.
     if (std::abs(box.scale) <= 1.0) {
@@ -587,6 +603,12 @@ class SceneReader {
       } else {
         node.children.push_back(read_node(child, child_path, depth + 1));
       }
+    }
+    // A turn's Lipschitz factor grows with the distance from its axis: it needs the child's reach.
+    if ((node.kind == NodeKind::Twist || node.kind == NodeKind::Bend) && !node_bounds(node.children.front())) {
+      yaml_.fail(children[0], fmt::format("{} needs a bounded child: {}[0] ({}) has no bounding sphere (planes, terrain, infinite "
+                                          "cylinders, 2D primitives alone and repeat have none)",
+                                          path, path, node_kind_name(node.children.front().kind)));
     }
   }
 
