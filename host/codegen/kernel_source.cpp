@@ -108,6 +108,11 @@ bool uses_kind(const Node& node, std::initializer_list<NodeKind> kinds) {
   return std::any_of(node.children.begin(), node.children.end(), [&](const Node& child) { return uses_kind(child, kinds); });
 }
 
+/// True if node or a descendant is a blend operator (kernels/blend_operators.cl).
+bool uses_blend(const Node& node) {
+  return is_blend_operator(node.kind) || std::any_of(node.children.begin(), node.children.end(), uses_blend);
+}
+
 }  // namespace
 
 bool uses_antialiasing(const Scene& scene, KernelPurpose purpose) {
@@ -169,6 +174,7 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
   if (uses_kind(scene.sdf, {NodeKind::Mandelbulb, NodeKind::Menger, NodeKind::Sierpinski})) src += kernel_file("fractals.cl");
   if (uses_kind(scene.sdf, {NodeKind::Terrain})) src += kernel_file("noise.cl");
   src += kernel_file("operators.cl");
+  if (uses_blend(scene.sdf)) src += kernel_file("blend_operators.cl");
   if (uses_patterns(scene.sdf)) src += kernel_file("patterns.cl");
   src += "#line 1 \"generated scene\"\n";
   if (options.purpose == KernelPurpose::EvalPoints) {

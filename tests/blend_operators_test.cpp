@@ -1,0 +1,117 @@
+// The blend operators (node_kinds.def's CLMARCH_BLEND) over every kind of the list: the reference's
+// field is as steep as operator_lipschitz says and no steeper, and the kernel picks the material
+// and the id of the operand the reference picks.
+#include "reference/reference_sdf.hpp"
+#include "render/opencl_renderer.hpp"
+#include "support/test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace clmarch {
+namespace {
+
+std::vector<NodeKind> blend_kinds() {
+  std::vector<NodeKind> kinds;
+  for (NodeKind kind : kAllNodeKinds) {
+    if (is_blend_operator(kind)) kinds.push_back(kind);
+  }
+  return kinds;
+}
+
+/// The blend's parameters as a flow map's entries: radius 0.5, steps 3, ra 0.3, rb 0.2.
+std::string parameters(NodeKind kind) {
+  std::string entries;
+  for (const ParamSpec& spec : param_table(kind)) {
+    const std::string key = spec.key;
+    const char* value = key == "steps" ? "3" : key == "ra" ? "0.3" : key == "rb" ? "0.2" : "0.5";
+    entries += key + ": " + value + ", ";
+  }
+  return entries;
+}
+
+/// Two overlapping spheres, red and blue, and with three a green one: every blend region is near.
+Scene blend_scene(NodeKind kind, int children) {
+  std::string list = "[{sphere: {center: [-0.5, 0, 0], radius: 1, color: [1, 0, 0]}}, "
+                     "{sphere: {center: [0.7, 0.2, 0], radius: 0.8, color: [0, 0, 1]}}";
+  if (children == 3) list += ", {sphere: {center: [0, 0.9, 0.3], radius: 0.6, color: [0, 1, 0]}}";
+  list += "]";
+  return testing::scene_from_yaml(
+      "sdf:\n  " + std::string(node_kind_name(kind)) + ": {" + parameters(kind) + "children: " + list + "}\n");
+}
+
+class BlendOperator : public ::testing::TestWithParam<NodeKind> {};
+
+// |d(p) - d(q)| <= L |p - q| for L = operator_lipschitz: 1 for the bounds, sqrt(children) for the
+// estimates, which must also be seen steeper than 1 (else they would be bounds, and the docs wrong).
+TEST_P(BlendOperator, ReferenceIsAsSteepAsItsLipschitzConstant) {
+  const NodeKind kind = GetParam();
+  std::mt19937 random(13);
+  std::uniform_real_distribution<double> coordinate(-2.0, 2.0), offset(-0.3, 0.3);
+  double steepest = 0.0, lipschitz = 1.0;
+  for (int children : {2, 3}) {
+    const Scene scene = blend_scene(kind, children);
+    lipschitz = operator_lipschitz(scene.sdf);
+    for (int i = 0; i < 20000; ++i) {
+      const glm::dvec3 p(coordinate(random), coordinate(random), coordinate(random));
+      const glm::dvec3 q = p + glm::dvec3(offset(random), offset(random), offset(random));
+      const double moved = glm::length(q - p);
+      const double change = std::abs(reference_distance(scene.sdf, p) - reference_distance(scene.sdf, q));
+      steepest = std::max(steepest, change / moved);
+      ASSERT_LE(change, lipschitz * moved * (1.0 + 1e-9) + 1e-12)
+          << node_kind_name(kind) << " with " << children << " children from (" << p.x << ", " << p.y << ", " << p.z
+          << ") to (" << q.x << ", " << q.y << ", " << q.z << ")";
+    }
+  }
+  if (lipschitz > 1.0) {
+    EXPECT_GT(steepest, 1.01) << node_kind_name(kind) << " is an estimate, but was never steeper than 1";
+  }
+}
+
+// The color rule of docs/scene-format.md, kernel against reference at 1 and 16 lanes; points where
+// the reference's choice changes within 1e-4 are left out (float rounding may choose otherwise).
+TEST_P(BlendOperator, KernelTakesTheMaterialAndIdTheReferenceTakes) {
+  const NodeKind kind = GetParam();
+  const Scene scene = blend_scene(kind, 3);
+  std::mt19937 random(17);
+  std::uniform_real_distribution<double> coordinate(-2.0, 2.0);
+  std::vector<glm::dvec3> points;
+  while (points.size() < 200) {
+    const glm::dvec3 p(coordinate(random), coordinate(random), coordinate(random));
+    const SdfSample here = reference_sample(scene.sdf, p);
+    bool steady = true;
+    for (int axis = 0; axis < 3; ++axis) {
+      for (double step : {-1e-4, 1e-4}) {
+        glm::dvec3 near = p;
+        near[axis] += step;
+        if (reference_sample(scene.sdf, near).primitive != here.primitive) steady = false;
+      }
+    }
+    if (steady) points.push_back(p);
+  }
+  for (int lanes : {1, 16}) {
+    OpenClOptions options;
+    options.lanes = lanes;
+    const PointSamples samples = eval_points_opencl(scene, points, options);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const SdfSample expected = reference_sample(scene.sdf, points[i]);
+      EXPECT_NEAR(samples.distance[i], expected.distance, 2e-5) << node_kind_name(kind) << " lanes " << lanes << " point " << i;
+      EXPECT_EQ(samples.primitive[i], static_cast<float>(expected.primitive))
+          << node_kind_name(kind) << " lanes " << lanes << " point " << i;
+      EXPECT_NEAR(samples.albedo[i].x, expected.color.x, 1e-6) << node_kind_name(kind) << " point " << i;
+      EXPECT_NEAR(samples.albedo[i].y, expected.color.y, 1e-6) << node_kind_name(kind) << " point " << i;
+      EXPECT_NEAR(samples.albedo[i].z, expected.color.z, 1e-6) << node_kind_name(kind) << " point " << i;
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryBlend, BlendOperator, ::testing::ValuesIn(blend_kinds()),
+                         [](const auto& info) { return std::string(node_kind_name(info.param)); });
+
+}  // namespace
+}  // namespace clmarch
