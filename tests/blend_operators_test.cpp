@@ -2,6 +2,7 @@
 // field is as steep as operator_lipschitz says and no steeper, and the kernel picks the material
 // and the id of the operand the reference picks.
 #include "reference/reference_sdf.hpp"
+#include "scene/scene_bounds.hpp"
 #include "render/opencl_renderer.hpp"
 #include "support/test_support.hpp"
 
@@ -11,6 +12,7 @@
 #include <cmath>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace clmarch {
@@ -107,6 +109,33 @@ TEST_P(BlendOperator, KernelTakesTheMaterialAndIdTheReferenceTakes) {
       EXPECT_NEAR(samples.albedo[i].y, expected.color.y, 1e-6) << node_kind_name(kind) << " point " << i;
       EXPECT_NEAR(samples.albedo[i].z, expected.color.z, 1e-6) << node_kind_name(kind) << " point " << i;
     }
+  }
+}
+
+// The union blends' growth of the bounding sphere is reached: two coincident unit spheres (a = b
+// everywhere) blend into a sphere whose radius is 1 + the growth, found here along a ray of the
+// reference's field, and the bound is exactly that sphere (scene/scene_bounds.cpp's derivation).
+TEST(BlendBounds, UnionBlendsOfCoincidentSpheresReachTheirGrowth) {
+  const std::string spheres = "children: [{sphere: {radius: 1}}, {sphere: {radius: 1}}]}";
+  const std::pair<std::string, double> cases[] = {
+      {"union_chamfer: {radius: 0.4, ", 1.2},
+      {"union_round: {radius: 0.4, ", 1.0 + 0.4 * (1.0 - std::sqrt(0.5))},
+      {"union_stairs: {radius: 0.4, steps: 3, ", 1.2},  // the middle step's corner on a = b
+      {"union_columns: {radius: 0.4, steps: 1, ", 1.2},
+      {"xor: {", 1.0}};
+  for (const auto& [head, surface] : cases) {
+    const Node node = testing::scene_from_yaml("sdf:\n  " + head + spheres + "\n").sdf;
+    // The sign changes at the surface along the ray x > 0: bisect for it.
+    double inside = 0.5, outside = 3.0;
+    for (int i = 0; i < 100; ++i) {
+      const double middle = 0.5 * (inside + outside);
+      (reference_distance(node, {middle, 0.0, 0.0}) < 0.0 ? inside : outside) = middle;
+    }
+    // xor(a, a) = |a| has no inside; its bound is the spheres'.
+    if (head != "xor: {") {
+      EXPECT_NEAR(inside, surface, 1e-9) << head;
+    }
+    EXPECT_NEAR(node_bounds(node)->radius, surface, 1e-12) << head;
   }
 }
 
