@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -137,6 +139,46 @@ TEST(BlendBounds, UnionBlendsOfCoincidentSpheresReachTheirGrowth) {
     }
     EXPECT_NEAR(node_bounds(node)->radius, surface, 1e-12) << head;
   }
+}
+
+// docs/scene-format.md's colour rules at points where the answer is plain: red a and blue b are the
+// half spaces x <= 0 and y <= 0 (b: y >= 0 for the differences, x <= 0 for the cutting tools, whose
+// a is y <= 0), or for xor two spheres.
+TEST(BlendColors, FollowTheDocumentedRules) {
+  const auto color_at = [](const std::string& head, const char* a, const char* b, const glm::dvec3& p) {
+    const Node node = testing::scene_from_yaml(fmt::format("sdf:\n  {}children: [{{plane: {{normal: {}, color: [1, 0, 0]}}}}, "
+                                                           "{{plane: {{normal: {}, color: [0, 0, 1]}}}}]}}\n",
+                                                           head, a, b))
+                          .sdf;
+    return reference_sample(node, p).color;
+  };
+  const glm::dvec3 red(1, 0, 0), blue(0, 0, 1);
+  const char* x = "[1, 0, 0]";
+  const char* y = "[0, 1, 0]";
+  const char* minus_y = "[0, -1, 0]";
+  // Unions: the nearer operand, also in the fillet; intersections: the farther.
+  EXPECT_EQ(color_at("union_round: {radius: 1, ", x, y, {0.2, 0.5, 0}), red);
+  EXPECT_EQ(color_at("union_round: {radius: 1, ", x, y, {0.5, 0.2, 0}), blue);
+  EXPECT_EQ(color_at("union_stairs: {radius: 1, steps: 2, ", x, y, {0.6, 0.3, 0}), blue);
+  EXPECT_EQ(color_at("intersection_chamfer: {radius: 1, ", x, y, {-0.2, -0.5, 0}), red);
+  EXPECT_EQ(color_at("intersection_columns: {radius: 1, steps: 2, ", x, y, {-0.5, -0.2, 0}), blue);
+  // Differences: the carved surface takes b's colour.
+  EXPECT_EQ(color_at("difference_chamfer: {radius: 1, ", x, minus_y, {-0.5, -0.2, 0}), blue);
+  EXPECT_EQ(color_at("difference_round: {radius: 1, ", x, minus_y, {-0.2, -0.5, 0}), red);
+  // Cutting tools: b's colour where the cut or the tongue changes a.
+  EXPECT_EQ(color_at("engrave: {radius: 0.5, ", y, x, {0, 0.1, 0}), blue);
+  EXPECT_EQ(color_at("engrave: {radius: 0.5, ", y, x, {2, 0.1, 0}), red);
+  EXPECT_EQ(color_at("groove: {ra: 0.5, rb: 0.25, ", y, x, {0, 0.1, 0}), blue);
+  EXPECT_EQ(color_at("tongue: {ra: 0.5, rb: 0.25, ", y, x, {0, 0.3, 0}), blue);
+  EXPECT_EQ(color_at("tongue: {ra: 0.5, rb: 0.25, ", y, x, {2, 0.3, 0}), red);
+  // Pipe: the operand of the smaller |distance|.
+  EXPECT_EQ(color_at("pipe: {radius: 0.1, ", x, y, {0.1, -0.5, 0}), red);
+  // Xor: inside both red and blue spheres, nearer blue's surface.
+  const Node both = testing::scene_from_yaml("sdf:\n  xor: [{sphere: {radius: 1, color: [1, 0, 0]}}, "
+                                             "{sphere: {center: [1.5, 0, 0], radius: 1, color: [0, 0, 1]}}]\n")
+                        .sdf;
+  EXPECT_EQ(reference_sample(both, {0.7, 0, 0}).color, blue);
+  EXPECT_EQ(reference_sample(both, {0.8, 0, 0}).color, red);
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryBlend, BlendOperator, ::testing::ValuesIn(blend_kinds()),
