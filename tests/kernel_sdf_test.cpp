@@ -34,6 +34,8 @@ struct SdfCase {
 
 const double kSqrt2 = std::sqrt(2.0);
 const double kSqrt3 = std::sqrt(3.0);
+// The radius of two columns across r = 1: 1 / (2 + 2 sqrt 2).
+const double kColumn2 = 0.5 / (1.0 + kSqrt2);
 
 // Symmetric shapes are probed on both sides of each symmetry plane: a dropped fabs() shows only there.
 const std::vector<SdfCase>& sdf_cases() {
@@ -146,6 +148,69 @@ const std::vector<SdfCase>& sdf_cases() {
       {"smooth_subtraction_blend",
        "smooth_subtraction: {k: 0.5, children: [{sphere: {radius: 1}}, {sphere: {center: [1.5, 0, 0], radius: 1}}]}",
        {{{1.875, 0, 0}, 0.875 + 0.5 / 16}, {{-0.5, 0, 0}, -0.5}}},
+      // The blends on the half spaces a = x (x <= 0) and b = y (y <= 0), or b = -y for the
+      // differences, so that a minus b is the same corner: the plane of (a, b) is the xy plane.
+      // Chamfer r = 1: the bevel x + y = 1, (a + b - r) / sqrt 2 from it.
+      {"union_chamfer", "union_chamfer: {radius: 1, children: [{plane: {normal: [1, 0, 0]}}, {plane: {normal: [0, 1, 0]}}]}",
+       {{{0.5, 0.5, 0}, 0.0}, {{1, 1, 3}, 1.0 / kSqrt2}, {{3, 0.2, 0}, 0.2}, {{-1, 2, 0}, -1.0}}},
+      {"intersection_chamfer",
+       "intersection_chamfer: {radius: 1, children: [{plane: {normal: [1, 0, 0]}}, {plane: {normal: [0, 1, 0]}}]}",
+       {{{-0.5, -0.5, 0}, 0.0}, {{-1, -1, 0}, -1.0 / kSqrt2}, {{2, -3, 0}, 2.0}}},
+      {"difference_chamfer",
+       "difference_chamfer: {radius: 1, children: [{plane: {normal: [1, 0, 0]}}, {plane: {normal: [0, -1, 0]}}]}",
+       {{{-0.5, -0.5, 0}, 0.0}, {{-1, -1, 0}, -1.0 / kSqrt2}, {{-3, 2, 0}, 2.0}}},
+      // Round r = 1: the quarter circle of radius 1 about (1, 1) (union) or (-1, -1).
+      {"union_round", "union_round: {radius: 1, children: [{plane: {normal: [1, 0, 0]}}, {plane: {normal: [0, 1, 0]}}]}",
+       {{{0.5, 0.5, 0}, 1.0 - 1.0 / kSqrt2}, {{1 - 1 / kSqrt2, 1 - 1 / kSqrt2, 0}, 0.0}, {{2, 0.5, 0}, 0.5},
+        {{3, 2, 0}, 2.0}, {{-1, 0.5, 0}, 1.0 - std::hypot(2.0, 0.5)}}},
+      {"intersection_round",
+       "intersection_round: {radius: 1, children: [{plane: {normal: [1, 0, 0]}}, {plane: {normal: [0, 1, 0]}}]}",
+       {{{-0.5, -0.5, 0}, 1.0 / kSqrt2 - 1.0}, {{1, 0.5, 0}, 1.5}, {{-3, -2, 0}, -2.0}, {{0.5, -2, 0}, 0.5}}},
+      {"difference_round",
+       "difference_round: {radius: 1, children: [{plane: {normal: [1, 0, 0]}}, {plane: {normal: [0, -1, 0]}}]}",
+       {{{-0.5, -0.5, 0}, 1.0 / kSqrt2 - 1.0}, {{1, 0.5, 0}, 1.5}, {{-3, -2, 0}, -2.0}}},
+      // Stairs r = 1, 2 steps: outer corners (0.25, 0.75) and (0.75, 0.25), max(a - corner.a,
+      // b - corner.b) from the nearer; 1 step: the corner (0.5, 0.5).
+      {"union_stairs",
+       "union_stairs: {radius: 1, steps: 2, children: [{plane: {normal: [1, 0, 0]}}, {plane: {normal: [0, 1, 0]}}]}",
+       {{{0.25, 0.75, 0}, 0.0}, {{0.5, 0.5, 0}, 0.25}, {{1, 1, 0}, 0.75}, {{0.1, 0.1, 0}, -0.15}, {{3, 0.1, 0}, 0.1}}},
+      {"union_stairs_one_step",
+       "union_stairs: {radius: 1, steps: 1, children: [{plane: {normal: [1, 0, 0]}}, {plane: {normal: [0, 1, 0]}}]}",
+       {{{0.5, 0.5, 0}, 0.0}, {{1, 1, 0}, 0.5}, {{0.2, 0.9, 0}, 0.2}}},
+      {"intersection_stairs",
+       "intersection_stairs: {radius: 1, steps: 2, children: [{plane: {normal: [1, 0, 0]}}, {plane: {normal: [0, 1, 0]}}]}",
+       {{{-0.25, -0.75, 0}, 0.0}, {{-1, -1, 0}, -0.75}, {{2, -3, 0}, 2.0}}},
+      {"difference_stairs",
+       "difference_stairs: {radius: 1, steps: 2, children: [{plane: {normal: [1, 0, 0]}}, {plane: {normal: [0, -1, 0]}}]}",
+       {{{-0.25, -0.75, 0}, 0.0}, {{-1, -1, 0}, -0.75}, {{-3, 2, 0}, 2.0}}},
+      // Columns r = 1: one column of radius c = 1 / (2 + sqrt 2) centred at (c, c), its tip on the
+      // bevel's middle (0.5, 0.5); two of radius c = 1 / (2 + 2 sqrt 2) centred at (0.5, c) and
+      // (c, 0.5), tips at (0.5, c) + c (1, 1) / sqrt 2. At (1, 1), 1 / sqrt 2 from the one column.
+      {"union_columns",
+       "union_columns: {radius: 1, steps: 1, children: [{plane: {normal: [1, 0, 0]}}, {plane: {normal: [0, 1, 0]}}]}",
+       {{{0.5, 0.5, 0}, 0.0}, {{1, 1, 0}, 1.0 / kSqrt2}, {{3, 0.2, 0}, 0.2}}},
+      {"union_columns_two",
+       "union_columns: {radius: 1, steps: 2, children: [{plane: {normal: [1, 0, 0]}}, {plane: {normal: [0, 1, 0]}}]}",
+       {{{0.5 + kColumn2 / kSqrt2, kColumn2 * (1 + 1 / kSqrt2), 0}, 0.0}, {{0.5, 0.5, 0}, 0.5 - 2 * kColumn2}}},
+      {"intersection_columns",
+       "intersection_columns: {radius: 1, steps: 1, children: [{plane: {normal: [1, 0, 0]}}, {plane: {normal: [0, 1, 0]}}]}",
+       {{{-0.5, -0.5, 0}, 0.0}, {{-1, -1, 0}, -1.0 / kSqrt2}}},
+      {"difference_columns",
+       "difference_columns: {radius: 1, steps: 1, children: [{plane: {normal: [1, 0, 0]}}, {plane: {normal: [0, -1, 0]}}]}",
+       {{{-0.5, -0.5, 0}, 0.0}, {{-1, -1, 0}, -1.0 / kSqrt2}}},
+      // Spheres of radius 1 at 0 and 1.5: inside both at x = 0.75 (a = b = -0.25), one at 0.
+      {"xor", "xor: [{sphere: {radius: 1}}, {sphere: {center: [1.5, 0, 0], radius: 1}}]",
+       {{{0.75, 0, 0}, 0.25}, {{0, 0, 0}, -0.5}, {{3, 0, 0}, 0.5}, {{-2, 0, 0}, 1.0}}},
+      // The tube of radius 0.25 about the z axis, where x = y = 0.
+      {"pipe", "pipe: {radius: 0.25, children: [{plane: {normal: [1, 0, 0]}}, {plane: {normal: [0, 1, 0]}}]}",
+       {{{1, 1, 0}, kSqrt2 - 0.25}, {{0, 0, 5}, -0.25}, {{0.3, -0.4, 0}, 0.25}}},
+      // Cut into (or raised on) the half space y <= 0 along the plane x = 0.
+      {"engrave", "engrave: {radius: 0.5, children: [{plane: {normal: [0, 1, 0]}}, {plane: {normal: [1, 0, 0]}}]}",
+       {{{0, 0, 0}, 0.5 / kSqrt2}, {{0, -1, 0}, -0.5 / kSqrt2}, {{2, -1, 0}, -1.0}, {{-0.25, -0.25, 0}, 0.0}}},
+      {"groove", "groove: {ra: 0.5, rb: 0.25, children: [{plane: {normal: [0, 1, 0]}}, {plane: {normal: [1, 0, 0]}}]}",
+       {{{0, 0, 0}, 0.25}, {{0, -0.75, 0}, -0.25}, {{1, -0.25, 0}, -0.25}, {{-0.1, -0.5, 0}, 0.0}}},
+      {"tongue", "tongue: {ra: 0.5, rb: 0.25, children: [{plane: {normal: [0, 1, 0]}}, {plane: {normal: [1, 0, 0]}}]}",
+       {{{0, 0.25, 0}, -0.25}, {{0, 1, 0}, 0.5}, {{1, 0.25, 0}, 0.25}, {{-0.25, 0.3, 0}, 0.0}}},
       {"three_way_union", "union: [{sphere: {radius: 1}}, {sphere: {center: [4, 0, 0], radius: 1}}, {sphere: {center: [8, 0, 0], radius: 1}}]",
        {{{8, 0, 0}, -1.0}, {{6, 0, 0}, 1.0}}},
       // Box half [1, 2, 3] turned about z by 90 degrees becomes half (2, 1, 3) in the world.

@@ -108,9 +108,11 @@ bool uses_kind(const Node& node, std::initializer_list<NodeKind> kinds) {
   return std::any_of(node.children.begin(), node.children.end(), [&](const Node& child) { return uses_kind(child, kinds); });
 }
 
-/// True if node or a descendant is a profile (a 2D primitive).
-bool uses_profiles(const Node& node) {
-  return is_profile(node.kind) || std::any_of(node.children.begin(), node.children.end(), uses_profiles);
+/// True if node or a descendant is of a kind of the group: profiles (kernels/profiles.cl), blend
+/// operators (kernels/blend_operators.cl).
+bool uses_group(const Node& node, bool (*in_group)(NodeKind)) {
+  return in_group(node.kind) ||
+         std::any_of(node.children.begin(), node.children.end(), [&](const Node& child) { return uses_group(child, in_group); });
 }
 
 }  // namespace
@@ -174,9 +176,10 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
   if (uses_kind(scene.sdf, {NodeKind::Mandelbulb, NodeKind::Menger, NodeKind::Sierpinski, NodeKind::Mandelbox, NodeKind::Julia})) {
     src += kernel_file("fractals.cl");
   }
-  if (uses_profiles(scene.sdf)) src += kernel_file("profiles.cl");
+  if (uses_group(scene.sdf, is_profile)) src += kernel_file("profiles.cl");
   if (uses_kind(scene.sdf, {NodeKind::Terrain})) src += kernel_file("noise.cl");
   src += kernel_file("operators.cl");
+  if (uses_group(scene.sdf, is_blend_operator)) src += kernel_file("blend_operators.cl");
   if (uses_patterns(scene.sdf)) src += kernel_file("patterns.cl");
   src += "#line 1 \"generated scene\"\n";
   if (options.purpose == KernelPurpose::EvalPoints) {

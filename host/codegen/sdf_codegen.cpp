@@ -2,6 +2,7 @@
 // so that the dumped kernel reads as the tree it came from.
 #include "codegen/sdf_codegen.hpp"
 
+#include "codegen/blend_code.hpp"
 #include "codegen/color_pattern_code.hpp"
 
 #include "codegen/cl_literals.hpp"
@@ -211,7 +212,8 @@ class SdfEmitter {
   }
 
   /// The blend of the material of an operator's operands, as combine() writes it: {0} and {1} are
-  /// the first and second operand's colors, a and b their distances, k the blend radius's mark.
+  /// the first and second operand's colors, a and b their distances, k the blend radius's mark (a
+  /// blend's arguments, operator_arguments).
   static std::string blend_rule(NodeKind kind, const std::string& a, const std::string& b, const std::string& k,
                                 const BlendFunctions& f = kColorBlend) {
     switch (kind) {
@@ -224,6 +226,9 @@ class SdfEmitter {
         return fmt::format("{}({}, {}, smooth_intersection_blend({}, {}, {}))", f.mix, "{1}", "{0}", a, b, k);
       case NodeKind::SmoothSubtraction:
         return fmt::format("{}({}, {}, smooth_subtraction_blend({}, {}, {}))", f.mix, "{0}", "{1}", a, b, k);
+#define CLMARCH_BLEND(Kind, name, min_children, params_list) case NodeKind::Kind:
+#include "scene/node_kinds.def"
+        return fmt::format("{}({}, {}, MASK({}))", f.select, "{1}", "{0}", blend_first_wins(kind, a, b, k));
 #define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind:
 #define CLMARCH_MODIFIER(Kind, name, params_list) case NodeKind::Kind:
 #include "scene/node_kinds.def"
@@ -241,6 +246,9 @@ class SdfEmitter {
       case NodeKind::SmoothUnion: return fmt::format("op_smooth_union({}, {}, {})", a, b, k);
       case NodeKind::SmoothIntersection: return fmt::format("op_smooth_intersection({}, {}, {})", a, b, k);
       case NodeKind::SmoothSubtraction: return fmt::format("op_smooth_subtraction({}, {}, {})", a, b, k);
+#define CLMARCH_BLEND(Kind, name, min_children, params_list) case NodeKind::Kind:
+#include "scene/node_kinds.def"
+        return blend_distance_code(kind, a, b, k);
 #define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind:
 #define CLMARCH_MODIFIER(Kind, name, params_list) case NodeKind::Kind:
 #include "scene/node_kinds.def"
@@ -253,6 +261,13 @@ class SdfEmitter {
   std::string fresh(const char* prefix) { return fmt::format("{}{}", prefix, counter_++); }
   /// The literal of a smooth operator's blend radius; nothing for the others.
   std::string blend_radius(const Node& node) { return is_smooth_operator(node.kind) ? lit_.f(smooth_k(node)) : std::string(); }
+  /// The operator's arguments after a and b: a smooth one's blend radius, a blend's parameters.
+  std::string operator_arguments(const Node& node) {
+    if (!is_blend_operator(node.kind)) return blend_radius(node);
+    std::string joined;
+    for (const std::string& arg : blend_arguments(node, lit_)) joined += (joined.empty() ? "" : ", ") + arg;
+    return joined;
+  }
   void line(const std::string& text) { body_ += "  " + indent_ + text + "\n"; }
 
   /// The node's frame: the point and offset its subtree sees. The subtree's points are measured
@@ -376,14 +391,18 @@ class SdfEmitter {
   }
 
   /// Above what bound of a later child the operator returns acc unchanged: smooth union acc + k
-  /// (its blend weight is 1 there), subtraction -acc, smooth subtraction k - acc (weight 0).
-  /// Nothing for intersections, whose result is the largest operand.
+  /// (its blend weight is 1 there), subtraction -acc, smooth subtraction k - acc (weight 0), the
+  /// blends' limits (codegen/blend_code.cpp). Nothing for intersections, whose result is the
+  /// largest operand.
   std::optional<std::string> sequential_skip_limit(const Node& node, const std::string& acc) {
     const std::string k = blend_radius(node);
     switch (node.kind) {
       case NodeKind::SmoothUnion: return fmt::format("{} + {}", acc, k);
       case NodeKind::Subtraction: return fmt::format("-{}", acc);
       case NodeKind::SmoothSubtraction: return fmt::format("{} - {}", k, acc);
+#define CLMARCH_BLEND(Kind, name, min_children, params_list) case NodeKind::Kind:
+#include "scene/node_kinds.def"
+        return blend_skip_limit(node.kind, acc, blend_arguments(node, lit_));
       case NodeKind::Union:
       case NodeKind::Intersection:
       case NodeKind::SmoothIntersection:
@@ -628,7 +647,7 @@ class SdfEmitter {
 
   Value combine(const Node& node, const Value& a, const Value& b) {
     Value out{fresh("d"), "", "", "", ""};
-    const std::string k = blend_radius(node);
+    const std::string k = operator_arguments(node);
     if (with_color_) {
       const std::string blend = blend_rule(node.kind, a.distance, b.distance, k);
       out.color = fresh("c");

@@ -2,6 +2,7 @@
 // recursive walk of the node tree with transforms and inherited colors.
 #include "reference/reference_sdf.hpp"
 
+#include "reference/reference_blends.hpp"
 #include "reference/reference_patterns.hpp"
 
 #include "reference/reference_fractals.hpp"
@@ -171,6 +172,9 @@ SdfSample sample_local(const Node& node, const glm::dvec3& p, const Material& ma
     case NodeKind::SmoothSubtraction:
       return fold_smooth(node, params<SmoothSubtraction>(node).k, p, material, colored,
                          [](const S& a, const S& b, double k) { return op_smooth_subtraction(a, b, k); });
+#define CLMARCH_BLEND(Kind, name, min_children, params_list) case NodeKind::Kind:
+#include "scene/node_kinds.def"
+      return fold_children(node, p, material, colored, [&](const S& a, const S& b) { return blend_sample(node, a, b); });
     case NodeKind::Repeat: {
       glm::dvec3 q = p;
       for (int a = 0; a < 3; ++a) {

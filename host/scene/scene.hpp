@@ -40,6 +40,8 @@ bool is_primitive(NodeKind kind);
 bool is_profile(NodeKind kind);
 /// True for the smooth operators, which take a blend radius k.
 bool is_smooth_operator(NodeKind kind);
+/// Whether kind is one of node_kinds.def's blends (CLMARCH_BLEND: chamfer, round, stairs, ...).
+bool is_blend_operator(NodeKind kind);
 
 /// Radius of a ball about the centre that holds the whole power-n Mandelbulb: 2^(1/(n-1)). Its
 /// estimator is never below the distance to this ball (kernels/fractals.cl, the reference).
@@ -161,6 +163,10 @@ int evaluation_cost(const Node& primitive);
 FieldQuality field_quality(NodeKind primitive);
 /// The blend radius k of a smooth operator.
 double smooth_k(const Node& node);
+/// How much steeper than the distance an operator's result can be, its operands being 1-Lipschitz:
+/// sqrt(n) over n children for the blends exact in the plane of the operands' distances (chamfer,
+/// round, columns, pipe, engrave: docs/scene-format.md "Blends"), 1 for every other operator.
+double operator_lipschitz(const Node& node);
 
 /// Lipschitz constant of a displace node's field, 1 + amplitude * frequency * sqrt(3): its distance
 /// is divided by it so the march never steps past the displaced surface.

@@ -146,6 +146,97 @@ std::optional<BoundingSphere> section_bounds(const Node& child) {
   return b;
 }
 
+/// The sphere holding every child's; nothing if one is unbounded.
+std::optional<BoundingSphere> enclosing_children(const Node& node) {
+  std::optional<BoundingSphere> all;
+  for (const Node& child : node.children) {
+    const std::optional<BoundingSphere> b = node_bounds(child);
+    if (!b) return std::nullopt;
+    all = all ? enclosing(*all, *b) : *b;
+  }
+  return all;
+}
+
+/// The smallest bounded child's sphere: an intersection lies inside every operand.
+std::optional<BoundingSphere> smallest_child(const Node& node) {
+  std::optional<BoundingSphere> best;
+  for (const Node& child : node.children) {
+    const std::optional<BoundingSphere> b = node_bounds(child);
+    if (b && (!best || b->radius < best->radius)) best = b;
+  }
+  return best;
+}
+
+/// The node's sphere grown by growth (in its field's units, so times its gain).
+std::optional<BoundingSphere> node_bounds_grown(const Node& node, double growth) {
+  std::optional<BoundingSphere> b = node_bounds(node);
+  if (b) b->radius += b->gain * growth;
+  return b;
+}
+
+/// How far one fold of a union blend can put its surface outside its operands' union: where the
+/// field is below tau >= 0, min(a, b) < tau + growth. Chamfer: (a + b - r) / sqrt 2 < tau gives
+/// min(a, b) <= (a + b) / 2 < r / 2 + tau / sqrt 2 (reached at a = b = r / 2, the bevel's middle).
+/// Round: r - |(r - a, r - b)| < tau with m = min(a, b) < r gives sqrt 2 (r - m) > r - tau, so
+/// m < r (1 - 1 / sqrt 2) + tau / sqrt 2 (the fillet's middle). Stairs: their field is at least
+/// (a + b - r) / 2, so m < r / 2 + tau (the corners lie on a + b = r). Columns: at least
+/// (a + b - r) / sqrt 2 (the columns reach the line a + b = r), so as the chamfer. Xor is never
+/// below min(a, b). For tau < 0 (deep inside) the chamfer, round and columns fall faster than
+/// min(a, b) (they are estimates), which these spheres do not cover.
+double union_blend_growth(const Node& node) {
+  switch (node.kind) {
+    case NodeKind::UnionChamfer: return params_of<UnionChamfer>(node).radius / 2.0;
+    case NodeKind::UnionRound: return params_of<UnionRound>(node).radius * (1.0 - std::sqrt(0.5));
+    case NodeKind::UnionStairs: return params_of<UnionStairs>(node).radius / 2.0;
+    case NodeKind::UnionColumns: return params_of<UnionColumns>(node).radius / 2.0;
+    default: return 0.0;
+  }
+}
+
+/// The blends' spheres. Folded over n children, a union blend's growth adds up n - 1 times: each
+/// fold's left operand may itself lie growth outside the one before. Intersections and differences
+/// are never below max(a, b) or a (they only remove): as the hard ones. The pipe is never below
+/// max(|a|, |b|) - r, so inside each operand grown by r per fold it follows; the tongue never below
+/// a - ra; engrave and groove never below a.
+std::optional<BoundingSphere> blend_bounds(const Node& node) {
+  const double folds = static_cast<double>(node.children.size() - 1);
+  switch (node.kind) {
+    case NodeKind::UnionChamfer:
+    case NodeKind::UnionRound:
+    case NodeKind::UnionStairs:
+    case NodeKind::UnionColumns:
+    case NodeKind::Xor: {
+      std::optional<BoundingSphere> all = enclosing_children(node);
+      if (all) all->radius += all->gain * folds * union_blend_growth(node);
+      return all;
+    }
+    case NodeKind::IntersectionChamfer:
+    case NodeKind::IntersectionRound:
+    case NodeKind::IntersectionStairs:
+    case NodeKind::IntersectionColumns: return smallest_child(node);
+    case NodeKind::DifferenceChamfer:
+    case NodeKind::DifferenceRound:
+    case NodeKind::DifferenceStairs:
+    case NodeKind::DifferenceColumns:
+    case NodeKind::Engrave:
+    case NodeKind::Groove: return node_bounds(node.children.front());
+    case NodeKind::Tongue: return node_bounds_grown(node.children.front(), folds * params_of<Tongue>(node).ra);
+    case NodeKind::Pipe: {
+      // The last child within r, the left operand within r, so the child before within 2 r, ...;
+      // the first two children within folds * r.
+      const double r = params_of<Pipe>(node).radius;
+      std::optional<BoundingSphere> best;
+      for (std::size_t i = 0; i < node.children.size(); ++i) {
+        const double steps = folds - static_cast<double>(std::max<std::size_t>(i, 1)) + 1.0;
+        const std::optional<BoundingSphere> b = node_bounds_grown(node.children[i], steps * r);
+        if (b && (!best || b->radius < best->radius)) best = b;
+      }
+      return best;
+    }
+    default: return std::nullopt;
+  }
+}
+
 std::optional<BoundingSphere> operator_bounds(const Node& node) {
   switch (node.kind) {
     case NodeKind::Repeat: return std::nullopt;
@@ -159,25 +250,9 @@ std::optional<BoundingSphere> operator_bounds(const Node& node) {
       return child;
     }
     case NodeKind::Union:
-    case NodeKind::SmoothUnion: {
-      std::optional<BoundingSphere> all;
-      for (const Node& child : node.children) {
-        const std::optional<BoundingSphere> b = node_bounds(child);
-        if (!b) return std::nullopt;
-        all = all ? enclosing(*all, *b) : *b;
-      }
-      return all;
-    }
+    case NodeKind::SmoothUnion: return enclosing_children(node);
     case NodeKind::Intersection:
-    case NodeKind::SmoothIntersection: {
-      // Inside every operand: the smallest bounded one serves.
-      std::optional<BoundingSphere> best;
-      for (const Node& child : node.children) {
-        const std::optional<BoundingSphere> b = node_bounds(child);
-        if (b && (!best || b->radius < best->radius)) best = b;
-      }
-      return best;
-    }
+    case NodeKind::SmoothIntersection: return smallest_child(node);
     case NodeKind::Subtraction:
     case NodeKind::SmoothSubtraction: return node_bounds(node.children.front());
     case NodeKind::Elongate: {
@@ -264,6 +339,9 @@ std::optional<BoundingSphere> operator_bounds(const Node& node) {
       const double largest = std::max({f.x, f.y, f.z}), smallest = std::min({f.x, f.y, f.z});
       return BoundingSphere{child->center * f, child->radius * largest, child->gain * largest / smallest};
     }
+#define CLMARCH_BLEND(Kind, name, min_children, params_list) case NodeKind::Kind:
+#include "scene/node_kinds.def"
+      return blend_bounds(node);
     // Primitives have primitive_bounds instead.
 #define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind:
 #include "scene/node_kinds.def"
