@@ -54,6 +54,9 @@ const BoundCase kBoundedCases[] = {
     {"bend", "  bend: {rate: -40, children: [{box: {center: [0, 0.4, 0], half_size: [1.5, 0.2, 0.3]}}]}"},
     {"nonuniform_scale", "  nonuniform_scale: {factors: [2, 0.5, 1], children: [{torus: {center: [0.5, 0, 0], major_radius: 1, minor_radius: 0.3}}]}"},
     {"union", "  union:\n    - sphere: {center: [-1, 0, 0], radius: 0.5}\n    - box: {center: [1.5, 0, 0], half_size: [0.3, 0.3, 0.3]}"},
+    // Each fold of three coincident spheres undershoots the last by up to k / 4: 0.39 k in all.
+    {"smooth_union_of_three",
+     "  smooth_union:\n    k: 2\n    children: [{sphere: {radius: 0.5}}, {sphere: {radius: 0.5}}, {sphere: {radius: 0.5}}]"},
     {"smooth_union",
      "  smooth_union:\n    k: 0.8\n    children:\n      - sphere: {center: [-0.6, 0, 0], radius: 0.5}\n"
      "      - sphere: {center: [0.6, 0, 0], radius: 0.5}"},

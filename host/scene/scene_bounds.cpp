@@ -355,8 +355,11 @@ std::optional<BoundingSphere> operator_bounds(const Node& node) {
 std::optional<BoundingSphere> local_bounds(const Node& node) {
   std::optional<BoundingSphere> b = is_primitive(node.kind) ? primitive_bounds(node.params) : operator_bounds(node);
   if (!b) return std::nullopt;
-  // The polynomial smooth minimum and maximum undershoot the hard ones by at most k / 4.
-  if (is_smooth_operator(node.kind)) b->radius += b->gain * smooth_k(node) / 4.0;
+  // The polynomial smooth minimum and maximum undershoot the hard ones by at most k / 4 a fold:
+  // (n - 1) k / 4 over n children.
+  if (is_smooth_operator(node.kind)) {
+    b->radius += b->gain * smooth_k(node) / 4.0 * static_cast<double>(node.children.size() - 1);
+  }
   return b;
 }
 
