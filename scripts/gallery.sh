@@ -18,7 +18,7 @@ mkdir -p docs/images/gallery
   echo "| Ray Marching in Three.js | two_spheres |"
   echo "| An Introduction to Raymarching, the PBR course | pbr_sphere, lava_lamp |"
   echo "| Ray Marching in Infinitely Tiling Space (zebra-north.com) | tiled_spheres, tiled_boxes |"
-  echo "| Inigo Quilez's distance functions (the catalogue) | catalogue |"
+  echo "| Inigo Quilez's distance functions (the catalogue) | catalogue, mechanical_part, mandelbox |"
   echo "| A shader author's first scene (issue 29) | checker_floor |"
   echo
   for scene in scenes/*.yaml; do
