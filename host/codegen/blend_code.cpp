@@ -46,7 +46,12 @@ std::string blend_first_wins(NodeKind kind, const std::string& a, const std::str
     case NodeKind::Engrave: return fmt::format("{} >= engrave_cut({}, {}, {})", a, a, b, args);
     case NodeKind::Groove: return fmt::format("{} >= groove_cut({}, {}, {})", a, a, b, args);
     case NodeKind::Tongue: return fmt::format("{} <= tongue_part({}, {}, {})", a, a, b, args);
-    default: break;
+    // Every kind that is not a blend.
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind:
+#define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) case NodeKind::Kind:
+#define CLMARCH_BLEND(Kind, name, min_children, params_list)
+#include "scene/node_kinds.def"
+      break;
   }
   throw std::logic_error("blend_first_wins() of a kind that is not a blend");
 }
@@ -79,8 +84,20 @@ std::optional<std::string> blend_skip_limit(NodeKind kind, const std::string& ac
     case NodeKind::Groove: return fmt::format("{} - {}", args[1], acc);
     // |b| >= a + rb: the tongue's part is at least a.
     case NodeKind::Tongue: return fmt::format("{} + {}", acc, args[1]);
-    default: return std::nullopt;
+    // An intersection blend's result is the largest operand's at most: no later child can be skipped.
+    case NodeKind::IntersectionChamfer:
+    case NodeKind::IntersectionRound:
+    case NodeKind::IntersectionStairs:
+    case NodeKind::IntersectionColumns:
+    case NodeKind::Pipe:
+    // Every kind that is not a blend.
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind:
+#define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) case NodeKind::Kind:
+#define CLMARCH_BLEND(Kind, name, min_children, params_list)
+#include "scene/node_kinds.def"
+      return std::nullopt;
   }
+  return std::nullopt;
 }
 
 }  // namespace clmarch

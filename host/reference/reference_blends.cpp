@@ -104,7 +104,12 @@ double blend_distance(const Node& node, double a, double b) {
     case NodeKind::Engrave: return std::max(a, engrave_cut(a, b, radius(node)));
     case NodeKind::Groove: return std::max(a, groove_cut(a, b, param(node, "ra"), param(node, "rb")));
     case NodeKind::Tongue: return std::min(a, tongue_part(a, b, param(node, "ra"), param(node, "rb")));
-    default: break;
+    // Every kind that is not a blend.
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind:
+#define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) case NodeKind::Kind:
+#define CLMARCH_BLEND(Kind, name, min_children, params_list)
+#include "scene/node_kinds.def"
+      break;
   }
   throw std::logic_error("blend_distance() of a kind that is not a blend");
 }
@@ -130,7 +135,12 @@ SdfSample blend_sample(const Node& node, const SdfSample& a, const SdfSample& b)
     case NodeKind::Engrave: first = da >= engrave_cut(da, db, radius(node)); break;
     case NodeKind::Groove: first = da >= groove_cut(da, db, param(node, "ra"), param(node, "rb")); break;
     case NodeKind::Tongue: first = da <= tongue_part(da, db, param(node, "ra"), param(node, "rb")); break;
-    default: throw std::logic_error("blend_sample() of a kind that is not a blend");
+    // Every kind that is not a blend.
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind:
+#define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) case NodeKind::Kind:
+#define CLMARCH_BLEND(Kind, name, min_children, params_list)
+#include "scene/node_kinds.def"
+      throw std::logic_error("blend_sample() of a kind that is not a blend");
   }
   SdfSample out = first ? a : b;
   out.distance = blend_distance(node, da, db);

@@ -73,23 +73,15 @@ bool is_blend_operator(NodeKind kind) {
 }
 
 double operator_lipschitz(const Node& node) {
-  switch (node.kind) {
-    // Their gradients in the plane of (a, b) are unit vectors, (1, 1) / sqrt 2 or (a, b) / |(a, b)|,
-    // so in space |grad f| <= |(|grad a|, |grad b|)|: sqrt 2 for two operands (reached where
-    // grad a = grad b), and each fold adds 1 under the root: sqrt(n) for n children.
-    case NodeKind::UnionChamfer:
-    case NodeKind::IntersectionChamfer:
-    case NodeKind::DifferenceChamfer:
-    case NodeKind::UnionRound:
-    case NodeKind::IntersectionRound:
-    case NodeKind::DifferenceRound:
-    case NodeKind::UnionColumns:
-    case NodeKind::IntersectionColumns:
-    case NodeKind::DifferenceColumns:
-    case NodeKind::Pipe:
-    case NodeKind::Engrave: return std::sqrt(static_cast<double>(node.children.size()));
-    default: return 1.0;
-  }
+  // Their gradients in the plane of (a, b) are unit vectors, (1, 1) / sqrt 2 or (a, b) / |(a, b)|,
+  // so in space |grad f| <= |(|grad a|, |grad b|)|: sqrt 2 for two operands (reached where
+  // grad a = grad b), and each fold adds 1 under the root: sqrt(n) for n children.
+  constexpr NodeKind kExactInTheirPlane[] = {NodeKind::UnionChamfer,  NodeKind::IntersectionChamfer, NodeKind::DifferenceChamfer,
+                                             NodeKind::UnionRound,    NodeKind::IntersectionRound,   NodeKind::DifferenceRound,
+                                             NodeKind::UnionColumns,  NodeKind::IntersectionColumns, NodeKind::DifferenceColumns,
+                                             NodeKind::Pipe,          NodeKind::Engrave};
+  const bool steeper = std::find(std::begin(kExactInTheirPlane), std::end(kExactInTheirPlane), node.kind) != std::end(kExactInTheirPlane);
+  return steeper ? std::sqrt(static_cast<double>(node.children.size())) : 1.0;
 }
 
 int min_children(NodeKind kind) {

@@ -189,8 +189,27 @@ double union_blend_growth(const Node& node) {
     case NodeKind::UnionRound: return params_of<UnionRound>(node).radius * (1.0 - std::sqrt(0.5));
     case NodeKind::UnionStairs: return params_of<UnionStairs>(node).radius / 2.0;
     case NodeKind::UnionColumns: return params_of<UnionColumns>(node).radius / 2.0;
-    default: return 0.0;
+    case NodeKind::IntersectionChamfer:
+    case NodeKind::DifferenceChamfer:
+    case NodeKind::IntersectionRound:
+    case NodeKind::DifferenceRound:
+    case NodeKind::IntersectionStairs:
+    case NodeKind::DifferenceStairs:
+    case NodeKind::IntersectionColumns:
+    case NodeKind::DifferenceColumns:
+    case NodeKind::Xor:
+    case NodeKind::Pipe:
+    case NodeKind::Engrave:
+    case NodeKind::Groove:
+    case NodeKind::Tongue:
+    // Every kind that is not a blend.
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind:
+#define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) case NodeKind::Kind:
+#define CLMARCH_BLEND(Kind, name, min_children, params_list)
+#include "scene/node_kinds.def"
+      return 0.0;
   }
+  return 0.0;
 }
 
 /// The blends' spheres. Folded over n children, a union blend's growth adds up n - 1 times: each
@@ -233,8 +252,14 @@ std::optional<BoundingSphere> blend_bounds(const Node& node) {
       }
       return best;
     }
-    default: return std::nullopt;
+    // Every kind that is not a blend.
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind:
+#define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) case NodeKind::Kind:
+#define CLMARCH_BLEND(Kind, name, min_children, params_list)
+#include "scene/node_kinds.def"
+      return std::nullopt;
   }
+  return std::nullopt;
 }
 
 std::optional<BoundingSphere> operator_bounds(const Node& node) {
