@@ -139,3 +139,79 @@ SDF_INLINE vfloat sd_ellipsoid(vec3v p, float4 center, float4 radii) {
   vfloat inner = (vfloat)(-fmin(radii.x, fmin(radii.y, radii.z)));
   return select(inner, k0 * (k0 - 1.0f) / k1, MASK(k1 > 0.0f));
 }
+
+/* Exact (Inigo Quilez's sdCone): apex at center, the base disc height below, of radius
+ * height tan(angle). In the half plane (r, y), q is the rim; a is the offset to the slanted
+ * side, b to the base; s < 0 inside both. */
+SDF_INLINE vfloat sd_cone(vec3v p, float4 center, float angle, float height) {
+  vec3v l = v3_sub(p, v3_from(center));
+  float qx = height * sinpi(angle / 180.0f) / cospi(angle / 180.0f);
+  float qy = -height;
+  vfloat wx = vsqrt(l.x * l.x + l.z * l.z);
+  vfloat wy = l.y;
+  vfloat ta = clamp((wx * qx + wy * qy) / (qx * qx + qy * qy), 0.0f, 1.0f);
+  vfloat ax = wx - qx * ta;
+  vfloat ay = wy - qy * ta;
+  vfloat bx = wx - qx * clamp(wx / qx, 0.0f, 1.0f);
+  vfloat by = wy - qy;
+  vfloat s = fmax(wy * qx - wx * qy, qy - wy);
+  return vsqrt(fmin(ax * ax + ay * ay, bx * bx + by * by)) * sign(s);
+}
+
+/* Exact (Inigo Quilez's sdRoundedCylinder, sized by the outer radius and half height): the
+ * cylinder shrunk by edge_radius, grown back by it. */
+SDF_INLINE vfloat sd_rounded_cylinder(vec3v p, float4 center, float radius, float half_height, float edge_radius) {
+  vec3v l = v3_sub(p, v3_from(center));
+  vfloat dr = vsqrt(l.x * l.x + l.z * l.z) - (radius - edge_radius);
+  vfloat dh = fabs(l.y) - (half_height - edge_radius);
+  vfloat outside_r = fmax(dr, 0.0f);
+  vfloat outside_h = fmax(dh, 0.0f);
+  return fmin(fmax(dr, dh), 0.0f) + vsqrt(outside_r * outside_r + outside_h * outside_h) - edge_radius;
+}
+
+/* Exact (Inigo Quilez's sdRoundCone between two points, one square root): y is the position
+ * along a-b times |b - a|^2, x2 the squared distance from the axis times |b - a|^4; the
+ * comparisons with k pick the sphere at b, the sphere at a or the tangent cone between them.
+ * Needs |radius_a - radius_b| < |b - a| (the loader checks it). */
+SDF_INLINE vfloat sd_round_cone(vec3v p, float4 a, float4 b, float radius_a, float radius_b) {
+  float4 ba = b - a;
+  float l2 = dot(ba.xyz, ba.xyz);
+  float rr = radius_a - radius_b;
+  float a2 = l2 - rr * rr;
+  float il2 = 1.0f / l2;
+  vec3v pa = v3_sub(p, v3_from(a));
+  vfloat y = v3_dot(pa, v3_from(ba));
+  vfloat z = y - l2;
+  vec3v off = v3_sub(v3_scale(pa, (vfloat)(l2)), v3_scale(v3_from(ba), y));
+  vfloat x2 = v3_dot(off, off);
+  vfloat y2 = y * y * l2;
+  vfloat z2 = z * z * l2;
+  vfloat k = sign(rr) * rr * rr * x2;
+  vfloat near_b = vsqrt(x2 + z2) * il2 - radius_b;
+  vfloat near_a = vsqrt(x2 + y2) * il2 - radius_a;
+  vfloat side = (vsqrt(x2 * a2 * il2) + y * rr) * il2 - radius_a;
+  vfloat d = select(side, near_a, MASK(sign(y) * a2 * y2 < k));
+  return select(d, near_b, MASK(sign(z) * a2 * z2 > k));
+}
+
+/* Exact (Inigo Quilez's sdCappedTorus, his xy plane laid on our xz): k is the distance along
+ * the spine's plane to the nearest spine point's direction, the arc itself within angle of +z,
+ * else the end's. The square's argument is clamped at 0: it is a squared distance that
+ * rounding can take just below. */
+SDF_INLINE vfloat sd_capped_torus(vec3v p, float4 center, float angle, float major_radius, float minor_radius) {
+  vec3v l = v3_sub(p, v3_from(center));
+  float s = sinpi(angle / 180.0f);
+  float c = cospi(angle / 180.0f);
+  vfloat x = fabs(l.x);
+  vfloat k = select(vsqrt(x * x + l.z * l.z), x * s + l.z * c, MASK(c * x > s * l.z));
+  vfloat squared = x * x + l.y * l.y + l.z * l.z + major_radius * major_radius - 2.0f * major_radius * k;
+  return vsqrt(fmax(squared, 0.0f)) - minor_radius;
+}
+
+/* Exact (Inigo Quilez's sdLink): the torus about z, elongated along y by half_length. */
+SDF_INLINE vfloat sd_link(vec3v p, float4 center, float half_length, float major_radius, float minor_radius) {
+  vec3v l = v3_sub(p, v3_from(center));
+  vfloat y = fmax(fabs(l.y) - half_length, 0.0f);
+  vfloat ring = vsqrt(l.x * l.x + y * y) - major_radius;
+  return vsqrt(ring * ring + l.z * l.z) - minor_radius;
+}

@@ -148,6 +148,17 @@ const std::vector<BadInputCase>& bad_input_cases() {
       // Issue 25's sierpinski: its scale is the IFS's, in (1, 4].
       {"sierpinski_scale_one", "sdf:\n  sierpinski: {scale: 1}\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
        {"DIR/scene.yaml:2:", "sdf.sierpinski.scale must be in (1, 4] (got 1)"}},
+      // The later catalogue primitives' checks across parameters.
+      {"rounded_cylinder_edge_too_large", "sdf:\n  rounded_cylinder: {radius: 0.5, half_height: 0.2, edge_radius: 0.3}\n",
+       {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
+       {"DIR/scene.yaml:2:", "sdf.rounded_cylinder.edge_radius must be in [0, 0.2] (got 0.3)"}},
+      {"round_cone_one_ball_inside", "sdf:\n  round_cone: {a: [0, 0, 0], b: [0, 0.5, 0], radius_a: 1, radius_b: 0.2}\n",
+       {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
+       {"DIR/scene.yaml:2:", "sdf.round_cone.radius_a and sdf.round_cone.radius_b must differ by less than |b - a| = 0.5"}},
+      {"round_cone_same_points", "sdf:\n  round_cone: {a: [0, 1, 0], b: [0, 1, 0]}\n",
+       {"render", "DIR/scene.yaml", "-o", "DIR/out.png"}, {"DIR/scene.yaml:2:", "sdf.round_cone.a and sdf.round_cone.b must differ"}},
+      {"cone_right_angle", "sdf:\n  cone: {angle: 90}\n", {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
+       {"DIR/scene.yaml:2:", "sdf.cone.angle must be in (0, 90) (got 90)"}},
       {"no_image_nothing_else", kValidScene, {"render", "DIR/scene.yaml", "--no-image"}, {"--no-image leaves nothing to write"}},
       {"no_image_with_output", kValidScene, {"render", "DIR/scene.yaml", "--no-image", "--stats", "-o", "DIR/out.png"},
        {"--no-image and --output"}},

@@ -76,6 +76,29 @@ const std::vector<SdfCase>& sdf_cases() {
       // Quilez's bound is exact on the axes outside.
       {"ellipsoid", "ellipsoid: {center: [1, 0, 0], radii: [1, 0.5, 0.75]}",
        {{{3, 0, 0}, 1.0}, {{-1, 0, 0}, 1.0}, {{1, 1.5, 0}, 1.0}, {{1, -1.5, 0}, 1.0}, {{1, 0, 1.75}, 1.0}, {{1, 0, -1.75}, 1.0}}},
+      // Apex (0, 1, 0), base the unit disc at y = 0: in the (r, y) half plane the slant is r + y = 1.
+      {"cone", "cone: {center: [0, 1, 0], angle: 45, height: 1}",
+       {{{0, 3, 0}, 2.0}, {{0, -2, 0}, 2.0}, {{2, 0, 0}, 1.0}, {{-2, 0, 0}, 1.0}, {{0, 0, 2}, 1.0},
+        {{1, 1, 0}, 1.0 / kSqrt2}, {{0, 1, -1}, 1.0 / kSqrt2}, {{0, 0.5, 0}, -0.5 / kSqrt2}, {{0.2, 0.1, 0}, -0.1}}},
+      // Outer radius 1 and half height 2; the rim's quarter circle is about (0.5, 1.5) in (r, y).
+      {"rounded_cylinder", "rounded_cylinder: {radius: 1, half_height: 2, edge_radius: 0.5}",
+       {{{3, 0, 0}, 2.0}, {{-3, 0, 0}, 2.0}, {{0, 4, 0}, 2.0}, {{0, -4, 0}, 2.0}, {{3.5, 5.5, 0}, 4.5},
+        {{0, -5.5, -3.5}, 4.5}, {{0, 0, 0}, -1.0}, {{0, 1.8, 0}, -0.2}}},
+      // Balls of radius 1 at (1, 0, 0) and 0.5 at (1, 2, 0): the tangent's normal in (r, y) is
+      // (sqrt 15, 1) / 4, the line n . q = 1 about a.
+      {"round_cone", "round_cone: {a: [1, 0, 0], b: [1, 2, 0], radius_a: 1, radius_b: 0.5}",
+       {{{1, -3, 0}, 2.0}, {{1, 4, 0}, 1.5}, {{4, 1, 0}, (3.0 * std::sqrt(15.0) - 3.0) / 4.0},
+        {{1, 1, -3}, (3.0 * std::sqrt(15.0) - 3.0) / 4.0}, {{-2, 1, 0}, (3.0 * std::sqrt(15.0) - 3.0) / 4.0}, {{1, 0, 0}, -1.0}}},
+      // The half ring z >= 0 of radius 1: its ends at (+-1, 0, 0).
+      {"capped_torus", "capped_torus: {angle: 90, major_radius: 1, minor_radius: 0.25}",
+       {{{0, 0, 1}, -0.25}, {{0, 0, 3}, 1.75}, {{0, 0, -1}, kSqrt2 - 0.25}, {{0, 2, 1}, 1.75}, {{3, 0, 0}, 1.75},
+        {{-3, 0, 0}, 1.75}, {{2, 0, -2}, std::sqrt(5.0) - 0.25}, {{-2, 0, -2}, std::sqrt(5.0) - 0.25}}},
+      {"capped_torus_full", "capped_torus: {center: [0, 1, 0], angle: 180, major_radius: 1, minor_radius: 0.25}",
+       {{{0, 1, -1}, -0.25}, {{0, 1, -3}, 1.75}, {{0, 1, 0}, 0.75}, {{-1, 1, 0}, -0.25}}},
+      // Bars x = +-1 for |y| <= 1, half circles about (0, +-1, 0) beyond.
+      {"link", "link: {half_length: 1, major_radius: 1, minor_radius: 0.25}",
+       {{{1, 0, 0}, -0.25}, {{-1, 0.5, 0}, -0.25}, {{3, 0, 0}, 1.75}, {{0, 3, 0}, 0.75}, {{0, -3, 0}, 0.75},
+        {{0, 0, 0}, 0.75}, {{0, 0, 2}, std::sqrt(5.0) - 0.25}, {{0, 1, 0}, 0.75}, {{0, -1, 0}, 0.75}}},
       // The unit sphere stretched along x into a capsule of half length 1.
       {"elongate", "elongate: {h: [1, 0, 0], children: [{sphere: {radius: 1}}]}",
        {{{3, 0, 0}, 1.0}, {{-2.5, 0, 0}, 0.5}, {{0.5, 2, 0}, 1.0}, {{0.5, 0, 0}, -1.0}, {{-0.5, 0, -3}, 2.0}}},
@@ -207,7 +230,9 @@ INSTANTIATE_TEST_SUITE_P(AllKinds, SdfClosedForm, ::testing::ValuesIn(sdf_cases(
 // hexagon's and the trapezoid's edges). They must agree everywhere, not only at the probes above.
 TEST(SdfClosedForm, CatalogueKernelMatchesTheReferenceEverywhere) {
   const std::set<std::string> catalogue = {"octahedron", "hex_prism", "capped_cone", "capped_cone_frustum", "ellipsoid",
-                                           "elongate", "onion", "round", "mirror", "repeat_polar", "repeat_limited"};
+                                           "elongate", "onion", "round", "mirror", "repeat_polar", "repeat_limited",
+                                           // Later catalogue primitives.
+                                           "cone", "rounded_cylinder", "round_cone", "capped_torus", "capped_torus_full", "link"};
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> coord(-4.0, 4.0);
   std::vector<glm::dvec3> points(400);

@@ -254,6 +254,19 @@ TEST(FarCamera, EveryNodeKindRendersInTheMapFrame) {
         1.0 - offset.y, at(-1.5, 0, 0), at(-0.5, -0.5, 1), at(0.5, 0.2, 1.2), at(1.5, 0, 0), at(0, -0.4, 0),
         at(0, 0.8, -1.5), at(1.5, 0.6, -1.2), at(-1.5, 0.6, -1.2), at(0, -0.2, 2.2), at(0, -0.6, -2.5));
   });
+  // The later catalogue primitives; those given by points (round_cone) move each point.
+  expect_checks_near_and_far([](const auto& at, const glm::dvec3& offset) {
+    return fmt::format(
+        "  union:\n"
+        "    - plane: {{normal: [0, 1, 0], offset: {}}}\n"
+        "    - cone: {{center: {}, angle: 30, height: 0.8}}\n"
+        "    - rounded_cylinder: {{center: {}, radius: 0.35, half_height: 0.4, edge_radius: 0.1}}\n"
+        "    - round_cone: {{a: {}, b: {}, radius_a: 0.3, radius_b: 0.15}}\n"
+        "    - capped_torus: {{center: {}, angle: 120, major_radius: 0.35, minor_radius: 0.1, rotate: [-60, 0, 0]}}\n"
+        "    - link: {{center: {}, half_length: 0.2, major_radius: 0.25, minor_radius: 0.08}}\n",
+        1.0 - offset.y, at(-1.5, 0.2, 0), at(-0.5, -0.5, 1), at(0.5, -0.6, 1.2), at(0.6, 0.1, 1.0), at(1.5, 0, 0),
+        at(0, -0.4, 0));
+  });
 }
 
 // A model authored far from the origin and translated home (issue 26): a transformed node's

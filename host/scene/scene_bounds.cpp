@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace clmarch {
 namespace {
@@ -51,6 +52,27 @@ std::optional<BoundingSphere> primitive_bounds(const NodeParams& params) {
       const double most = std::max({e.radii.x, e.radii.y, e.radii.z});
       const double least = std::min({e.radii.x, e.radii.y, e.radii.z});
       return BoundingSphere{e.center, most, (most * most + least * least) / (2.0 * most * least)};
+    }
+    // The smallest sphere through the apex and the rim, its centre on the axis within the cone.
+    std::optional<BoundingSphere> operator()(const Cone& c) const {
+      const double rim = c.height * std::tan(c.angle * std::numbers::pi / 180.0);
+      const double below = std::min((rim * rim + c.height * c.height) / (2.0 * c.height), c.height);
+      return BoundingSphere{c.center - glm::dvec3(0.0, below, 0.0), std::max(below, std::hypot(rim, c.height - below))};
+    }
+    std::optional<BoundingSphere> operator()(const RoundedCylinder& c) const {
+      return BoundingSphere{c.center, std::hypot(c.radius, c.half_height)};
+    }
+    // The hull of two balls lies in any sphere holding both (the loader keeps either out of the other).
+    std::optional<BoundingSphere> operator()(const RoundCone& c) const {
+      const double length = glm::length(c.b - c.a);
+      const double radius = 0.5 * (length + c.radius_a + c.radius_b);
+      return BoundingSphere{c.a + (c.b - c.a) * ((radius - c.radius_a) / length), radius};
+    }
+    std::optional<BoundingSphere> operator()(const CappedTorus& t) const {
+      return BoundingSphere{t.center, t.major_radius + t.minor_radius};
+    }
+    std::optional<BoundingSphere> operator()(const Link& l) const {
+      return BoundingSphere{l.center, l.half_length + l.major_radius + l.minor_radius};
     }
     std::optional<BoundingSphere> operator()(const Capsule& c) const {
       return BoundingSphere{0.5 * (c.a + c.b), 0.5 * glm::length(c.b - c.a) + c.radius};

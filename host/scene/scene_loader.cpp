@@ -488,6 +488,27 @@ class SceneReader {
     }
   }
 
+  void check_params(RoundedCylinder& cylinder, const YAML::Node& map, const std::string& path) {
+    const double smallest = std::min(cylinder.radius, cylinder.half_height);
+    if (map["edge_radius"]) {
+      cylinder.edge_radius = yaml_.number(map["edge_radius"], path + ".edge_radius", Range::closed(0.0, smallest));
+    } else {
+      cylinder.edge_radius = std::min(cylinder.edge_radius, smallest);
+    }
+  }
+
+  void check_params(RoundCone& cone, const YAML::Node& map, const std::string& path) {
+    if (cone.a == cone.b) yaml_.fail(map, path + ".a and " + path + ".b must differ (use a sphere for a point)");
+    if (cone.radius_a == 0.0 && cone.radius_b == 0.0) {
+      yaml_.fail(map, path + ".radius_a and " + path + ".radius_b must not both be 0 (that is a segment)");
+    }
+    const double length = glm::length(cone.b - cone.a);
+    if (!(std::abs(cone.radius_a - cone.radius_b) < length)) {
+      yaml_.fail(map, fmt::format("{}.radius_a and {}.radius_b must differ by less than |b - a| = {} (got {} and {}: one "
+                                  "ball holds the other, use a sphere)", path, path, length, cone.radius_a, cone.radius_b));
+    }
+  }
+
   void check_params(Mandelbulb& bulb, const YAML::Node& map, const std::string& path) {
     // An escaping orbit reaches |z| ~ bailout^power; the kernel squares it in float (max ~3e38).
     const double largest_bailout = std::pow(10.0, 18.0 / bulb.power);

@@ -1,0 +1,116 @@
+// Reference distance functions of the later catalogue primitives (cones, rounded and cut shapes,
+// links, flat triangles), in double. Each is a geometric construction, written apart from
+// Inigo Quilez's closed forms in kernels/primitives.cl: a solid of revolution is its profile in
+// the half plane (r, y), measured to the profile's segments and arcs, with an inside test.
+#include "reference/reference_geometry.hpp"
+#include "reference/reference_sdf.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+namespace clmarch {
+namespace {
+
+using geometry::distance_to_arc;
+using geometry::distance_to_segment;
+
+constexpr double kPi = std::numbers::pi;
+
+double radians(double degrees) { return degrees * kPi / 180.0; }
+
+/// p about the y axis through center: (distance from the axis, height).
+glm::dvec2 profile_point(const glm::dvec3& p, const glm::dvec3& center) {
+  const glm::dvec3 l = p - center;
+  return {std::hypot(l.x, l.z), l.y};
+}
+
+}  // namespace
+
+double sd_cone(const glm::dvec3& p, const Cone& cone) {
+  // The triangle apex (0, 0), rim (R, -h), base centre (0, -h); its edge on the axis is no boundary.
+  const glm::dvec2 q = profile_point(p, cone.center);
+  const double h = cone.height;
+  const double rim_radius = h * std::tan(radians(cone.angle));
+  const glm::dvec2 apex(0.0, 0.0), rim(rim_radius, -h), base(0.0, -h);
+  const double nearest = std::min(distance_to_segment(q, apex, rim), distance_to_segment(q, rim, base));
+  const bool inside = q.y <= 0.0 && q.y >= -h && q.x <= rim_radius * (-q.y / h);
+  return inside ? -nearest : nearest;
+}
+
+double sd_rounded_cylinder(const glm::dvec3& p, const RoundedCylinder& cylinder) {
+  // The upper quarter of the profile (|y| by symmetry): the flat top, the straight side and the
+  // quarter circle of the rounded rim between them.
+  const glm::dvec2 r = profile_point(p, cylinder.center);
+  const glm::dvec2 q(r.x, std::abs(r.y));
+  const double radius = cylinder.radius, h = cylinder.half_height, e = cylinder.edge_radius;
+  const glm::dvec2 corner(radius - e, h - e);
+  const double nearest = std::min({distance_to_segment(q, {0.0, h}, {radius - e, h}),
+                                   distance_to_segment(q, {radius, 0.0}, {radius, h - e}),
+                                   distance_to_arc(q, corner, e, 0.0, 0.5 * kPi)});
+  const bool in_box = q.x <= radius && q.y <= h;
+  const bool in_corner_square = q.x > corner.x && q.y > corner.y;
+  const bool inside = in_box && (!in_corner_square || glm::length(q - corner) <= e);
+  return inside ? -nearest : nearest;
+}
+
+double sd_round_cone(const glm::dvec3& p, const RoundCone& cone) {
+  // In the plane of the axis and p: x off the axis, y along it from a (0) to b (L). The hull of
+  // the two discs is bounded by the arc of a's circle below the common tangent, the tangent
+  // segment and the arc of b's circle above it; its outward normal n has n.y = (r_a - r_b) / L.
+  const glm::dvec3 axis = cone.b - cone.a;
+  const double length = glm::length(axis);
+  const glm::dvec3 u = axis / length;
+  const double along = glm::dot(p - cone.a, u);
+  const glm::dvec2 q(glm::length(p - cone.a - along * u), along);
+  const double ra = cone.radius_a, rb = cone.radius_b;
+  const glm::dvec2 ca(0.0, 0.0), cb(0.0, length);
+  const double ny = (ra - rb) / length;
+  const glm::dvec2 n(std::sqrt(1.0 - ny * ny), ny);
+  const glm::dvec2 ta = ca + ra * n, tb = cb + rb * n;
+  const double tangent_angle = std::atan2(n.y, n.x);
+  const double nearest = std::min({distance_to_arc(q, ca, ra, -0.5 * kPi, tangent_angle), distance_to_segment(q, ta, tb),
+                                   distance_to_arc(q, cb, rb, tangent_angle, 0.5 * kPi)});
+  // The hull is both discs and the trapezoid ca, ta, tb, cb between them.
+  const auto left_of = [&](const glm::dvec2& from, const glm::dvec2& to) {
+    const glm::dvec2 e = to - from;
+    return e.x * (q.y - from.y) - e.y * (q.x - from.x) >= 0.0;
+  };
+  const bool in_trapezoid = left_of(ca, ta) && left_of(ta, tb) && left_of(tb, cb) && left_of(cb, ca);
+  const bool inside = glm::length(q - ca) <= ra || glm::length(q - cb) <= rb || in_trapezoid;
+  return inside ? -nearest : nearest;
+}
+
+double sd_capped_torus(const glm::dvec3& p, const CappedTorus& torus) {
+  // The spine: the points major_radius (sin t, 0, cos t) for |t| <= angle. p's own direction
+  // about y is the nearest spine point's where the arc covers it, else an end is nearest.
+  const glm::dvec3 l = p - torus.center;
+  const glm::dvec3 q(std::abs(l.x), l.y, l.z);
+  const double angle = radians(torus.angle);
+  const double direction = std::atan2(q.x, q.z);
+  double spine;
+  if (direction <= angle) {
+    spine = std::hypot(std::hypot(q.x, q.z) - torus.major_radius, q.y);
+  } else {
+    spine = glm::length(q - torus.major_radius * glm::dvec3(std::sin(angle), 0.0, std::cos(angle)));
+  }
+  return spine - torus.minor_radius;
+}
+
+double sd_link(const glm::dvec3& p, const Link& link) {
+  // The spine in the xy plane: two bars x = +-R for |y| <= half_length, and the half circles of
+  // radius R about (0, +-half_length) beyond them, measured in space.
+  const glm::dvec3 l = p - link.center;
+  const double r = link.major_radius, h = link.half_length;
+  double spine = std::min(distance_to_segment(l, {r, -h, 0.0}, {r, h, 0.0}), distance_to_segment(l, {-r, -h, 0.0}, {-r, h, 0.0}));
+  for (const double side : {1.0, -1.0}) {
+    // Beyond the end (the half plane away from the centre), the nearest point of the half
+    // circle is in p's direction about the end's centre; elsewhere it is a bar's end.
+    const double beyond = side * l.y - h;
+    if (beyond >= 0.0) spine = std::min(spine, std::hypot(std::hypot(l.x, beyond) - r, l.z));
+  }
+  return spine - link.minor_radius;
+}
+
+}  // namespace clmarch
