@@ -215,3 +215,105 @@ SDF_INLINE vfloat sd_link(vec3v p, float4 center, float half_length, float major
   vfloat ring = vsqrt(l.x * l.x + y * y) - major_radius;
   return vsqrt(ring * ring + l.z * l.z) - minor_radius;
 }
+
+/* Exact (Inigo Quilez's sdCutSphere): the part y >= cut_height of the ball, in the half plane
+ * (r, y); w is the rim's radius. s < 0 picks the sphere; else the flat disc within the rim, or
+ * the rim itself. */
+SDF_INLINE vfloat sd_cut_sphere(vec3v p, float4 center, float radius, float cut_height) {
+  vec3v l = v3_sub(p, v3_from(center));
+  float h = cut_height;
+  float w = sqrt(radius * radius - h * h);
+  vfloat qx = vsqrt(l.x * l.x + l.z * l.z);
+  vfloat qy = l.y;
+  vfloat s = fmax((h - radius) * qx * qx + w * w * (h + radius - 2.0f * qy), h * qx - w * qy);
+  vfloat sphere = vsqrt(qx * qx + qy * qy) - radius;
+  vfloat rim = vsqrt((qx - w) * (qx - w) + (qy - h) * (qy - h));
+  return select(select(rim, h - qy, MASK(qx < w)), sphere, MASK(s < 0.0f));
+}
+
+/* Exact: Inigo Quilez's sdPyramid for a base of side 1, scaled by 2 half_width, with the base
+ * square added (his measures the side faces alone, too far below the base). Folded into the
+ * octant x >= z >= 0 and measured to the face there and its edges; m2 is the squared length of
+ * the face's slope vector (height, 1/2). */
+SDF_INLINE vfloat sd_pyramid(vec3v p, float4 center, float half_width, float height) {
+  float side = 2.0f * half_width;
+  float h = height / side;
+  float m2 = h * h + 0.25f;
+  vec3v l = v3_scale(v3_sub(p, v3_from(center)), (vfloat)(1.0f / side));
+  vfloat ax = fabs(l.x);
+  vfloat az = fabs(l.z);
+  vint swap = MASK(az > ax);
+  vfloat px = select(ax, az, swap) - 0.5f;
+  vfloat pz = select(az, ax, swap) - 0.5f;
+  vfloat py = l.y;
+  vfloat qx = pz;
+  vfloat qy = h * py - 0.5f * px;
+  vfloat qz = h * px + 0.5f * py;
+  vfloat s = fmax(-qx, 0.0f);
+  vfloat t = clamp((qy - 0.5f * pz) / (m2 + 0.25f), 0.0f, 1.0f);
+  vfloat a = m2 * (qx + s) * (qx + s) + qy * qy;
+  vfloat b = m2 * (qx + 0.5f * t) * (qx + 0.5f * t) + (qy - m2 * t) * (qy - m2 * t);
+  vfloat d2 = select(fmin(a, b), (vfloat)(0.0f), MASK(fmin(qy, -qx * m2 - qy * 0.5f) > 0.0f));
+  /* Quilez's measures the nearest side face only, which below the base overestimates: the base
+   * square is the other candidate, outside to the square, inside to its plane. */
+  vfloat bx = fmax(px, 0.0f);
+  vfloat bz = fmax(pz, 0.0f);
+  vfloat outside = fmin(vsqrt((d2 + qz * qz) / m2), vsqrt(bx * bx + bz * bz + py * py));
+  vfloat inside = fmax(qz / sqrt(m2), -py);
+  return side * select(outside, inside, MASK(qz < 0.0f) & MASK(py > 0.0f));
+}
+
+/* The squared distance from the point pa (relative to an edge's start) to the edge e. */
+SDF_INLINE vfloat edge_distance2(vec3v pa, float4 e) {
+  vfloat t = clamp(v3_dot(pa, v3_from(e)) / dot(e.xyz, e.xyz), 0.0f, 1.0f);
+  vec3v off = v3_sub(v3_scale(v3_from(e), t), pa);
+  return v3_dot(off, off);
+}
+
+/* 1 where the point pa (relative to an edge's start) is inside the edge e of a face of normal
+ * n, -1 outside, 0 on its line. */
+SDF_INLINE vfloat edge_side(vec3v pa, float4 e, float4 n) {
+  return sign(v3_dot(v3_from(cross(e, n)), pa));
+}
+
+/* Exact (Inigo Quilez's udTriangle, thickened): the plane's distance where p projects inside
+ * all three edges, else the nearest edge's. */
+SDF_INLINE vfloat sd_triangle(vec3v p, float4 a, float4 b, float4 c, float thickness) {
+  float4 ba = b - a;
+  float4 cb = c - b;
+  float4 ac = a - c;
+  float4 n = cross(ba, ac);
+  vec3v pa = v3_sub(p, v3_from(a));
+  vec3v pb = v3_sub(p, v3_from(b));
+  vec3v pc = v3_sub(p, v3_from(c));
+  vfloat sides = edge_side(pa, ba, n) + edge_side(pb, cb, n) + edge_side(pc, ac, n);
+  vfloat edges = fmin(fmin(edge_distance2(pa, ba), edge_distance2(pb, cb)), edge_distance2(pc, ac));
+  vfloat plane = v3_dot(v3_from(n), pa);
+  return vsqrt(select(plane * plane / dot(n.xyz, n.xyz), edges, MASK(sides < 2.0f))) - thickness;
+}
+
+/* Exact (Inigo Quilez's udQuad, thickened) for a planar convex quadrilateral. */
+SDF_INLINE vfloat sd_quad(vec3v p, float4 a, float4 b, float4 c, float4 d, float thickness) {
+  float4 ba = b - a;
+  float4 cb = c - b;
+  float4 dc = d - c;
+  float4 ad = a - d;
+  float4 n = cross(ba, ad);
+  vec3v pa = v3_sub(p, v3_from(a));
+  vec3v pb = v3_sub(p, v3_from(b));
+  vec3v pc = v3_sub(p, v3_from(c));
+  vec3v pd = v3_sub(p, v3_from(d));
+  vfloat sides = edge_side(pa, ba, n) + edge_side(pb, cb, n) + edge_side(pc, dc, n) + edge_side(pd, ad, n);
+  vfloat edges = fmin(fmin(edge_distance2(pa, ba), edge_distance2(pb, cb)), fmin(edge_distance2(pc, dc), edge_distance2(pd, ad)));
+  vfloat plane = v3_dot(v3_from(n), pa);
+  return vsqrt(select(plane * plane / dot(n.xyz, n.xyz), edges, MASK(sides < 3.0f))) - thickness;
+}
+
+/* A bound (Inigo Quilez's sdTriPrism): the largest signed distance to the two slanted sides
+ * (normals (+-cos 30, sin 30)), the bottom side (inradius radius / 2) and the end caps. Below
+ * the true distance near the edges outside. */
+SDF_INLINE vfloat sd_triangular_prism(vec3v p, float4 center, float radius, float half_length) {
+  vec3v l = v3_sub(p, v3_from(center));
+  vfloat sides = fmax(fabs(l.x) * 0.8660254f + l.y * 0.5f, -l.y) - 0.5f * radius;
+  return fmax(fabs(l.z) - half_length, sides);
+}

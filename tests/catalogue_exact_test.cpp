@@ -29,6 +29,12 @@ const ShapeCase kShapes[] = {
     {"round_cone", "round_cone: {a: [-0.3, -0.4, 0.1], b: [0.4, 0.5, -0.2], radius_a: 0.45, radius_b: 0.2}", 1.2, true},
     {"capped_torus", "capped_torus: {angle: 110, major_radius: 0.7, minor_radius: 0.2}", 1.2, true},
     {"link", "link: {half_length: 0.3, major_radius: 0.4, minor_radius: 0.15}", 1.2, true},
+    {"cut_sphere", "cut_sphere: {radius: 0.9, cut_height: -0.3}", 1.0, true},
+    {"pyramid", "pyramid: {center: [0, -0.5, 0], half_width: 0.6, height: 1.2}", 1.0, true},
+    {"triangle", "triangle: {a: [-0.7, -0.5, 0.1], b: [0.6, -0.3, -0.4], c: [0.1, 0.7, 0.3], thickness: 0.15}", 1.0, true},
+    {"quad", "quad: {a: [-0.6, -0.6, -0.3], b: [0.6, -0.6, 0.3], c: [0.6, 0.6, 0.3], d: [-0.6, 0.6, -0.3], thickness: 0.15}",
+     1.0, true},
+    {"triangular_prism", "triangular_prism: {radius: 0.8, half_length: 0.6}", 1.0, false},
 };
 
 // The grid's cells: the zero set is found on their edges, so a surface point is within a cell's

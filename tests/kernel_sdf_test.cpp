@@ -99,6 +99,31 @@ const std::vector<SdfCase>& sdf_cases() {
       {"link", "link: {half_length: 1, major_radius: 1, minor_radius: 0.25}",
        {{{1, 0, 0}, -0.25}, {{-1, 0.5, 0}, -0.25}, {{3, 0, 0}, 1.75}, {{0, 3, 0}, 0.75}, {{0, -3, 0}, 0.75},
         {{0, 0, 0}, 0.75}, {{0, 0, 2}, std::sqrt(5.0) - 0.25}, {{0, 1, 0}, 0.75}, {{0, -1, 0}, 0.75}}},
+      // The cap y >= 0.6 of the unit ball: its rim (0.8, 0.6) in (r, y).
+      {"cut_sphere", "cut_sphere: {radius: 1, cut_height: 0.6}",
+       {{{0, 3, 0}, 2.0}, {{0, 0, 0}, 0.6}, {{0, -2, 0}, 2.6}, {{2, 0.6, 0}, 1.2}, {{0, 0.6, -2}, 1.2},
+        {{0, 0.7, 0}, -0.1}, {{1.5, 2, 0}, 1.5}, {{0, 2, -1.5}, 1.5}}},
+      {"cut_sphere_below_centre", "cut_sphere: {center: [1, 0, 0], radius: 1, cut_height: -0.6}",
+       {{{1, -3, 0}, 2.4}, {{1, 0, 0}, -0.6}, {{3.5, 0, 0}, 1.5}, {{1, 0, -2.5}, 1.5}}},
+      // Base corners (+-1, 0, +-1), apex (0, 2, 0): the sides' planes 2 |x| + y = 2 and 2 |z| + y = 2.
+      {"pyramid", "pyramid: {half_width: 1, height: 2}",
+       {{{0, -1, 0}, 1.0}, {{0, 5, 0}, 3.0}, {{0, 0.5, 0}, -0.5}, {{2, 1, 0}, 3.0 / std::sqrt(5.0)},
+        {{-2, 1, 0}, 3.0 / std::sqrt(5.0)}, {{0, 1, 2}, 3.0 / std::sqrt(5.0)}, {{0, 1, -2}, 3.0 / std::sqrt(5.0)},
+        {{2, -1, 2}, kSqrt3}, {{-2, -1, -2}, kSqrt3}}},
+      {"triangle", "triangle: {a: [0, 0, 0], b: [2, 0, 0], c: [0, 2, 0], thickness: 0.1}",
+       {{{0.5, 0.5, 1}, 0.9}, {{0.5, 0.5, -2}, 1.9}, {{-1, -1, 0}, kSqrt2 - 0.1}, {{1, -1, 0}, 0.9},
+        {{2, 2, 0}, kSqrt2 - 0.1}, {{0.5, 0.5, 0}, -0.1}, {{1, -1, 1}, kSqrt2 - 0.1}}},
+      {"quad", "quad: {a: [-1, 1, -1], b: [1, 1, -1], c: [1, 1, 1], d: [-1, 1, 1], thickness: 0.1}",
+       {{{0, 3, 0}, 1.9}, {{0.5, -1, 0.5}, 1.9}, {{3, 1, 0}, 1.9}, {{2, 1, 2}, kSqrt2 - 0.1}, {{0, 1, 0}, -0.1},
+        {{0, 2, 3}, std::sqrt(5.0) - 0.1}, {{-3, 1, 0}, 1.9}}},
+      // A parallelogram of normal (-1, 0, 2) / sqrt 5 about (1, 1, 0.5).
+      {"quad_tilted", "quad: {a: [0, 0, 0], b: [2, 0, 1], c: [2, 2, 1], d: [0, 2, 0], thickness: 0.1}",
+       {{{1.0 - 1.0 / std::sqrt(5.0), 1, 0.5 + 2.0 / std::sqrt(5.0)}, 0.9}, {{1, 1, 0.5}, -0.1}}},
+      // Corners (0, 1), (+-sqrt 3 / 2, -1 / 2) in xy, |z| <= 2. On the faces' normals through their
+      // middles the bound is the distance; above the apex it is only half of it.
+      {"triangular_prism", "triangular_prism: {radius: 1, half_length: 2}",
+       {{{0, -1.5, 0}, 1.0}, {{0, 0, 3}, 1.0}, {{0, 0, -3}, 1.0}, {{0, 0, 0}, -0.5},
+        {{3.0 * kSqrt3 / 4.0, 0.75, 0}, 1.0}, {{-3.0 * kSqrt3 / 4.0, 0.75, 0}, 1.0}, {{0, 3, 0}, 1.0}}},
       // The unit sphere stretched along x into a capsule of half length 1.
       {"elongate", "elongate: {h: [1, 0, 0], children: [{sphere: {radius: 1}}]}",
        {{{3, 0, 0}, 1.0}, {{-2.5, 0, 0}, 0.5}, {{0.5, 2, 0}, 1.0}, {{0.5, 0, 0}, -1.0}, {{-0.5, 0, -3}, 2.0}}},
@@ -232,7 +257,9 @@ TEST(SdfClosedForm, CatalogueKernelMatchesTheReferenceEverywhere) {
   const std::set<std::string> catalogue = {"octahedron", "hex_prism", "capped_cone", "capped_cone_frustum", "ellipsoid",
                                            "elongate", "onion", "round", "mirror", "repeat_polar", "repeat_limited",
                                            // Later catalogue primitives.
-                                           "cone", "rounded_cylinder", "round_cone", "capped_torus", "capped_torus_full", "link"};
+                                           "cone", "rounded_cylinder", "round_cone", "capped_torus", "capped_torus_full", "link",
+                                           "cut_sphere", "cut_sphere_below_centre", "pyramid", "triangle", "quad",
+                                           "quad_tilted", "triangular_prism"};
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> coord(-4.0, 4.0);
   std::vector<glm::dvec3> points(400);

@@ -267,6 +267,18 @@ TEST(FarCamera, EveryNodeKindRendersInTheMapFrame) {
         1.0 - offset.y, at(-1.5, 0.2, 0), at(-0.5, -0.5, 1), at(0.5, -0.6, 1.2), at(0.6, 0.1, 1.0), at(1.5, 0, 0),
         at(0, -0.4, 0));
   });
+  expect_checks_near_and_far([](const auto& at, const glm::dvec3& offset) {
+    return fmt::format(
+        "  union:\n"
+        "    - plane: {{normal: [0, 1, 0], offset: {}}}\n"
+        "    - cut_sphere: {{center: {}, radius: 0.45, cut_height: -0.2}}\n"
+        "    - pyramid: {{center: {}, half_width: 0.35, height: 0.7}}\n"
+        "    - triangle: {{a: {}, b: {}, c: {}, thickness: 0.03}}\n"
+        "    - quad: {{a: {}, b: {}, c: {}, d: {}, thickness: 0.03}}\n"
+        "    - triangular_prism: {{center: {}, radius: 0.4, half_length: 0.4}}\n",
+        1.0 - offset.y, at(-1.5, 0.2, 0), at(-0.5, -0.9, 1), at(0.3, -0.5, 1.2), at(0.9, -0.5, 1.0), at(0.6, 0.3, 1.1),
+        at(1.2, -0.6, -0.4), at(1.9, -0.6, -0.4), at(1.9, 0.1, -0.2), at(1.2, 0.1, -0.2), at(0, -0.4, 0));
+  });
 }
 
 // A model authored far from the origin and translated home (issue 26): a transformed node's

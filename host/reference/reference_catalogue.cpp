@@ -26,6 +26,32 @@ glm::dvec2 profile_point(const glm::dvec3& p, const glm::dvec3& center) {
   return {std::hypot(l.x, l.z), l.y};
 }
 
+/// The point of the triangle abc nearest to p (Ericson's Real-Time Collision Detection 5.1.5): by
+/// the Voronoi region of p among its vertices, edges and face.
+glm::dvec3 closest_on_triangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+  const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return a;
+  const glm::dvec3 bp = p - b;
+  const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+  if (d3 >= 0.0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + ab * (d1 / (d1 - d3));
+  const glm::dvec3 cp = p - c;
+  const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+  if (d6 >= 0.0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + ac * (d2 / (d2 - d6));
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  const double denominator = 1.0 / (va + vb + vc);
+  return a + ab * (vb * denominator) + ac * (vc * denominator);
+}
+
+double triangle_distance(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+  return glm::length(p - closest_on_triangle(p, a, b, c));
+}
+
 }  // namespace
 
 double sd_cone(const glm::dvec3& p, const Cone& cone) {
@@ -111,6 +137,63 @@ double sd_link(const glm::dvec3& p, const Link& link) {
     if (beyond >= 0.0) spine = std::min(spine, std::hypot(std::hypot(l.x, beyond) - r, l.z));
   }
   return spine - link.minor_radius;
+}
+
+double sd_cut_sphere(const glm::dvec3& p, const CutSphere& cut) {
+  // The profile: the disc's radius on y = h out to the rim (w, h), and the circle's arc from the
+  // rim up to the pole.
+  const glm::dvec2 q = profile_point(p, cut.center);
+  const double r = cut.radius, h = cut.cut_height;
+  const double w = std::sqrt(r * r - h * h);
+  const double nearest = std::min(distance_to_segment(q, {0.0, h}, {w, h}), distance_to_arc(q, {0.0, 0.0}, r, std::atan2(h, w), 0.5 * kPi));
+  const bool inside = glm::length(q) <= r && q.y >= h;
+  return inside ? -nearest : nearest;
+}
+
+double sd_pyramid(const glm::dvec3& p, const Pyramid& pyramid) {
+  // Five faces: the base square (two triangles) and four triangles up to the apex.
+  const glm::dvec3 l = p - pyramid.center;
+  const double s = pyramid.half_width;
+  const glm::dvec3 apex(0.0, pyramid.height, 0.0);
+  const glm::dvec3 corners[4] = {{s, 0.0, s}, {-s, 0.0, s}, {-s, 0.0, -s}, {s, 0.0, -s}};
+  double nearest = std::min(triangle_distance(l, corners[0], corners[1], corners[2]), triangle_distance(l, corners[0], corners[2], corners[3]));
+  bool inside = l.y >= 0.0;
+  for (int i = 0; i < 4; ++i) {
+    const glm::dvec3& u = corners[i];
+    const glm::dvec3& v = corners[(i + 1) % 4];
+    nearest = std::min(nearest, triangle_distance(l, u, v, apex));
+    // The side's outward normal: away from the base's centre, which is inside.
+    glm::dvec3 n = glm::cross(v - u, apex - u);
+    if (glm::dot(n, -u) > 0.0) n = -n;
+    if (glm::dot(n, l - u) > 0.0) inside = false;
+  }
+  return inside ? -nearest : nearest;
+}
+
+double sd_triangle(const glm::dvec3& p, const Triangle& triangle) {
+  return triangle_distance(p, triangle.a, triangle.b, triangle.c) - triangle.thickness;
+}
+
+double sd_quad(const glm::dvec3& p, const Quad& quad) {
+  // Split along the diagonal a-c into two triangles.
+  return std::min(triangle_distance(p, quad.a, quad.b, quad.c), triangle_distance(p, quad.a, quad.c, quad.d)) - quad.thickness;
+}
+
+double sd_triangular_prism(const glm::dvec3& p, const TriangularPrism& prism) {
+  // The bound the kernel computes, built from the corners: the largest signed distance to the
+  // planes of the three sides (corners at 90, 210 and 330 degrees, radius from the axis) and of
+  // the two end caps.
+  const glm::dvec3 l = p - prism.center;
+  double largest = std::abs(l.z) - prism.half_length;
+  for (int i = 0; i < 3; ++i) {
+    const double from = radians(90.0 + 120.0 * i), to = radians(90.0 + 120.0 * (i + 1));
+    const glm::dvec2 u = prism.radius * glm::dvec2(std::cos(from), std::sin(from));
+    const glm::dvec2 v = prism.radius * glm::dvec2(std::cos(to), std::sin(to));
+    // Counter-clockwise corners: the outward normal is the edge turned clockwise.
+    const glm::dvec2 outward = glm::normalize(glm::dvec2(v.y - u.y, u.x - v.x));
+    largest = std::max(largest, glm::dot(glm::dvec2(l.x, l.y) - u, outward));
+  }
+  return largest;
 }
 
 }  // namespace clmarch

@@ -509,6 +509,44 @@ class SceneReader {
     }
   }
 
+  void check_params(CutSphere& cut, const YAML::Node& map, const std::string& path) {
+    if (!(std::abs(cut.cut_height) < cut.radius)) {
+      yaml_.fail(map["cut_height"] ? map["cut_height"] : map,
+                 fmt::format("{}.cut_height must be in (-radius, radius) = ({}, {}) (got {})", path, -cut.radius, cut.radius,
+                             cut.cut_height));
+    }
+  }
+
+  // The corners of a flat shape: not on one line (sine of the angle between two spans above
+  // 1e-6, so that the device's float normal is well defined).
+  void check_spans_a_plane(const glm::dvec3& u, const glm::dvec3& v, const YAML::Node& map, const std::string& what) {
+    if (!(glm::length(glm::cross(u, v)) > 1e-6 * glm::length(u) * glm::length(v))) {
+      yaml_.fail(map, what + " must span a plane (they are on one line, or nearly)");
+    }
+  }
+
+  void check_params(Triangle& triangle, const YAML::Node& map, const std::string& path) {
+    check_spans_a_plane(triangle.b - triangle.a, triangle.c - triangle.a, map, path + ".a, " + path + ".b and " + path + ".c");
+  }
+
+  void check_params(Quad& quad, const YAML::Node& map, const std::string& path) {
+    const std::string corners = path + ".a, .b, .c and .d";
+    const glm::dvec3 v[4] = {quad.a, quad.b, quad.c, quad.d};
+    // The diagonals' cross product: the normal of a convex quadrilateral listed in order.
+    check_spans_a_plane(quad.c - quad.a, quad.d - quad.b, map, path + "'s diagonals a-c and b-d");
+    const glm::dvec3 n = glm::normalize(glm::cross(quad.c - quad.a, quad.d - quad.b));
+    const double size = std::max(glm::length(quad.c - quad.a), glm::length(quad.d - quad.b));
+    for (int i = 0; i < 4; ++i) {
+      if (std::abs(glm::dot(v[i] - v[0], n)) > 1e-6 * size) {
+        yaml_.fail(map, fmt::format("{} must lie in one plane (corner {} is off it)", corners, "abcd"[i]));
+      }
+    }
+    for (int i = 0; i < 4; ++i) {
+      const glm::dvec3 turn = glm::cross(v[(i + 1) % 4] - v[i], v[(i + 2) % 4] - v[(i + 1) % 4]);
+      if (!(glm::dot(turn, n) > 0.0)) yaml_.fail(map, corners + " must be the corners of a convex quadrilateral, in order");
+    }
+  }
+
   void check_params(Mandelbulb& bulb, const YAML::Node& map, const std::string& path) {
     // An escaping orbit reaches |z| ~ bailout^power; the kernel squares it in float (max ~3e38).
     const double largest_bailout = std::pow(10.0, 18.0 / bulb.power);
