@@ -317,3 +317,64 @@ SDF_INLINE vfloat sd_triangular_prism(vec3v p, float4 center, float radius, floa
   vfloat sides = fmax(fabs(l.x) * 0.8660254f + l.y * 0.5f, -l.y) - 0.5f * radius;
   return fmax(fabs(l.z) - half_length, sides);
 }
+
+/* Exact (Inigo Quilez's sdSolidAngle): in the half plane (r, y), l is the distance to the
+ * circle, m to the sector's straight side (c its direction), signed by the side of it. */
+SDF_INLINE vfloat sd_solid_angle(vec3v p, float4 center, float angle, float radius) {
+  vec3v l = v3_sub(p, v3_from(center));
+  float s = sinpi(angle / 180.0f);
+  float c = cospi(angle / 180.0f);
+  vfloat qx = vsqrt(l.x * l.x + l.z * l.z);
+  vfloat qy = l.y;
+  vfloat circle = vsqrt(qx * qx + qy * qy) - radius;
+  vfloat t = clamp(qx * s + qy * c, 0.0f, radius);
+  vfloat mx = qx - s * t;
+  vfloat my = qy - c * t;
+  return fmax(circle, vsqrt(mx * mx + my * my) * sign(c * qx - s * qy));
+}
+
+/* Exact (Inigo Quilez's sdCutHollowSphere): above the line from the centre through the rim
+ * (w, cut_height) the rim is nearest, below it the sphere. */
+SDF_INLINE vfloat sd_cut_hollow_sphere(vec3v p, float4 center, float radius, float cut_height, float thickness) {
+  vec3v l = v3_sub(p, v3_from(center));
+  float h = cut_height;
+  float w = sqrt(radius * radius - h * h);
+  vfloat qx = vsqrt(l.x * l.x + l.z * l.z);
+  vfloat qy = l.y;
+  vfloat rim = vsqrt((qx - w) * (qx - w) + (qy - h) * (qy - h));
+  vfloat shell = fabs(vsqrt(qx * qx + qy * qy) - radius);
+  return select(shell, rim, MASK(h * qx < w * qy)) - thickness;
+}
+
+/* Exact (Inigo Quilez's sdDeathStar, carved along +x): (a, b) is the circle where the spheres
+ * meet, in the half plane (x, distance from the x axis); within the cone of the centre and that
+ * circle, beyond it, the circle is nearest. */
+SDF_INLINE vfloat sd_death_star(vec3v p, float4 center, float radius, float carve_radius, float carve_distance) {
+  vec3v l = v3_sub(p, v3_from(center));
+  float d = carve_distance;
+  float a = (radius * radius - carve_radius * carve_radius + d * d) / (2.0f * d);
+  float b = sqrt(radius * radius - a * a);
+  vfloat px = l.x;
+  vfloat py = vsqrt(l.y * l.y + l.z * l.z);
+  vfloat rim = vsqrt((px - a) * (px - a) + (py - b) * (py - b));
+  vfloat body = fmax(vsqrt(px * px + py * py) - radius, carve_radius - vsqrt((px - d) * (px - d) + py * py));
+  return select(body, rim, MASK(px * b - py * a > d * fmax(b - py, 0.0f)));
+}
+
+/* Exact (Inigo Quilez's sdRhombus): in the quarter x, z >= 0 the nearest point of the side from
+ * (half_width, 0) to (0, half_depth) is at f in [-1, 1] along it; signed by the side's line,
+ * grown by corner_radius, then extruded along y. */
+SDF_INLINE vfloat sd_rhombus(vec3v p, float4 center, float half_width, float half_depth, float half_height,
+                             float corner_radius) {
+  vec3v a = v3_abs(v3_sub(p, v3_from(center)));
+  float la = half_width;
+  float lb = half_depth;
+  vfloat f = clamp((la * (la - 2.0f * a.x) - lb * (lb - 2.0f * a.z)) / (la * la + lb * lb), -1.0f, 1.0f);
+  vfloat ex = a.x - 0.5f * la * (1.0f - f);
+  vfloat ez = a.z - 0.5f * lb * (1.0f + f);
+  vfloat qx = vsqrt(ex * ex + ez * ez) * sign(a.x * lb + a.z * la - la * lb) - corner_radius;
+  vfloat qy = a.y - half_height;
+  vfloat outside_x = fmax(qx, 0.0f);
+  vfloat outside_y = fmax(qy, 0.0f);
+  return fmin(fmax(qx, qy), 0.0f) + vsqrt(outside_x * outside_x + outside_y * outside_y);
+}

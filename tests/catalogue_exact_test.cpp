@@ -35,6 +35,11 @@ const ShapeCase kShapes[] = {
     {"quad", "quad: {a: [-0.6, -0.6, -0.3], b: [0.6, -0.6, 0.3], c: [0.6, 0.6, 0.3], d: [-0.6, 0.6, -0.3], thickness: 0.15}",
      1.0, true},
     {"triangular_prism", "triangular_prism: {radius: 0.8, half_length: 0.6}", 1.0, false},
+    {"solid_angle", "solid_angle: {center: [0, -0.2, 0], angle: 55, radius: 0.9}", 1.0, true},
+    {"solid_angle_wide", "solid_angle: {angle: 130, radius: 0.9}", 1.0, true},
+    {"cut_hollow_sphere", "cut_hollow_sphere: {radius: 0.8, cut_height: 0.3, thickness: 0.12}", 1.0, true},
+    {"death_star", "death_star: {radius: 0.9, carve_radius: 0.6, carve_distance: 0.8}", 1.0, true},
+    {"rhombus", "rhombus: {half_width: 0.8, half_depth: 0.4, half_height: 0.2, corner_radius: 0.1}", 1.0, true},
 };
 
 // The grid's cells: the zero set is found on their edges, so a surface point is within a cell's

@@ -124,6 +124,25 @@ const std::vector<SdfCase>& sdf_cases() {
       {"triangular_prism", "triangular_prism: {radius: 1, half_length: 2}",
        {{{0, -1.5, 0}, 1.0}, {{0, 0, 3}, 1.0}, {{0, 0, -3}, 1.0}, {{0, 0, 0}, -0.5},
         {{3.0 * kSqrt3 / 4.0, 0.75, 0}, 1.0}, {{-3.0 * kSqrt3 / 4.0, 0.75, 0}, 1.0}, {{0, 3, 0}, 1.0}}},
+      // The sector within 60 degrees of +y of the ball of radius 2: its side ends at (sqrt 3, 1) in (r, y).
+      {"solid_angle", "solid_angle: {angle: 60, radius: 2}",
+       {{{0, 3, 0}, 1.0}, {{0, 1, 0}, -kSqrt3 / 2.0}, {{0, -1, 0}, 1.0}, {{2, 0, 0}, 1.0}, {{-2, 0, 0}, 1.0},
+        {{0, 0, 2}, 1.0}}},
+      // Wider than a half space: the side ends at (sqrt 3 / 2, -1 / 2).
+      {"solid_angle_wide", "solid_angle: {center: [0, 1, 0], angle: 120, radius: 1}",
+       {{{0, -1, 0}, kSqrt3}, {{0, 3, 0}, 1.0}, {{0, 1.5, 0}, -0.5}}},
+      // The unit sphere below y = 0.6, the rim at (0.8, 0.6) in (r, y), 0.1 thick on each side.
+      {"cut_hollow_sphere", "cut_hollow_sphere: {radius: 1, cut_height: 0.6, thickness: 0.1}",
+       {{{0, -3, 0}, 1.9}, {{0, 0, 0}, 0.9}, {{0, 3, 0}, std::sqrt(6.4) - 0.1}, {{2, 0, 0}, 0.9}, {{0, 0, -2}, 0.9},
+        {{0, -1, 0}, -0.1}, {{1.6, 1.2, 0}, 0.9}, {{0, 1.2, -1.6}, 0.9}}},
+      // Unit balls at 0 and (1, 0, 0): they meet in the circle x = 1/2 of radius sqrt 3 / 2.
+      {"death_star", "death_star: {radius: 1, carve_radius: 1, carve_distance: 1}",
+       {{{-3, 0, 0}, 2.0}, {{0, 3, 0}, 2.0}, {{0, 0, -3}, 2.0}, {{0.5, 0, 0}, 0.5}, {{-0.5, 0, 0}, -0.5}, {{2, 0, 0}, kSqrt3}}},
+      // Half diagonals 2 (x) and 1 (z), grown by 0.1, |y| <= 0.5: the side x + 2 z = 2 in the quarter.
+      {"rhombus", "rhombus: {half_width: 2, half_depth: 1, half_height: 0.5, corner_radius: 0.1}",
+       {{{0, 2, 0}, 1.5}, {{0, -2, 0}, 1.5}, {{4, 0, 0}, 1.9}, {{-4, 0, 0}, 1.9}, {{0, 0, 2}, 0.9}, {{0, 0, -2}, 0.9},
+        {{0, 0, 0}, -0.5}, {{1.0 + 1.0 / std::sqrt(5.0), 0, 0.5 + 2.0 / std::sqrt(5.0)}, 0.9},
+        {{-1.0 - 1.0 / std::sqrt(5.0), 0, -0.5 - 2.0 / std::sqrt(5.0)}, 0.9}}},
       // The unit sphere stretched along x into a capsule of half length 1.
       {"elongate", "elongate: {h: [1, 0, 0], children: [{sphere: {radius: 1}}]}",
        {{{3, 0, 0}, 1.0}, {{-2.5, 0, 0}, 0.5}, {{0.5, 2, 0}, 1.0}, {{0.5, 0, 0}, -1.0}, {{-0.5, 0, -3}, 2.0}}},
@@ -259,7 +278,8 @@ TEST(SdfClosedForm, CatalogueKernelMatchesTheReferenceEverywhere) {
                                            // Later catalogue primitives.
                                            "cone", "rounded_cylinder", "round_cone", "capped_torus", "capped_torus_full", "link",
                                            "cut_sphere", "cut_sphere_below_centre", "pyramid", "triangle", "quad",
-                                           "quad_tilted", "triangular_prism"};
+                                           "quad_tilted", "triangular_prism", "solid_angle", "solid_angle_wide",
+                                           "cut_hollow_sphere", "death_star", "rhombus"};
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> coord(-4.0, 4.0);
   std::vector<glm::dvec3> points(400);

@@ -196,4 +196,47 @@ double sd_triangular_prism(const glm::dvec3& p, const TriangularPrism& prism) {
   return largest;
 }
 
+double sd_solid_angle(const glm::dvec3& p, const SolidAngle& sector) {
+  // The profile: the straight side from the apex to (r sin a, r cos a) and the arc from there up
+  // to the pole; inside is within the radius and within angle of +y.
+  const glm::dvec2 q = profile_point(p, sector.center);
+  const double a = radians(sector.angle), r = sector.radius;
+  const glm::dvec2 edge = r * glm::dvec2(std::sin(a), std::cos(a));
+  const double nearest = std::min(distance_to_segment(q, {0.0, 0.0}, edge), distance_to_arc(q, {0.0, 0.0}, r, 0.5 * kPi - a, 0.5 * kPi));
+  const bool inside = glm::length(q) <= r && std::atan2(q.x, q.y) <= a;
+  return inside ? -nearest : nearest;
+}
+
+double sd_cut_hollow_sphere(const glm::dvec3& p, const CutHollowSphere& bowl) {
+  // The arc of the circle from the pole below up to the rim (w, cut_height), thickened.
+  const glm::dvec2 q = profile_point(p, bowl.center);
+  const double r = bowl.radius, h = bowl.cut_height;
+  return distance_to_arc(q, {0.0, 0.0}, r, -0.5 * kPi, std::atan2(h, std::sqrt(r * r - h * h))) - bowl.thickness;
+}
+
+double sd_death_star(const glm::dvec3& p, const DeathStar& star) {
+  // In the half plane (x, distance from the x axis): the big circle's arc outside the carving
+  // circle, from their meeting point round to -x, and the carving circle's arc inside the big
+  // one, from the meeting point round to its own -x side.
+  const glm::dvec3 l = p - star.center;
+  const glm::dvec2 q(l.x, std::hypot(l.y, l.z));
+  const double r = star.radius, rc = star.carve_radius, d = star.carve_distance;
+  const glm::dvec2 carve_center(d, 0.0);
+  // The meeting point: x from r^2 - x^2 = rc^2 - (x - d)^2.
+  const double mx = (r * r - rc * rc + d * d) / (2.0 * d);
+  const glm::dvec2 meet(mx, std::sqrt(r * r - mx * mx));
+  const double nearest = std::min(distance_to_arc(q, {0.0, 0.0}, r, std::atan2(meet.y, meet.x), kPi),
+                                  distance_to_arc(q, carve_center, rc, std::atan2(meet.y, meet.x - d), kPi));
+  const bool inside = glm::length(q) <= r && glm::length(q - carve_center) >= rc;
+  return inside ? -nearest : nearest;
+}
+
+double sd_rhombus(const glm::dvec3& p, const Rhombus& rhombus) {
+  // The rhombus polygon's distance in the xz plane, grown by the corner radius, then extruded.
+  const glm::dvec3 l = p - rhombus.center;
+  const double w = rhombus.half_width, dp = rhombus.half_depth;
+  const double flat = geometry::convex_polygon_distance({l.x, l.z}, {{w, 0.0}, {0.0, dp}, {-w, 0.0}, {0.0, -dp}});
+  return geometry::extrude(flat - rhombus.corner_radius, l.y, rhombus.half_height);
+}
+
 }  // namespace clmarch

@@ -103,6 +103,17 @@ std::optional<BoundingSphere> primitive_bounds(const NodeParams& params) {
     std::optional<BoundingSphere> operator()(const TriangularPrism& t) const {
       return BoundingSphere{t.center, std::hypot(t.radius, t.half_length), std::sqrt(5.0)};
     }
+    std::optional<BoundingSphere> operator()(const SolidAngle& s) const { return BoundingSphere{s.center, s.radius}; }
+    // Below the centre the bowl lies within its rim's radius of the rim's centre.
+    std::optional<BoundingSphere> operator()(const CutHollowSphere& c) const {
+      if (c.cut_height >= 0.0) return BoundingSphere{c.center, c.radius + c.thickness};
+      const double rim = std::sqrt(c.radius * c.radius - c.cut_height * c.cut_height);
+      return BoundingSphere{c.center + glm::dvec3(0.0, c.cut_height, 0.0), rim + c.thickness};
+    }
+    std::optional<BoundingSphere> operator()(const DeathStar& d) const { return BoundingSphere{d.center, d.radius}; }
+    std::optional<BoundingSphere> operator()(const Rhombus& r) const {
+      return BoundingSphere{r.center, std::hypot(std::max(r.half_width, r.half_depth) + r.corner_radius, r.half_height)};
+    }
     std::optional<BoundingSphere> operator()(const Capsule& c) const {
       return BoundingSphere{0.5 * (c.a + c.b), 0.5 * glm::length(c.b - c.a) + c.radius};
     }

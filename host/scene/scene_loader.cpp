@@ -509,11 +509,30 @@ class SceneReader {
     }
   }
 
-  void check_params(CutSphere& cut, const YAML::Node& map, const std::string& path) {
-    if (!(std::abs(cut.cut_height) < cut.radius)) {
+  // A sphere's cut: a plane through it, not touching it.
+  void check_cut_height(double cut_height, double radius, const YAML::Node& map, const std::string& path) {
+    if (!(std::abs(cut_height) < radius)) {
       yaml_.fail(map["cut_height"] ? map["cut_height"] : map,
-                 fmt::format("{}.cut_height must be in (-radius, radius) = ({}, {}) (got {})", path, -cut.radius, cut.radius,
-                             cut.cut_height));
+                 fmt::format("{}.cut_height must be in (-radius, radius) = ({}, {}) (got {})", path, -radius, radius, cut_height));
+    }
+  }
+
+  void check_params(CutSphere& cut, const YAML::Node& map, const std::string& path) {
+    check_cut_height(cut.cut_height, cut.radius, map, path);
+  }
+
+  void check_params(CutHollowSphere& bowl, const YAML::Node& map, const std::string& path) {
+    check_cut_height(bowl.cut_height, bowl.radius, map, path);
+  }
+
+  void check_params(DeathStar& star, const YAML::Node& map, const std::string& path) {
+    // The spheres must meet in a circle: a carve that misses, hides inside or swallows the ball
+    // is no death star (and Quilez's formula assumes the circle).
+    const double low = std::abs(star.radius - star.carve_radius), high = star.radius + star.carve_radius;
+    if (!(star.carve_distance > low && star.carve_distance < high)) {
+      yaml_.fail(map["carve_distance"] ? map["carve_distance"] : map,
+                 fmt::format("{}.carve_distance must be in (|radius - carve_radius|, radius + carve_radius) = ({}, {}) so "
+                             "that the spheres meet (got {})", path, low, high, star.carve_distance));
     }
   }
 
