@@ -1,5 +1,6 @@
-/* Fractal primitives, compiled in only for scenes that use them: the Mandelbulb and Inigo Quilez's
- * Menger sponge. Same conventions as primitives.cl (p first, local frame, float4 parameters);
+/* Fractal primitives, compiled in only for scenes that use them: the Mandelbulb, Inigo Quilez's
+ * Menger sponge, the Sierpinski tetrahedron, the Mandelbox and the quaternion Julia set. Same
+ * conventions as primitives.cl (p first, local frame, float4 parameters);
  * host/reference/reference_fractals.cpp is the independent double version. */
 
 /* Keeps log finite at the centre, where the orbit can sit at exactly 0. */
@@ -108,6 +109,72 @@ SDF_INLINE vfloat sd_sierpinski(vec3v p, float4 center, float size, int iteratio
   const vfloat planes = fmax(fmax(-z.x - z.y - z.z, z.x + z.y - z.z), fmax(-z.x + z.y + z.z, z.x - z.y + z.z));
   const vfloat estimate = (planes - 1.0f) * 0.57735026918962576f * shrink * size;
   return fmax(v3_length(c) - 1.7320508075688772f * size, estimate);
+}
+
+/* Orbits stop once |z| passes 1e4 (every orbit past the set's cube escapes): far beyond the set,
+ * and small enough that z stays finite in float. */
+#define MANDELBOX_BAILOUT2 1e8f
+
+/* Tom Lowe's Mandelbox: each iteration folds every coordinate beyond +-1 back about it (the box
+ * fold), scales the orbit by (fixed_radius / min_radius)^2 inside min_radius and inverts it in the
+ * sphere of fixed_radius between the radii (the sphere fold), then z = scale z + (p - center); dr
+ * follows |dz/dp|. The estimate |z| / dr, never below the distance to the ball round the cube of
+ * half side 2 (scale < -1) or 2 (scale + 1) / (scale - 1) that holds the set. */
+SDF_INLINE vfloat sd_mandelbox(vec3v p, float4 center, float scale, int iterations, float min_radius, float fixed_radius) {
+  const float half_size = scale < 0.0f ? 2.0f : 2.0f * (scale + 1.0f) / (scale - 1.0f);
+  const float min_r2 = min_radius * min_radius, fixed_r2 = fixed_radius * fixed_radius;
+  const vec3v c = v3_sub(p, v3_from(center));
+  vec3v z = c;
+  vfloat dr = (vfloat)(1.0f);
+  vint active = MASK(v3_dot(z, z) <= MANDELBOX_BAILOUT2);
+  for (int i = 0; i < iterations && LANE_ANY(active); ++i) {
+    const vec3v folded = v3(clamp(z.x, -1.0f, 1.0f) * 2.0f - z.x, clamp(z.y, -1.0f, 1.0f) * 2.0f - z.y,
+                            clamp(z.z, -1.0f, 1.0f) * 2.0f - z.z);
+    const vfloat r2 = v3_dot(folded, folded);
+    /* fixed_r2 / r2 is infinite at r2 = 0, where the inner branch is taken. */
+    const vfloat k = select(select((vfloat)(1.0f), fixed_r2 / r2, MASK(r2 < fixed_r2)), (vfloat)(fixed_r2 / min_r2),
+                            MASK(r2 < min_r2));
+    z = v3_select(z, v3_add(v3_scale(folded, k * scale), c), active);
+    dr = select(dr, dr * k * fabs(scale) + 1.0f, active);
+    active &= MASK(v3_dot(z, z) <= MANDELBOX_BAILOUT2);
+  }
+  return fmax(v3_length(c) - 1.7320508075688772f * half_size, v3_length(z) / dr);
+}
+
+/* Orbits of the Julia set stop past |z| = 16: the estimate is better the farther out they go. */
+#define JULIA_BAILOUT2 256.0f
+/* The estimate is capped at 1 before meeting the enclosing ball, as the Mandelbulb's. */
+#define JULIA_ESTIMATE_CAP 1.0f
+#define JULIA_TINY 1e-30f
+
+/* The quaternion Julia set of z -> z^2 + c (Inigo Quilez's): the point is the quaternion
+ * (x, y, z, 0), x the real part; z^2 = (x^2 - |v|^2, 2 x v) for z = (x, v). |dz| grows as
+ * 2 |z| |dz| (tracked squared: md2). An orbit that escapes gives the estimate
+ * 0.5 |z| log|z| / |dz| = 0.25 sqrt(mz2 / md2) log(mz2), capped at 1; one that stays is on or in
+ * the set, 0 (there the formula means nothing: an attracting cycle shrinks |dz| to 0). Never below
+ * the distance to the ball of radius R (R^2 - R = |c|) beyond which every orbit escapes. */
+SDF_INLINE vfloat sd_julia(vec3v p, float4 center, float4 c, int iterations) {
+  const float radius = 0.5f * (1.0f + sqrt(1.0f + 4.0f * length(c)));
+  const vec3v q = v3_sub(p, v3_from(center));
+  vfloat zx = q.x, zy = q.y, zz = q.z, zw = (vfloat)(0.0f);
+  vfloat mz2 = zx * zx + zy * zy + zz * zz;
+  vfloat md2 = (vfloat)(1.0f);
+  vint active = MASK(mz2 <= JULIA_BAILOUT2);
+  for (int i = 0; i < iterations && LANE_ANY(active); ++i) {
+    const vfloat next_x = zx * zx - zy * zy - zz * zz - zw * zw + c.x;
+    const vfloat next_y = 2.0f * zx * zy + c.y, next_z = 2.0f * zx * zz + c.z, next_w = 2.0f * zx * zw + c.w;
+    md2 = select(md2, md2 * 4.0f * mz2, active);
+    zx = select(zx, next_x, active);
+    zy = select(zy, next_y, active);
+    zz = select(zz, next_z, active);
+    zw = select(zw, next_w, active);
+    mz2 = zx * zx + zy * zy + zz * zz + zw * zw;
+    active &= MASK(mz2 <= JULIA_BAILOUT2);
+  }
+  /* md2 is 0 where the orbit passed through 0 (the centre): the cap takes over there. */
+  const vfloat escaped = 0.25f * vsqrt(mz2 / fmax(md2, JULIA_TINY)) * vlog(mz2);
+  const vfloat estimate = select(fmin(escaped, JULIA_ESTIMATE_CAP), (vfloat)(0.0f), active);
+  return fmax(v3_length(q) - radius, estimate);
 }
 
 /* Floor-based mod, as GLSL's (OpenCL's fmod truncates towards zero). */

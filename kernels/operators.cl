@@ -64,3 +64,36 @@ SDF_INLINE vec3v op_repeat_polar(vec3v p, float sector) {
 SDF_INLINE vfloat op_repeat_limited_axis(vfloat x, float period, float first, float last) {
   return x - period * clamp(round(x / period), first, last);
 }
+
+/* Twist: p turned (right-handed) about the y axis by the angle rate * y. */
+SDF_INLINE vec3v op_twist(vec3v p, float rate) {
+  const vfloat c = vcos(rate * p.y), s = vsin(rate * p.y);
+  return v3(c * p.x + s * p.z, p.y, c * p.z - s * p.x);
+}
+
+/* Bend: p turned (right-handed) about the z axis by the angle rate * x. */
+SDF_INLINE vec3v op_bend(vec3v p, float rate) {
+  const vfloat c = vcos(rate * p.x), s = vsin(rate * p.x);
+  return v3(c * p.x - s * p.y, s * p.x + c * p.y, p.z);
+}
+
+/* The largest stretch of the twist's map at distance r from its axis, its Jacobian's largest
+ * singular value (a + sqrt(a^2 + 4)) / 2 with a = |rate| r; reach is the child's from the axis.
+ * On the segment from p to the nearest surface point no point is farther from the axis than
+ * max(r, reach), so the child's distance divided by this is a bound. */
+SDF_INLINE vfloat op_twist_lipschitz(vfloat r, float rate, float reach) {
+  const vfloat a = fabs(rate) * fmax(r, reach);
+  return 0.5f * (a + vsqrt(a * a + 4.0f));
+}
+
+/* Bend's factor as twist's: its Jacobian is a turn times I + u e_x^T with |u| = |rate| r (r the
+ * distance from the z axis), whose largest singular value is at most 1 + |rate| r. */
+SDF_INLINE vfloat op_bend_lipschitz(vfloat r, float rate, float reach) { return 1.0f + fabs(rate) * fmax(r, reach); }
+
+/* Extrusion of a section's distance along z to |z| <= half_length (Quilez's opExtrusion): exact
+ * where the section's distance is. */
+SDF_INLINE vfloat op_extrude(vfloat section, vfloat z, float half_length) {
+  const vfloat across = fabs(z) - half_length;
+  const vfloat out_x = fmax(section, 0.0f), out_z = fmax(across, 0.0f);
+  return fmin(fmax(section, across), 0.0f) + vsqrt(out_x * out_x + out_z * out_z);
+}

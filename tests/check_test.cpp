@@ -80,6 +80,29 @@ TEST(CheckFeatures, TheSierpinskiTetrahedron) {
   }
 }
 
+// The Mandelbox at a negative and a positive scale and the quaternion Julia set (issue 25), in float
+// and double, over a floor with soft shadows: the device agrees with the reference.
+TEST(CheckFeatures, TheMandelboxAndTheJuliaSet) {
+  const char* fractals[] = {"mandelbox: {scale: -1.5, iterations: 10, step_factor: 0.8}",
+                            "mandelbox: {scale: 2, iterations: 6, step_factor: 0.8}",
+                            "julia: {c: [-0.2, 0.6, 0.2, 0.1], iterations: 10, step_factor: 0.8}"};
+  const double distances[] = {5.5, 16.0, 3.2};
+  for (int i = 0; i < 3; ++i) {
+    for (const char* precision : {"float", "double"}) {
+      const std::string floor = fmt::format("{{plane: {{normal: [0, 1, 0], offset: {}}}}}", distances[i] * 0.4);
+      const Scene scene = testing::scene_from_yaml(
+          fmt::format("camera: {{position: [{0}, {1}, {0}], look_at: [0, 0, 0], fov: 45}}\n"
+                      "render: {{width: 96, height: 54, max_steps: 400, max_distance: {2}, precision: {3}}}\n"
+                      "sdf: {{union: [{{{4}}}, {5}]}}\n"
+                      "lights: [{{directional: {{direction: [1, 2, 1]}}}}]\nshading: {{ambient: 0.2, shadows: {{mode: soft}}}}\n",
+                      distances[i] * 0.6, distances[i] * 0.5, distances[i] * 4, precision, fractals[i], floor));
+      const CheckReport report = check_against(scene, scene);
+      EXPECT_TRUE(report.passed()) << fractals[i] << " " << precision << "\n" << report.to_text();
+      EXPECT_GT(report.both_hit, 500) << fractals[i];
+    }
+  }
+}
+
 TEST(CheckFeatures, ShadowsUnderTheCellsTiling) {
   const Scene scene = small_scene("tiled_spheres.yaml", {{"shading.shadows", "{mode: soft, min_t: 0.3}"}});
   ASSERT_EQ(scene.tiling->method, TilingMethod::Cells);

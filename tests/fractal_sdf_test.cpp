@@ -1,4 +1,4 @@
-// The fractal primitives, mandelbulb and menger: the reference against closed forms and the
+// The fractal primitives (mandelbulb, menger, mandelbox, julia): the reference against closed forms and the
 // set's own structure, the generated OpenCL map() against the reference at packet widths 1 and 16,
 // their scene keys, and the kernel file being compiled in only when a scene uses them.
 #include "codegen/kernel_source.hpp"
@@ -259,6 +259,48 @@ TEST(MengerKernel, MatchesTheReference) {
   expect_kernel_matches_reference("menger: {iterations: 8}", kMengerTolerance);
   expect_kernel_matches_reference("menger: {half_size: 0.5, iterations: 3, center: [0.1, 0, -0.2], step_factor: 0.5}",
                                   kMengerTolerance);
+}
+
+// Every orbit started outside the Mandelbox's cube (half side 2 below scale -1, 2 (s + 1) / (s - 1)
+// above 1; knighty's sizes, which scene_bounds and the ball term rely on) escapes: after 64
+// iterations a staying orbit's estimate is below |z| / |s|^64 < 1e-7, an escaped one's about the
+// distance to the set, at least 0.05 here.
+TEST(Mandelbox, OrbitsOutsideItsCubeEscape) {
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), beyond(1.05, 1.3);
+  for (double scale : {-3.0, -2.0, -1.5, 1.5, 2.0, 3.0}) {
+    for (const auto& [min_radius, fixed_radius] : {std::pair{0.5, 1.0}, std::pair{0.1, 1.0}, std::pair{0.5, 2.0}}) {
+      const Mandelbox box{{0.0, 0.0, 0.0}, scale, 64, min_radius, fixed_radius};
+      const double half_size = mandelbox_half_size(scale);
+      for (int i = 0; i < 2000; ++i) {
+        glm::dvec3 p(unit(rng), unit(rng), unit(rng));
+        p *= half_size * beyond(rng) / std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+        ASSERT_GT(sd_mandelbox(p, box), 1e-4) << "scale " << scale << " radii " << min_radius << ", " << fixed_radius << " at ("
+                                              << p.x << ", " << p.y << ", " << p.z << ")";
+      }
+    }
+  }
+  // And inside it some stay: the cube is no larger than it must be.
+  EXPECT_LT(sd_mandelbox({2.0, 2.0, 2.0}, Mandelbox{{0.0, 0.0, 0.0}, -1.5, 64, 0.5, 1.0}), 1e-7);
+  EXPECT_LT(sd_mandelbox({6.0, 0.0, 0.0}, Mandelbox{{0.0, 0.0, 0.0}, 2.0, 64, 0.5, 1.0}), 1e-7);
+}
+
+TEST(MandelboxKernel, MatchesTheReference) {
+  // The folds are continuous and the estimate divides the orbit's growth by dr's, so float's
+  // rounding of each iteration (2^-24 relative) stays a few ulps of |z| / dr: measured 9e-7 at
+  // most over both scales (points up to the cubes' corners); ten times that.
+  constexpr double kMandelboxTolerance = 1e-5;
+  expect_kernel_matches_reference_at("mandelbox: {scale: -1.5}", random_points(2000, 2.5, 19), kMandelboxTolerance);
+  expect_kernel_matches_reference_at("mandelbox: {scale: 2, iterations: 8, min_radius: 0.25, center: [0.5, 0, 0]}",
+                                     random_points(2000, 7.0, 20), kMandelboxTolerance);
+}
+
+TEST(JuliaKernel, MatchesTheReference) {
+  // As the Mandelbox's: measured 3.2e-7 at most, with 11 and 16 iterations.
+  constexpr double kJuliaTolerance = 1e-5;
+  expect_kernel_matches_reference_at("julia: {}", random_points(2000, 2.0, 21), kJuliaTolerance);
+  expect_kernel_matches_reference_at("julia: {c: [-0.2, 0.6, 0.2, 0.1], iterations: 16}", random_points(2000, 2.0, 22),
+                                     kJuliaTolerance);
 }
 
 TEST(FractalKeys, DefaultsAndRanges) {

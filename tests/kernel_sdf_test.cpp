@@ -34,6 +34,8 @@ struct SdfCase {
 
 const double kSqrt2 = std::sqrt(2.0);
 const double kSqrt3 = std::sqrt(3.0);
+// The radius of two columns across r = 1: 1 / (2 + 2 sqrt 2).
+const double kColumn2 = 0.5 / (1.0 + kSqrt2);
 
 // Symmetric shapes are probed on both sides of each symmetry plane: a dropped fabs() shows only there.
 const std::vector<SdfCase>& sdf_cases() {
@@ -162,6 +164,36 @@ const std::vector<SdfCase>& sdf_cases() {
        "repeat_limited: {period: [2, 0, 0], min: [-1, 0, 0], max: [1, 0, 0], children: [{sphere: {radius: 0.5}}]}",
        {{{2, 0, 0}, -0.5}, {{-2, 0, 0}, -0.5}, {{0, 0, 0}, -0.5}, {{4, 0, 0}, 1.5}, {{-6, 0, 0}, 3.5},
         {{0, 3, 0}, 2.5}}},
+      // The profiles (2D primitives), alone prisms along z: the distance in the xy plane.
+      {"circle", "circle: {center: [1, 2, 0], radius: 0.5}", {{{3, 2, 7}, 1.5}, {{1, 2, -4}, -0.5}}},
+      {"rectangle", "rectangle: {half_width: 0.5, half_height: 0.25}",
+       {{{2, 0, -3}, 1.5}, {{0, 1, 0}, 0.75}, {{1.5, 1.25, 5}, std::sqrt(2.0)}, {{0, 0, 9}, -0.25}}},
+      {"rounded_rectangle", "rounded_rectangle: {half_width: 0.5, half_height: 0.25, radius: 0.1}",
+       {{{0.8, 0.65, 0}, std::sqrt(0.41) - 0.1}, {{2, 0, 0}, 1.5}, {{0, 0, 0}, -0.25}}},
+      {"segment", "segment: {a: [-0.5, 0, 0], b: [0.5, 0, 0], radius: 0.05}", {{{0, 1, 9}, 0.95}, {{1.5, 0, 0}, 0.95}}},
+      // A hexagon of corner radius 0.5: a corner on +x, a flat side's middle at 30 degrees (apothem
+      // 0.5 cos 30).
+      {"regular_polygon", "regular_polygon: {radius: 0.5, sides: 6}",
+       {{{2, 0, 3}, 1.5}, {{2 * std::cos(M_PI / 6), 2 * std::sin(M_PI / 6), 0}, 2 - 0.5 * std::cos(M_PI / 6)},
+        {{0, 0, 0}, -0.5 * std::cos(M_PI / 6)}}},
+      // A circle of radius 0.25 at x = 0.5 turned about y 0.5 off the axis: the torus of radii 1 and
+      // 0.25.
+      {"revolve", "revolve: {offset: 0.5, children: [{circle: {center: [0.5, 0, 0], radius: 0.25}}]}",
+       {{{0, 0, 2}, 0.75}, {{0, 1, 0}, std::sqrt(2.0) - 0.25}, {{-1, 0, 0}, -0.25}}},
+      // A rectangle extruded: the box of half sizes 0.5, 0.25, 1.
+      {"extrude", "extrude: {half_length: 1, children: [{rectangle: {half_width: 0.5, half_height: 0.25}}]}",
+       {{{0, 0, 3}, 2.0}, {{2, 0, 0}, 1.5}, {{1.5, 1.25, 2}, std::sqrt(3.0)}, {{0, 0, 0}, -0.25}}},
+      // A unit sphere on the twist's axis: on the axis the factor is (a + sqrt(a^2 + 4)) / 2 with
+      // a = rate * 1 (the sphere's reach), and the turned sphere's ball (radius sqrt 2) gives more.
+      // At (1.2, 0, 0) the turn is 0: the sphere's distance 0.2 over the factor at a = 1.2 rate.
+      {"twist", "twist: {rate: 90, children: [{sphere: {radius: 1}}]}",
+       {{{0, 3, 0}, 3.0 - std::sqrt(2.0)}, {{1.2, 0, 0}, 0.2 / (0.5 * (0.6 * M_PI + std::sqrt(0.36 * M_PI * M_PI + 4.0)))}}},
+      // Bend's factor is 1 + rate max(r, reach): at (0, 1.2, 0) (x = 0, no turn) 0.2 / (1 + 1.2 rate).
+      {"bend", "bend: {rate: 30, children: [{sphere: {radius: 1}}]}",
+       {{{0, 1.2, 0}, 0.2 / (1.0 + 0.2 * M_PI)}, {{0, 0, 5}, 5.0 - std::sqrt(2.0)}}},
+      // A unit sphere stretched twice along x: its distance at p / (2, 1, 1), times 1.
+      {"nonuniform_scale", "nonuniform_scale: {factors: [2, 1, 1], children: [{sphere: {radius: 1}}]}",
+       {{{3, 0, 0}, 0.5}, {{0, 3, 0}, 2.0}, {{0, 0, 0}, -1.0}}},
       {"union", "union: [{sphere: {radius: 1}}, {sphere: {center: [1.5, 0, 0], radius: 1}}]",
        {{{0, 0, 0}, -1.0}, {{3, 0, 0}, 0.5}}},
       {"intersection", "intersection: [{sphere: {radius: 1}}, {sphere: {center: [1.5, 0, 0], radius: 1}}]",
@@ -183,6 +215,69 @@ const std::vector<SdfCase>& sdf_cases() {
       {"smooth_subtraction_blend",
        "smooth_subtraction: {k: 0.5, children: [{sphere: {radius: 1}}, {sphere: {center: [1.5, 0, 0], radius: 1}}]}",
        {{{1.875, 0, 0}, 0.875 + 0.5 / 16}, {{-0.5, 0, 0}, -0.5}}},
+      // The blends on the half spaces a = x (x <= 0) and b = y (y <= 0), or b = -y for the
+      // differences, so that a minus b is the same corner: the plane of (a, b) is the xy plane.
+      // Chamfer r = 1: the bevel x + y = 1, (a + b - r) / sqrt 2 from it.
+      {"union_chamfer", "union_chamfer: {radius: 1, children: [{plane: {normal: [1, 0, 0]}}, {plane: {normal: [0, 1, 0]}}]}",
+       {{{0.5, 0.5, 0}, 0.0}, {{1, 1, 3}, 1.0 / kSqrt2}, {{3, 0.2, 0}, 0.2}, {{-1, 2, 0}, -1.0}}},
+      {"intersection_chamfer",
+       "intersection_chamfer: {radius: 1, children: [{plane: {normal: [1, 0, 0]}}, {plane: {normal: [0, 1, 0]}}]}",
+       {{{-0.5, -0.5, 0}, 0.0}, {{-1, -1, 0}, -1.0 / kSqrt2}, {{2, -3, 0}, 2.0}}},
+      {"difference_chamfer",
+       "difference_chamfer: {radius: 1, children: [{plane: {normal: [1, 0, 0]}}, {plane: {normal: [0, -1, 0]}}]}",
+       {{{-0.5, -0.5, 0}, 0.0}, {{-1, -1, 0}, -1.0 / kSqrt2}, {{-3, 2, 0}, 2.0}}},
+      // Round r = 1: the quarter circle of radius 1 about (1, 1) (union) or (-1, -1).
+      {"union_round", "union_round: {radius: 1, children: [{plane: {normal: [1, 0, 0]}}, {plane: {normal: [0, 1, 0]}}]}",
+       {{{0.5, 0.5, 0}, 1.0 - 1.0 / kSqrt2}, {{1 - 1 / kSqrt2, 1 - 1 / kSqrt2, 0}, 0.0}, {{2, 0.5, 0}, 0.5},
+        {{3, 2, 0}, 2.0}, {{-1, 0.5, 0}, 1.0 - std::hypot(2.0, 0.5)}}},
+      {"intersection_round",
+       "intersection_round: {radius: 1, children: [{plane: {normal: [1, 0, 0]}}, {plane: {normal: [0, 1, 0]}}]}",
+       {{{-0.5, -0.5, 0}, 1.0 / kSqrt2 - 1.0}, {{1, 0.5, 0}, 1.5}, {{-3, -2, 0}, -2.0}, {{0.5, -2, 0}, 0.5}}},
+      {"difference_round",
+       "difference_round: {radius: 1, children: [{plane: {normal: [1, 0, 0]}}, {plane: {normal: [0, -1, 0]}}]}",
+       {{{-0.5, -0.5, 0}, 1.0 / kSqrt2 - 1.0}, {{1, 0.5, 0}, 1.5}, {{-3, -2, 0}, -2.0}}},
+      // Stairs r = 1, 2 steps: outer corners (0.25, 0.75) and (0.75, 0.25), max(a - corner.a,
+      // b - corner.b) from the nearer; 1 step: the corner (0.5, 0.5).
+      {"union_stairs",
+       "union_stairs: {radius: 1, steps: 2, children: [{plane: {normal: [1, 0, 0]}}, {plane: {normal: [0, 1, 0]}}]}",
+       {{{0.25, 0.75, 0}, 0.0}, {{0.5, 0.5, 0}, 0.25}, {{1, 1, 0}, 0.75}, {{0.1, 0.1, 0}, -0.15}, {{3, 0.1, 0}, 0.1}}},
+      {"union_stairs_one_step",
+       "union_stairs: {radius: 1, steps: 1, children: [{plane: {normal: [1, 0, 0]}}, {plane: {normal: [0, 1, 0]}}]}",
+       {{{0.5, 0.5, 0}, 0.0}, {{1, 1, 0}, 0.5}, {{0.2, 0.9, 0}, 0.2}}},
+      {"intersection_stairs",
+       "intersection_stairs: {radius: 1, steps: 2, children: [{plane: {normal: [1, 0, 0]}}, {plane: {normal: [0, 1, 0]}}]}",
+       {{{-0.25, -0.75, 0}, 0.0}, {{-1, -1, 0}, -0.75}, {{2, -3, 0}, 2.0}}},
+      {"difference_stairs",
+       "difference_stairs: {radius: 1, steps: 2, children: [{plane: {normal: [1, 0, 0]}}, {plane: {normal: [0, -1, 0]}}]}",
+       {{{-0.25, -0.75, 0}, 0.0}, {{-1, -1, 0}, -0.75}, {{-3, 2, 0}, 2.0}}},
+      // Columns r = 1: one column of radius c = 1 / (2 + sqrt 2) centred at (c, c), its tip on the
+      // bevel's middle (0.5, 0.5); two of radius c = 1 / (2 + 2 sqrt 2) centred at (0.5, c) and
+      // (c, 0.5), tips at (0.5, c) + c (1, 1) / sqrt 2. At (1, 1), 1 / sqrt 2 from the one column.
+      {"union_columns",
+       "union_columns: {radius: 1, steps: 1, children: [{plane: {normal: [1, 0, 0]}}, {plane: {normal: [0, 1, 0]}}]}",
+       {{{0.5, 0.5, 0}, 0.0}, {{1, 1, 0}, 1.0 / kSqrt2}, {{3, 0.2, 0}, 0.2}}},
+      {"union_columns_two",
+       "union_columns: {radius: 1, steps: 2, children: [{plane: {normal: [1, 0, 0]}}, {plane: {normal: [0, 1, 0]}}]}",
+       {{{0.5 + kColumn2 / kSqrt2, kColumn2 * (1 + 1 / kSqrt2), 0}, 0.0}, {{0.5, 0.5, 0}, 0.5 - 2 * kColumn2}}},
+      {"intersection_columns",
+       "intersection_columns: {radius: 1, steps: 1, children: [{plane: {normal: [1, 0, 0]}}, {plane: {normal: [0, 1, 0]}}]}",
+       {{{-0.5, -0.5, 0}, 0.0}, {{-1, -1, 0}, -1.0 / kSqrt2}}},
+      {"difference_columns",
+       "difference_columns: {radius: 1, steps: 1, children: [{plane: {normal: [1, 0, 0]}}, {plane: {normal: [0, -1, 0]}}]}",
+       {{{-0.5, -0.5, 0}, 0.0}, {{-1, -1, 0}, -1.0 / kSqrt2}}},
+      // Spheres of radius 1 at 0 and 1.5: inside both at x = 0.75 (a = b = -0.25), one at 0.
+      {"xor", "xor: [{sphere: {radius: 1}}, {sphere: {center: [1.5, 0, 0], radius: 1}}]",
+       {{{0.75, 0, 0}, 0.25}, {{0, 0, 0}, -0.5}, {{3, 0, 0}, 0.5}, {{-2, 0, 0}, 1.0}}},
+      // The tube of radius 0.25 about the z axis, where x = y = 0.
+      {"pipe", "pipe: {radius: 0.25, children: [{plane: {normal: [1, 0, 0]}}, {plane: {normal: [0, 1, 0]}}]}",
+       {{{1, 1, 0}, kSqrt2 - 0.25}, {{0, 0, 5}, -0.25}, {{0.3, -0.4, 0}, 0.25}}},
+      // Cut into (or raised on) the half space y <= 0 along the plane x = 0.
+      {"engrave", "engrave: {radius: 0.5, children: [{plane: {normal: [0, 1, 0]}}, {plane: {normal: [1, 0, 0]}}]}",
+       {{{0, 0, 0}, 0.5 / kSqrt2}, {{0, -1, 0}, -0.5 / kSqrt2}, {{2, -1, 0}, -1.0}, {{-0.25, -0.25, 0}, 0.0}}},
+      {"groove", "groove: {ra: 0.5, rb: 0.25, children: [{plane: {normal: [0, 1, 0]}}, {plane: {normal: [1, 0, 0]}}]}",
+       {{{0, 0, 0}, 0.25}, {{0, -0.75, 0}, -0.25}, {{1, -0.25, 0}, -0.25}, {{-0.1, -0.5, 0}, 0.0}}},
+      {"tongue", "tongue: {ra: 0.5, rb: 0.25, children: [{plane: {normal: [0, 1, 0]}}, {plane: {normal: [1, 0, 0]}}]}",
+       {{{0, 0.25, 0}, -0.25}, {{0, 1, 0}, 0.5}, {{1, 0.25, 0}, 0.25}, {{-0.25, 0.3, 0}, 0.0}}},
       {"three_way_union", "union: [{sphere: {radius: 1}}, {sphere: {center: [4, 0, 0], radius: 1}}, {sphere: {center: [8, 0, 0], radius: 1}}]",
        {{{8, 0, 0}, -1.0}, {{6, 0, 0}, 1.0}}},
       // Box half [1, 2, 3] turned about z by 90 degrees becomes half (2, 1, 3) in the world.
@@ -219,6 +314,23 @@ const std::vector<SdfCase>& sdf_cases() {
       {"sierpinski", "sierpinski: {center: [1, 2, 3]}",
        {{{2, 3, 4}, 0.0}, {{0, 1, 4}, 0.0}, {{11, 2, 3}, 10.0 - std::sqrt(3.0)}, {{1, 2, -7}, 10.0 - std::sqrt(3.0)}}},
       {"sierpinski_sized", "sierpinski: {size: 2, iterations: 3, scale: 3}", {{{2, -2, -2}, 0.0}, {{0, 0, 12}, 12.0 - 2.0 * std::sqrt(3.0)}}},
+      // The Mandelbox's centre is a fixed point of its orbit (the sphere fold scales 0 to 0): |z| = 0.
+      // (6, 0, 0) is a cycle of two at scale 2 (6 -> -2 -> 6; dr -> 16 dr + 9 a cycle, 26843545
+      // after 12 iterations), (2, 0, 0) and (2, 2, 2) are fixed at scale -1.5 (dr -> 6 dr + 1,
+      // (6^13 - 1) / 5 after 12): on the set, |z| / dr. Far away at scale 2 the estimate is the
+      // distance to the ball round its cube of half side 6.
+      {"mandelbox", "mandelbox: {center: [1, 0, 0]}",
+       {{{1, 0, 0}, 0.0}, {{7, 0, 0}, 6.0 / 26843545.0}, {{41, 0, 0}, 40.0 - 6.0 * std::sqrt(3.0)},
+        {{1, 0, -30}, 30.0 - 6.0 * std::sqrt(3.0)}}},
+      {"mandelbox_negative", "mandelbox: {scale: -1.5, iterations: 12}",
+       {{{0, 0, 0}, 0.0}, {{2, 0, 0}, 2.0 / ((std::pow(6.0, 13) - 1.0) / 5.0)},
+        {{2, 2, 2}, 2.0 * std::sqrt(3.0) / ((std::pow(6.0, 13) - 1.0) / 5.0)}}},
+      // With c = 0 the Julia set is the unit sphere: outside, the estimate 0.5 r log r stays below
+      // the ball's distance r - 1 (or is capped at 1 when it is not); inside, orbits stay (0).
+      {"julia_sphere", "julia: {center: [0, 1, 0], c: [0, 0, 0, 0]}",
+       {{{2, 1, 0}, 1.0}, {{0, 2.5, 0}, 0.5}, {{0, 1, -4}, 3.0}, {{0.6, 1, 0}, 0.0}, {{0, 1, 1}, 0.0}}},
+      // Far from the default c's set the distance is that to its ball, R^2 - R = |c|.
+      {"julia", "julia: {}", {{{5, 0, 0}, 5.0 - 0.5 * (1.0 + std::sqrt(1.0 + 4.0 * std::sqrt(0.80658025)))}}},
       // Without amplitude the terrain is the flat ground y = height, times the step factor.
       {"terrain", "terrain: {height: 0.5, amplitude: 0, step_factor: 0.5}", {{{3, 10, -7}, 4.75}, {{100, -2, 50}, -1.25}}},
       {"terrain_derivative", "terrain: {height: -1, amplitude: 0, noise: derivative}", {{{-3, 2, 7}, 3.0}}},
@@ -279,7 +391,10 @@ TEST(SdfClosedForm, CatalogueKernelMatchesTheReferenceEverywhere) {
                                            "cone", "rounded_cylinder", "round_cone", "capped_torus", "capped_torus_full", "link",
                                            "cut_sphere", "cut_sphere_below_centre", "pyramid", "triangle", "quad",
                                            "quad_tilted", "triangular_prism", "solid_angle", "solid_angle_wide",
-                                           "cut_hollow_sphere", "death_star", "rhombus"};
+                                           "cut_hollow_sphere", "death_star", "rhombus",
+                                           // Profiles and modifiers.
+                                           "circle", "rectangle", "rounded_rectangle", "segment", "regular_polygon", "revolve",
+                                           "extrude", "twist", "bend", "nonuniform_scale"};
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> coord(-4.0, 4.0);
   std::vector<glm::dvec3> points(400);

@@ -53,5 +53,19 @@ TEST(KindDocs, PrimitivesThatAreNotExactSaySo) {
   }
 }
 
+// A blend's status in its row follows operator_lipschitz: "estimate" where it can be steeper than 1.
+TEST(KindDocs, BlendsSayWhetherTheyAreBoundsOrEstimates) {
+  const std::string page = read_text(source_path("docs/scene-format.md"));
+  for (NodeKind kind : kAllNodeKinds) {
+    if (!is_blend_operator(kind)) continue;
+    SCOPED_TRACE(std::string(node_kind_name(kind)));
+    Node node = node_of_kind(kind);
+    node.children = {node_of_kind(NodeKind::Sphere), node_of_kind(NodeKind::Sphere)};
+    const std::string row = docs_row(page, node_kind_name(kind));
+    const std::string status = operator_lipschitz(node) > 1.0 ? "| estimate |" : "| bound |";
+    EXPECT_NE(row.find(status), std::string::npos) << "its row needs the status " << status;
+  }
+}
+
 }  // namespace
 }  // namespace clmarch

@@ -189,6 +189,40 @@ TEST(OperandGrid, AChainOfBlendsCarriesTheFirstOperandToTheEnd) {
   EXPECT_GT(moved, 5 * tolerance);
 }
 
+// Blends as operands of a grid: their code in the operand records, and their cells. A chamfered
+// pair of concentric spheres falls sqrt 2 times as fast as the point moves (both operands'
+// gradients agree), so its value at a cell's centre does not bound it over the cell
+// (operator_lipschitz: the grid bounds it by its sphere alone); the pruned union equals the full one.
+TEST(OperandGrid, KeepsBlendsSteeperThanOne) {
+  std::string body = "  union:\n";
+  for (int i = 0; i < 48; ++i) {
+    body += fmt::format("    - sphere: {{center: [{}, {}, {}], radius: 0.15}}\n", -3.0 + 0.5 * (i % 12), -0.5 + (i / 12) % 2, (i / 24) * 2.0);
+  }
+  // Each blob in a ring of small spheres, so that cells between them hold both.
+  for (double x : {-2.0, 0.0, 2.0}) {
+    body += fmt::format("    - union_chamfer: {{radius: 0.4, translate: [{}, 1.2, 1], children: [{{sphere: {{radius: 0.3}}}}, "
+                        "{{sphere: {{radius: 0.25}}}}]}}\n",
+                        x);
+    for (int j = 0; j < 8; ++j) {
+      const double angle = 0.785398 * j;
+      body += fmt::format("    - sphere: {{center: [{}, {}, 1], radius: 0.1}}\n", x + 0.9 * std::cos(angle), 1.2 + 0.9 * std::sin(angle));
+    }
+  }
+  const Scene pruned = scene_from_yaml("render: {pruning: grid}\nsdf:\n" + body);
+  const Scene full = scene_from_yaml("render: {pruning: none}\nsdf:\n" + body);
+  ASSERT_EQ(grid_union(pruned), &pruned.sdf);
+  const OperandGrid grid = build_operand_grid(pruned.sdf, glm::dvec3(0.0));
+  std::vector<glm::dvec3> points = sample_points(5, grid, 4096);
+  std::erase_if(points, [&](const glm::dvec3& p) { return !inside(grid, p); });
+  OpenClOptions options;
+  options.lanes = 16;
+  const PointSamples a = eval_points_opencl(pruned, points, options);
+  const PointSamples b = eval_points_opencl(full, points, options);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    EXPECT_EQ(a.distance[i], b.distance[i]) << points[i].x << ", " << points[i].y << ", " << points[i].z;
+  }
+}
+
 TEST(OperandGrid, CellListsAreAscendingNonEmptyAndShort) {
   const int n = 400;
   const Scene scene = scene_from_yaml(random_union(9, n, 0.0, "grid"));

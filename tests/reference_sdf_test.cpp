@@ -7,6 +7,7 @@
 #include <cmath>
 #include <random>
 #include <stdexcept>
+#include <type_traits>
 #include <utility>
 
 namespace clmarch {
@@ -337,6 +338,21 @@ Node default_node(NodeKind kind) {
   if (kind == NodeKind::Displace) {
     Node node = op_node(kind, {sphere_node({0.0, 0.0, 0.0}, 0.5)});
     node.params = Displace{0.1, 2.0};
+    return node;
+  }
+  if (is_blend_operator(kind)) {
+    // Radius 0.2, steps 2, ra and rb 0.1; an estimate's step factor 1 / sqrt 2 makes it a bound.
+    Node node = op_node(kind, {sphere_node({0.0, 0.0, 0.0}, 0.5), sphere_node({0.3, 0.2, 0.0}, 0.6, kRed)});
+    std::visit(
+        [](auto& params) {
+          for_each_param(params, [](const ParamSpec& spec, auto& value) {
+            using Value = std::decay_t<decltype(value)>;
+            if constexpr (std::is_same_v<Value, int>) value = 2;
+            if constexpr (std::is_same_v<Value, double>) value = std::string(spec.key) == "radius" ? 0.2 : 0.1;
+          });
+        },
+        node.params);
+    node.step_factor = 1.0 / operator_lipschitz(node);
     return node;
   }
   // The operators of one child, each with parameters that keep the field continuous: the copies

@@ -290,6 +290,38 @@ TEST(FarCamera, EveryNodeKindRendersInTheMapFrame) {
         "    - rhombus: {{center: {}, half_width: 0.5, half_depth: 0.3, half_height: 0.1, corner_radius: 0.05}}\n",
         1.0 - offset.y, at(-1.5, -0.6, 0), at(-0.5, -0.4, 1), at(0.6, 0.1, 1.0), at(1.5, -0.7, -0.3));
   });
+  // The blends: a sphere and a box, the first ones by their centres, the others under a translate;
+  // the estimates with step_factor 0.7 (they are up to sqrt 2 steeper than the distance).
+  expect_checks_near_and_far([](const auto& at, const glm::dvec3& offset) {
+    const std::pair<const char*, const char*> blends[] = {
+        {"union_chamfer", "radius: 0.1, step_factor: 0.7"},     {"intersection_chamfer", "radius: 0.1, step_factor: 0.7"},
+        {"difference_chamfer", "radius: 0.1, step_factor: 0.7"}, {"union_round", "radius: 0.1, step_factor: 0.7"},
+        {"intersection_round", "radius: 0.1, step_factor: 0.7"}, {"difference_round", "radius: 0.1, step_factor: 0.7"},
+        {"union_stairs", "radius: 0.15, steps: 3"},             {"intersection_stairs", "radius: 0.15, steps: 3"},
+        {"difference_stairs", "radius: 0.15, steps: 3"},        {"union_columns", "radius: 0.15, steps: 2, step_factor: 0.7"},
+        {"intersection_columns", "radius: 0.15, steps: 2, step_factor: 0.7"},
+        {"difference_columns", "radius: 0.15, steps: 2, step_factor: 0.7"},
+        {"xor", ""},                                            {"pipe", "radius: 0.05, step_factor: 0.7"},
+        {"engrave", "radius: 0.08, step_factor: 0.7"},           {"groove", "ra: 0.08, rb: 0.05"},
+        {"tongue", "ra: 0.08, rb: 0.05"}};
+    std::string sdf = fmt::format("  union:\n    - plane: {{normal: [0, 1, 0], offset: {}}}\n", 1.0 - offset.y);
+    int i = 0;
+    for (const auto& [name, params] : blends) {
+      const double x = -2.0 + 0.8 * (i % 6), z = -1.6 + 1.2 * (i / 6);
+      const std::string head = fmt::format("{}{}", params, *params ? ", " : "");
+      if (i < 6) {
+        sdf += fmt::format("    - {}: {{{}children: [{{sphere: {{center: {}, radius: 0.3}}}}, "
+                           "{{box: {{center: {}, half_size: [0.2, 0.2, 0.2]}}}}]}}\n",
+                           name, head, at(x - 0.1, 0, z), at(x + 0.15, 0.1, z));
+      } else {
+        sdf += fmt::format("    - {}: {{{}translate: {}, children: [{{sphere: {{center: [-0.1, 0, 0], radius: 0.3}}}}, "
+                           "{{box: {{center: [0.15, 0.1, 0], half_size: [0.2, 0.2, 0.2]}}}}]}}\n",
+                           name, head, at(x, 0, z));
+      }
+      ++i;
+    }
+    return sdf;
+  });
 }
 
 // A model authored far from the origin and translated home (issue 26): a transformed node's

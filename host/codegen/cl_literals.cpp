@@ -16,8 +16,8 @@ std::string cl_float(double value) {
 
 std::string cl_float4(const glm::dvec3& v) { return cl_float4_of(cl_float(v.x), cl_float(v.y), cl_float(v.z)); }
 
-std::string cl_float4_of(const std::string& x, const std::string& y, const std::string& z) {
-  return fmt::format("(float4)({}, {}, {}, 0.0f)", x, y, z);
+std::string cl_float4_of(const std::string& x, const std::string& y, const std::string& z, const std::string& w) {
+  return fmt::format("(float4)({}, {}, {}, {})", x, y, z, w);
 }
 
 }  // namespace clmarch

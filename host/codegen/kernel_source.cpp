@@ -108,6 +108,13 @@ bool uses_kind(const Node& node, std::initializer_list<NodeKind> kinds) {
   return std::any_of(node.children.begin(), node.children.end(), [&](const Node& child) { return uses_kind(child, kinds); });
 }
 
+/// True if node or a descendant is of a kind of the group: profiles (kernels/profiles.cl), blend
+/// operators (kernels/blend_operators.cl).
+bool uses_group(const Node& node, bool (*in_group)(NodeKind)) {
+  return in_group(node.kind) ||
+         std::any_of(node.children.begin(), node.children.end(), [&](const Node& child) { return uses_group(child, in_group); });
+}
+
 }  // namespace
 
 bool uses_antialiasing(const Scene& scene, KernelPurpose purpose) {
@@ -166,9 +173,13 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
   src += kernel_file("device_types.h");
   src += kernel_file("lanes.cl");
   src += kernel_file("primitives.cl");
-  if (uses_kind(scene.sdf, {NodeKind::Mandelbulb, NodeKind::Menger, NodeKind::Sierpinski})) src += kernel_file("fractals.cl");
+  if (uses_kind(scene.sdf, {NodeKind::Mandelbulb, NodeKind::Menger, NodeKind::Sierpinski, NodeKind::Mandelbox, NodeKind::Julia})) {
+    src += kernel_file("fractals.cl");
+  }
+  if (uses_group(scene.sdf, is_profile)) src += kernel_file("profiles.cl");
   if (uses_kind(scene.sdf, {NodeKind::Terrain})) src += kernel_file("noise.cl");
   src += kernel_file("operators.cl");
+  if (uses_group(scene.sdf, is_blend_operator)) src += kernel_file("blend_operators.cl");
   if (uses_patterns(scene.sdf)) src += kernel_file("patterns.cl");
   src += "#line 1 \"generated scene\"\n";
   if (options.purpose == KernelPurpose::EvalPoints) {

@@ -2,6 +2,7 @@
 // so that the dumped kernel reads as the tree it came from.
 #include "codegen/sdf_codegen.hpp"
 
+#include "codegen/blend_code.hpp"
 #include "codegen/color_pattern_code.hpp"
 
 #include "codegen/cl_literals.hpp"
@@ -47,6 +48,7 @@ glm::dvec3 surface_vector(const Material& m, ShadingModel model) {
 std::string argument(const ParamSpec& spec, const glm::dvec3& value, const glm::dvec3& offset, Literals& lit) {
   return lit.f4(spec.type == ParamType::Point ? value - offset : value);
 }
+std::string argument(const ParamSpec&, const glm::dvec4& value, const glm::dvec3&, Literals& lit) { return lit.f4(value); }
 std::string argument(const ParamSpec&, double value, const glm::dvec3&, Literals& lit) { return lit.f(value); }
 std::string argument(const ParamSpec&, int value, const glm::dvec3&, Literals&) { return std::to_string(value); }
 std::string argument(const ParamSpec&, std::uint32_t value, const glm::dvec3&, Literals&) { return fmt::format("{}u", value); }
@@ -210,7 +212,8 @@ class SdfEmitter {
   }
 
   /// The blend of the material of an operator's operands, as combine() writes it: {0} and {1} are
-  /// the first and second operand's colors, a and b their distances, k the blend radius's mark.
+  /// the first and second operand's colors, a and b their distances, k the blend radius's mark (a
+  /// blend's arguments, operator_arguments).
   static std::string blend_rule(NodeKind kind, const std::string& a, const std::string& b, const std::string& k,
                                 const BlendFunctions& f = kColorBlend) {
     switch (kind) {
@@ -223,6 +226,9 @@ class SdfEmitter {
         return fmt::format("{}({}, {}, smooth_intersection_blend({}, {}, {}))", f.mix, "{1}", "{0}", a, b, k);
       case NodeKind::SmoothSubtraction:
         return fmt::format("{}({}, {}, smooth_subtraction_blend({}, {}, {}))", f.mix, "{0}", "{1}", a, b, k);
+#define CLMARCH_BLEND(Kind, name, min_children, params_list) case NodeKind::Kind:
+#include "scene/node_kinds.def"
+        return fmt::format("{}({}, {}, MASK({}))", f.select, "{1}", "{0}", blend_first_wins(kind, a, b, k));
 #define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind:
 #define CLMARCH_MODIFIER(Kind, name, params_list) case NodeKind::Kind:
 #include "scene/node_kinds.def"
@@ -240,6 +246,9 @@ class SdfEmitter {
       case NodeKind::SmoothUnion: return fmt::format("op_smooth_union({}, {}, {})", a, b, k);
       case NodeKind::SmoothIntersection: return fmt::format("op_smooth_intersection({}, {}, {})", a, b, k);
       case NodeKind::SmoothSubtraction: return fmt::format("op_smooth_subtraction({}, {}, {})", a, b, k);
+#define CLMARCH_BLEND(Kind, name, min_children, params_list) case NodeKind::Kind:
+#include "scene/node_kinds.def"
+        return blend_distance_code(kind, a, b, k);
 #define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind:
 #define CLMARCH_MODIFIER(Kind, name, params_list) case NodeKind::Kind:
 #include "scene/node_kinds.def"
@@ -252,6 +261,13 @@ class SdfEmitter {
   std::string fresh(const char* prefix) { return fmt::format("{}{}", prefix, counter_++); }
   /// The literal of a smooth operator's blend radius; nothing for the others.
   std::string blend_radius(const Node& node) { return is_smooth_operator(node.kind) ? lit_.f(smooth_k(node)) : std::string(); }
+  /// The operator's arguments after a and b: a smooth one's blend radius, a blend's parameters.
+  std::string operator_arguments(const Node& node) {
+    if (!is_blend_operator(node.kind)) return blend_radius(node);
+    std::string joined;
+    for (const std::string& arg : blend_arguments(node, lit_)) joined += (joined.empty() ? "" : ", ") + arg;
+    return joined;
+  }
   void line(const std::string& text) { body_ += "  " + indent_ + text + "\n"; }
 
   /// The node's frame: the point and offset its subtree sees. The subtree's points are measured
@@ -357,6 +373,10 @@ class SdfEmitter {
     if (node.kind == NodeKind::Mirror) return emit_mirror(node, p, color, offset);
     if (node.kind == NodeKind::RepeatPolar) return emit_repeat_polar(node, p, color, offset);
     if (node.kind == NodeKind::RepeatLimited) return emit_repeat_limited(node, p, color, offset);
+    if (node.kind == NodeKind::Revolve) return emit_revolve(node, p, color, offset);
+    if (node.kind == NodeKind::Extrude) return emit_extrude(node, p, color, offset);
+    if (node.kind == NodeKind::Twist || node.kind == NodeKind::Bend) return emit_turn(node, p, color, offset);
+    if (node.kind == NodeKind::NonuniformScale) return emit_nonuniform_scale(node, p, color, offset);
     if (node.kind == NodeKind::Union) return emit_union(node, p, color, offset);
     const std::vector<int> firsts = child_first_ids(node, first_id_);
     Value acc = emit(node.children.front(), p, color, offset);
@@ -371,14 +391,18 @@ class SdfEmitter {
   }
 
   /// Above what bound of a later child the operator returns acc unchanged: smooth union acc + k
-  /// (its blend weight is 1 there), subtraction -acc, smooth subtraction k - acc (weight 0).
-  /// Nothing for intersections, whose result is the largest operand.
+  /// (its blend weight is 1 there), subtraction -acc, smooth subtraction k - acc (weight 0), the
+  /// blends' limits (codegen/blend_code.cpp). Nothing for intersections, whose result is the
+  /// largest operand.
   std::optional<std::string> sequential_skip_limit(const Node& node, const std::string& acc) {
     const std::string k = blend_radius(node);
     switch (node.kind) {
       case NodeKind::SmoothUnion: return fmt::format("{} + {}", acc, k);
       case NodeKind::Subtraction: return fmt::format("-{}", acc);
       case NodeKind::SmoothSubtraction: return fmt::format("{} - {}", k, acc);
+#define CLMARCH_BLEND(Kind, name, min_children, params_list) case NodeKind::Kind:
+#include "scene/node_kinds.def"
+        return blend_skip_limit(node.kind, acc, blend_arguments(node, lit_));
       case NodeKind::Union:
       case NodeKind::Intersection:
       case NodeKind::SmoothIntersection:
@@ -566,9 +590,64 @@ class SdfEmitter {
     return emit(node.children.front(), q, color, child_offset);
   }
 
+  /// The child's section at z = 0 at (length(p_local.xz) - offset, p_local.y): the radius needs
+  /// the absolute x and z; y keeps its offset.
+  Value emit_revolve(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
+    const std::string at = absolute_point(p, glm::dvec3(offset.x, 0.0, offset.z));
+    const std::string q = fresh("p");
+    line(fmt::format("vec3v {0} = v3(vsqrt({1}.x * {1}.x + {1}.z * {1}.z) - {2}, {1}.y, (vfloat)(0.0f));  /* revolve */", q, at,
+                     lit_.f(params_of<Revolve>(node).offset)));
+    return emit(node.children.front(), q, color, glm::dvec3(0.0, offset.y, 0.0));
+  }
+
+  /// The child's section at z = 0 extruded along the absolute z.
+  Value emit_extrude(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
+    const std::string q = fresh("p");
+    line(fmt::format("vec3v {0} = v3({1}.x, {1}.y, (vfloat)(0.0f));  /* extrude */", q, p));
+    const Value section = emit(node.children.front(), q, color, glm::dvec3(offset.x, offset.y, 0.0));
+    const std::string z = offset.z == 0.0 ? fmt::format("{}.z", p) : fmt::format("{}.z + {}", p, lit_.f(offset.z));
+    Value out{fresh("d"), section.color, section.surface, section.id, section.emission};
+    line(fmt::format("vfloat {} = op_extrude({}, {}, {});", out.distance, section.distance, z,
+                     lit_.f(params_of<Extrude>(node).half_length)));
+    return out;
+  }
+
+  /// Twist (about y) and bend (about z): the child at the turned absolute point, its distance
+  /// divided by the turn's Lipschitz factor there, and never below the distance to the sphere
+  /// holding the turned child (scene_bounds' turned_bounds).
+  Value emit_turn(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
+    const bool twist = node.kind == NodeKind::Twist;
+    const int axis = twist ? 1 : 2;
+    const double rate = (twist ? params_of<Twist>(node).rate : params_of<Bend>(node).rate) * std::numbers::pi / 180.0;
+    const BoundingSphere child_bounds = *node_bounds(node.children.front());
+    const BoundingSphere ball = turned_bounds(child_bounds, axis);
+    const std::string at = absolute_point(p, offset);
+    const std::string q = fresh("p");
+    line(fmt::format("vec3v {} = op_{}({}, {});  /* {} */", q, twist ? "twist" : "bend", at, lit_.f(rate), node_kind_name(node.kind)));
+    const Value child = emit(node.children.front(), q, color, glm::dvec3(0.0));
+    const std::string across = twist ? fmt::format("vsqrt({0}.x * {0}.x + {0}.z * {0}.z)", at) : fmt::format("vsqrt({0}.x * {0}.x + {0}.y * {0}.y)", at);
+    Value out{fresh("d"), child.color, child.surface, child.id, child.emission};
+    line(fmt::format("vfloat {} = fmax({} / op_{}_lipschitz({}, {}, {}), sd_bound({}, {}, {}, 1.0f));", out.distance, child.distance,
+                     twist ? "twist" : "bend", across, lit_.f(rate), lit_.f(turn_reach(child_bounds, axis)), p,
+                     lit_.f4(ball.center - offset), lit_.f(ball.radius)));
+    return out;
+  }
+
+  /// The child at p_local / factors (its offset divided too), its distance times the smallest factor.
+  Value emit_nonuniform_scale(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
+    const glm::dvec3& f = params_of<NonuniformScale>(node).factors;
+    const std::string q = fresh("p");
+    line(fmt::format("vec3v {0} = v3({1}.x * {2}, {1}.y * {3}, {1}.z * {4});  /* nonuniform_scale */", q, p, lit_.f(1.0 / f.x),
+                     lit_.f(1.0 / f.y), lit_.f(1.0 / f.z)));
+    const Value child = emit(node.children.front(), q, color, offset / f);
+    Value out{fresh("d"), child.color, child.surface, child.id, child.emission};
+    line(fmt::format("vfloat {} = {} * {};", out.distance, child.distance, lit_.f(std::min({f.x, f.y, f.z}))));
+    return out;
+  }
+
   Value combine(const Node& node, const Value& a, const Value& b) {
     Value out{fresh("d"), "", "", "", ""};
-    const std::string k = blend_radius(node);
+    const std::string k = operator_arguments(node);
     if (with_color_) {
       const std::string blend = blend_rule(node.kind, a.distance, b.distance, k);
       out.color = fresh("c");
@@ -846,6 +925,11 @@ std::string Literals::f4(const glm::dvec3& v) {
   // Numbered x, y, z whatever the compiler (it evaluates function arguments in no fixed order).
   const std::string x = f(v.x), y = f(v.y), z = f(v.z);
   return cl_float4_of(x, y, z);
+}
+
+std::string Literals::f4(const glm::dvec4& v) {
+  const std::string x = f(v.x), y = f(v.y), z = f(v.z), w = f(v.w);
+  return cl_float4_of(x, y, z, w);
 }
 
 std::string sdf_functions(const Node& root, const glm::dvec3& frame_origin, bool gate_subtrees, Literals& literals,

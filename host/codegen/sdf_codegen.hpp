@@ -44,6 +44,8 @@ class Literals {
   std::string f(double value);
   /// A float4 of three new literals and w = 0.
   std::string f4(const glm::dvec3& v);
+  /// A float4 of four new literals.
+  std::string f4(const glm::dvec4& v);
   /// The values by index; leaves this empty.
   std::vector<float> take() { return std::move(values_); }
   /// Marks the values written so far as the distance function's (map(), which comes first).

@@ -25,10 +25,13 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 /// Whether node's field changes by at most the distance moved, so that its value at a cell's centre
 /// bounds it over the cell: not the escape-time Mandelbulb's estimate, the terrain (whose slopes
-/// pass 1 before its step_factor) or a repetition (whose child may not fit its cell).
+/// pass 1 before its step_factor), a repetition (whose child may not fit its cell) or a blend that is
+/// an estimate.
 bool is_one_lipschitz(const Node& node) {
   if (is_primitive(node.kind)) return field_quality(node.kind) != FieldQuality::Estimate;
   if (node.kind == NodeKind::Repeat || node.kind == NodeKind::RepeatPolar || node.kind == NodeKind::RepeatLimited) return false;
+  // The chamfer, round, columns, pipe and engrave blends: up to sqrt(children) steeper.
+  if (operator_lipschitz(node) > 1.0) return false;
   return std::all_of(node.children.begin(), node.children.end(), is_one_lipschitz);
 }
 

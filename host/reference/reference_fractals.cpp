@@ -3,6 +3,8 @@
 
 #include "scene/tiling_model.hpp"
 
+#include <glm/gtc/quaternion.hpp>
+
 #include <algorithm>
 #include <cmath>
 
@@ -55,6 +57,51 @@ double sd_sierpinski(const glm::dvec3& p, const Sierpinski& tetrahedron) {
   const double planes = std::max({-z.x - z.y - z.z, z.x + z.y - z.z, -z.x + z.y + z.z, z.x - z.y + z.z});
   const double estimate = (planes - 1.0) / std::sqrt(3.0) * std::pow(s, -tetrahedron.iterations) * tetrahedron.size;
   return std::max(glm::length(c) - std::sqrt(3.0) * tetrahedron.size, estimate);
+}
+
+double sd_mandelbox(const glm::dvec3& p, const Mandelbox& box) {
+  // Orbits past |z| = 1e4 have left the set's cube for good.
+  constexpr double kBailout = 1e4;
+  const glm::dvec3 c = p - box.center;
+  glm::dvec3 z = c;
+  double dr = 1.0;
+  for (int i = 0; i < box.iterations && glm::length(z) <= kBailout; ++i) {
+    for (int axis = 0; axis < 3; ++axis) {
+      // The box fold: a coordinate beyond +-1 reflected about it.
+      if (z[axis] > 1.0) {
+        z[axis] = 2.0 - z[axis];
+      } else if (z[axis] < -1.0) {
+        z[axis] = -2.0 - z[axis];
+      }
+    }
+    const double r = glm::length(z);
+    double fold = 1.0;
+    if (r < box.min_radius) {
+      fold = (box.fixed_radius * box.fixed_radius) / (box.min_radius * box.min_radius);
+    } else if (r < box.fixed_radius) {
+      fold = (box.fixed_radius * box.fixed_radius) / (r * r);
+    }
+    z = box.scale * fold * z + c;
+    dr = dr * std::abs(box.scale) * fold + 1.0;
+  }
+  return std::max(glm::length(c) - std::sqrt(3.0) * mandelbox_half_size(box.scale), glm::length(z) / dr);
+}
+
+double sd_julia(const glm::dvec3& p, const Julia& julia) {
+  constexpr double kBailout = 16.0;
+  const glm::dvec3 q = p - julia.center;
+  // glm's quaternions are (w, x, y, z) with w the real part.
+  glm::dquat z(q.x, q.y, q.z, 0.0);
+  const glm::dquat c(julia.c.x, julia.c.y, julia.c.z, julia.c.w);
+  double dz = 1.0;
+  for (int i = 0; i < julia.iterations && glm::length(z) <= kBailout; ++i) {
+    dz *= 2.0 * glm::length(z);
+    z = z * z + c;
+  }
+  // An orbit that stays is on or in the set; one through 0 (at the centre) has dz = 0 and is capped.
+  const double r = glm::length(z);
+  const double estimate = r <= kBailout ? 0.0 : std::min(0.5 * r * std::log(r) / std::max(dz, kTinyRadius), kEstimateCap);
+  return std::max(glm::length(q) - julia_radius(julia.c), estimate);
 }
 
 double sd_menger(const glm::dvec3& p, const Menger& sponge) {

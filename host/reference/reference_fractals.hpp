@@ -1,5 +1,5 @@
-// Reference distance estimators of the fractal primitives, in double: the Mandelbulb and Inigo
-// Quilez's Menger sponge. Written apart from kernels/fractals.cl; the two are compared in tests.
+// Reference distance estimators of the fractal primitives, in double: the Mandelbulb, Inigo
+// Quilez's Menger sponge, the Sierpinski tetrahedron, the Mandelbox and the quaternion Julia set. Written apart from kernels/fractals.cl; the two are compared in tests.
 #pragma once
 
 #include "scene/scene.hpp"
@@ -22,5 +22,13 @@ double sd_menger(const glm::dvec3& p, const Menger& sponge);
 /// tetrahedron by its face planes, scaled back (an estimate: one copy of the level stands for
 /// all), never below the distance to the ball of radius sqrt(3) size around the centre.
 double sd_sierpinski(const glm::dvec3& p, const Sierpinski& tetrahedron);
+
+/// Tom Lowe's Mandelbox by the estimate |z| / |dz/dp| of its box and sphere folds, never below the
+/// distance to the ball round the cube that holds it (mandelbox_half_size).
+double sd_mandelbox(const glm::dvec3& p, const Mandelbox& box);
+
+/// The quaternion Julia set of z^2 + c at the slice w = 0 by its analytic estimate
+/// 0.5 |z| log|z| / |dz|, capped at 1 and never below the distance to the ball of julia_radius.
+double sd_julia(const glm::dvec3& p, const Julia& julia);
 
 }  // namespace clmarch

@@ -2,11 +2,16 @@
 // recursive walk of the node tree with transforms and inherited colors.
 #include "reference/reference_sdf.hpp"
 
+#include "reference/reference_blends.hpp"
 #include "reference/reference_patterns.hpp"
 
 #include "reference/reference_fractals.hpp"
 #include "reference/reference_geometry.hpp"
 #include "reference/reference_noise.hpp"
+#include "scene/scene_bounds.hpp"
+
+#define GLM_ENABLE_EXPERIMENTAL
+#include <glm/gtx/rotate_vector.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -84,6 +89,30 @@ SdfSample only_child(const Node& node, const glm::dvec3& p, const Material& colo
   return sample_node(node.children.front(), p, color, colored);
 }
 
+// Twist (about y by rate y) and bend (about z by rate x): the child at p turned, its distance divided
+// by the largest stretch of the turning map on the way to the surface, and never below the
+// distance to the sphere that holds the turned child.
+SdfSample sample_turned(const Node& node, const glm::dvec3& p, const Material& material, bool colored) {
+  const bool twist = node.kind == NodeKind::Twist;
+  const double rate = glm::radians(twist ? params<Twist>(node).rate : params<Bend>(node).rate);
+  const std::optional<BoundingSphere> child_bounds = node_bounds(node.children.front());
+  if (!child_bounds) malformed(node, "needs a bounded child");
+  const int axis = twist ? 1 : 2;
+  const glm::dvec3 axis_vector = twist ? glm::dvec3(0.0, 1.0, 0.0) : glm::dvec3(0.0, 0.0, 1.0);
+  const double angle = rate * (twist ? p.y : p.x);
+  const glm::dvec3 turned = glm::rotate(p, angle, axis_vector);
+  SdfSample s = only_child(node, turned, material, colored);
+  glm::dvec3 across = p;
+  across[axis] = 0.0;
+  const double a = std::abs(rate) * std::max(glm::length(across), turn_reach(*child_bounds, axis));
+  // Twist's Jacobian, I + v e_y^T with v (|v| = a) across the axis: singular value (a + sqrt(a^2 + 4)) / 2.
+  // Bend's, I + u e_x^T with u in the xy plane: at most 1 + a.
+  const double stretch = twist ? 0.5 * (a + std::sqrt(a * a + 4.0)) : 1.0 + a;
+  const BoundingSphere ball = turned_bounds(*child_bounds, axis);
+  s.distance = std::max(s.distance / stretch, glm::length(p - ball.center) - ball.radius);
+  return s;
+}
+
 // The node's own kind in its local frame p; material is its effective material (leaves get their
 // surface parameters in sample_node).
 SdfSample sample_local(const Node& node, const glm::dvec3& p, const Material& material, bool colored) {
@@ -109,6 +138,9 @@ SdfSample sample_local(const Node& node, const glm::dvec3& p, const Material& ma
     case NodeKind::SmoothSubtraction:
       return fold_smooth(node, params<SmoothSubtraction>(node).k, p, material, colored,
                          [](const S& a, const S& b, double k) { return op_smooth_subtraction(a, b, k); });
+#define CLMARCH_BLEND(Kind, name, min_children, params_list) case NodeKind::Kind:
+#include "scene/node_kinds.def"
+      return fold_children(node, p, material, colored, [&](const S& a, const S& b) { return blend_sample(node, a, b); });
     case NodeKind::Repeat: {
       glm::dvec3 q = p;
       for (int a = 0; a < 3; ++a) {
@@ -154,6 +186,25 @@ SdfSample sample_local(const Node& node, const glm::dvec3& p, const Material& ma
       const double radius = std::hypot(p.x, p.z);
       const double angle = std::atan2(p.z, p.x) - turn;
       return only_child(node, {radius * std::cos(angle), p.y, radius * std::sin(angle)}, material, colored);
+    }
+    case NodeKind::Revolve: {
+      const double radial = std::hypot(p.x, p.z) - params<Revolve>(node).offset;
+      return only_child(node, {radial, p.y, 0.0}, material, colored);
+    }
+    case NodeKind::Extrude: {
+      // The section's distance and the distance past the end caps, combined as a 2D box's are.
+      S s = only_child(node, {p.x, p.y, 0.0}, material, colored);
+      const glm::dvec2 w(s.distance, std::abs(p.z) - params<Extrude>(node).half_length);
+      s.distance = std::min(std::max(w.x, w.y), 0.0) + glm::length(glm::max(w, 0.0));
+      return s;
+    }
+    case NodeKind::Twist:
+    case NodeKind::Bend: return sample_turned(node, p, material, colored);
+    case NodeKind::NonuniformScale: {
+      const glm::dvec3& f = params<NonuniformScale>(node).factors;
+      S s = only_child(node, p / f, material, colored);
+      s.distance *= std::min({f.x, f.y, f.z});
+      return s;
     }
     case NodeKind::RepeatLimited: {
       const RepeatLimited& repeat = params<RepeatLimited>(node);
@@ -270,6 +321,45 @@ double sd_hex_prism(const glm::dvec3& p, const HexPrism& prism) {
     corners.emplace_back(corner_radius * std::cos(angle), corner_radius * std::sin(angle));
   }
   return extrude(convex_polygon_distance({l.x, l.z}, corners), l.y, prism.half_height);
+}
+
+// The profiles: distances in the xy plane, z unused.
+double sd_circle(const glm::dvec3& p, const Circle& circle) {
+  return glm::length(glm::dvec2(p) - glm::dvec2(circle.center)) - circle.radius;
+}
+
+namespace {
+
+/// The rectangle's corners about centre, counter-clockwise.
+std::vector<glm::dvec2> rectangle_corners(const glm::dvec3& center, double half_width, double half_height) {
+  const glm::dvec2 c(center);
+  return {c + glm::dvec2(-half_width, -half_height), c + glm::dvec2(half_width, -half_height), c + glm::dvec2(half_width, half_height),
+          c + glm::dvec2(-half_width, half_height)};
+}
+
+}  // namespace
+
+double sd_rectangle(const glm::dvec3& p, const Rectangle& rectangle) {
+  return convex_polygon_distance(glm::dvec2(p), rectangle_corners(rectangle.center, rectangle.half_width, rectangle.half_height));
+}
+
+double sd_rounded_rectangle(const glm::dvec3& p, const RoundedRectangle& rectangle) {
+  // The points within radius of the rectangle shrunk by radius.
+  const double r = rectangle.radius;
+  return convex_polygon_distance(glm::dvec2(p), rectangle_corners(rectangle.center, rectangle.half_width - r, rectangle.half_height - r)) - r;
+}
+
+double sd_segment(const glm::dvec3& p, const Segment& segment) {
+  return distance_to_segment(glm::dvec2(p), glm::dvec2(segment.a), glm::dvec2(segment.b)) - segment.radius;
+}
+
+double sd_regular_polygon(const glm::dvec3& p, const RegularPolygon& polygon) {
+  std::vector<glm::dvec2> corners;
+  for (int i = 0; i < polygon.sides; ++i) {
+    const double angle = 2.0 * std::numbers::pi * i / polygon.sides;
+    corners.push_back(glm::dvec2(polygon.center) + polygon.radius * glm::dvec2(std::cos(angle), std::sin(angle)));
+  }
+  return convex_polygon_distance(glm::dvec2(p), corners);
 }
 
 double sd_capped_cone(const glm::dvec3& p, const CappedCone& cone) {

@@ -48,6 +48,8 @@ enum class ParamType {
   Axes,
   /// Three integers.
   IntegerVector,
+  /// Four numbers (a quaternion), each in the range.
+  Vector4,
 };
 
 /// One row of a kind's parameter table.
@@ -61,9 +63,12 @@ struct ParamSpec {
   std::span<const char* const> choices = {};
 };
 
-#define CLMARCH_POINT(member, x, y, z) glm::dvec3 member{x, y, z};
-#define CLMARCH_VECTOR(member, x, y, z, range) glm::dvec3 member{x, y, z};
-#define CLMARCH_DIRECTION(member, x, y, z) glm::dvec3 member{x, y, z};
+// Commas only inside parentheses, so that CLMARCH_PROFILE and CLMARCH_MODIFIER can pass a
+// parameter list on to CLMARCH_PRIMITIVE and CLMARCH_OPERATOR as one argument.
+#define CLMARCH_POINT(member, x, y, z) glm::dvec3 member = glm::dvec3(x, y, z);
+#define CLMARCH_VECTOR(member, x, y, z, range) glm::dvec3 member = glm::dvec3(x, y, z);
+#define CLMARCH_VECTOR4(member, x, y, z, w, range) glm::dvec4 member = glm::dvec4(x, y, z, w);
+#define CLMARCH_DIRECTION(member, x, y, z) glm::dvec3 member = glm::dvec3(x, y, z);
 #define CLMARCH_SCALAR(member, value, range) double member = value;
 #define CLMARCH_INTEGER(member, type, value, low, high) type member = value;
 #define CLMARCH_CHOICE(member, Enum, value, names) Enum member = Enum::value;
@@ -105,6 +110,7 @@ using NodeParams = VariantBeforeVoid<TypeList<
 // for_each_param(params, visit): visit(const ParamSpec&, member&) for each parameter, in order.
 #define CLMARCH_POINT(member, x, y, z) visit(ParamSpec{#member, ParamType::Point, Range::any()}, params.member);
 #define CLMARCH_VECTOR(member, x, y, z, range) visit(ParamSpec{#member, ParamType::Vector, range}, params.member);
+#define CLMARCH_VECTOR4(member, x, y, z, w, range) visit(ParamSpec{#member, ParamType::Vector4, range}, params.member);
 #define CLMARCH_DIRECTION(member, x, y, z) visit(ParamSpec{#member, ParamType::Direction, Range::any()}, params.member);
 #define CLMARCH_SCALAR(member, value, range) visit(ParamSpec{#member, ParamType::Scalar, range}, params.member);
 #define CLMARCH_INTEGER(member, type, value, low, high) \

@@ -11,6 +11,10 @@ namespace clmarch {
 
 double mandelbulb_radius(double power) { return std::pow(2.0, 1.0 / (power - 1.0)); }
 
+double mandelbox_half_size(double scale) { return scale < 0.0 ? 2.0 : 2.0 * (scale + 1.0) / (scale - 1.0); }
+
+double julia_radius(const glm::dvec4& c) { return 0.5 * (1.0 + std::sqrt(1.0 + 4.0 * glm::length(c))); }
+
 std::string_view node_kind_name(NodeKind kind) {
   switch (kind) {
 #define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind: return #name;
@@ -43,9 +47,49 @@ bool is_primitive(NodeKind kind) {
   return false;
 }
 
+bool is_profile(NodeKind kind) {
+  switch (kind) {
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind: return false;
+#define CLMARCH_PROFILE(Kind, name, quality, cost, params_list) case NodeKind::Kind: return true;
+#define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) case NodeKind::Kind: return false;
+#include "scene/node_kinds.def"
+  }
+  return false;
+}
+
 bool is_smooth_operator(NodeKind kind) {
   return kind == NodeKind::SmoothUnion || kind == NodeKind::SmoothIntersection ||
          kind == NodeKind::SmoothSubtraction;
+}
+
+bool is_blend_operator(NodeKind kind) {
+  switch (kind) {
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind: return false;
+#define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) case NodeKind::Kind: return false;
+#define CLMARCH_BLEND(Kind, name, min_children, params_list) case NodeKind::Kind: return true;
+#include "scene/node_kinds.def"
+  }
+  return false;
+}
+
+double operator_lipschitz(const Node& node) {
+  switch (node.kind) {
+    // Their gradients in the plane of (a, b) are unit vectors, (1, 1) / sqrt 2 or (a, b) / |(a, b)|,
+    // so in space |grad f| <= |(|grad a|, |grad b|)|: sqrt 2 for two operands (reached where
+    // grad a = grad b), and each fold adds 1 under the root: sqrt(n) for n children.
+    case NodeKind::UnionChamfer:
+    case NodeKind::IntersectionChamfer:
+    case NodeKind::DifferenceChamfer:
+    case NodeKind::UnionRound:
+    case NodeKind::IntersectionRound:
+    case NodeKind::DifferenceRound:
+    case NodeKind::UnionColumns:
+    case NodeKind::IntersectionColumns:
+    case NodeKind::DifferenceColumns:
+    case NodeKind::Pipe:
+    case NodeKind::Engrave: return std::sqrt(static_cast<double>(node.children.size()));
+    default: return 1.0;
+  }
 }
 
 int min_children(NodeKind kind) {

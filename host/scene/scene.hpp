@@ -36,12 +36,24 @@ std::string_view node_kind_name(NodeKind kind);
 std::optional<NodeKind> node_kind_from_name(std::string_view name);
 /// True for leaves (primitives), false for operators.
 bool is_primitive(NodeKind kind);
+/// True for the 2D primitives (profiles in the xy plane, for revolve and extrude).
+bool is_profile(NodeKind kind);
 /// True for the smooth operators, which take a blend radius k.
 bool is_smooth_operator(NodeKind kind);
+/// Whether kind is one of node_kinds.def's blends (CLMARCH_BLEND: chamfer, round, stairs, ...).
+bool is_blend_operator(NodeKind kind);
 
 /// Radius of a ball about the centre that holds the whole power-n Mandelbulb: 2^(1/(n-1)). Its
 /// estimator is never below the distance to this ball (kernels/fractals.cl, the reference).
 double mandelbulb_radius(double power);
+
+/// Half the side of the cube centred on the Mandelbox that holds it (fold limit 1): 2 for scales
+/// below -1, 2 (scale + 1) / (scale - 1) above 1 (knighty's sizes; tests sample orbits past it).
+double mandelbox_half_size(double scale);
+
+/// Radius of a ball about the centre that holds the quaternion Julia set of c: the root R of
+/// R^2 - R = |c|, beyond which |z^2 + c| >= |z|^2 - |c| > |z| and every orbit escapes.
+double julia_radius(const glm::dvec4& c);
 
 /// The fewest and most children an operator takes (0: no limit), from its declaration.
 int min_children(NodeKind kind);
@@ -151,6 +163,10 @@ int evaluation_cost(const Node& primitive);
 FieldQuality field_quality(NodeKind primitive);
 /// The blend radius k of a smooth operator.
 double smooth_k(const Node& node);
+/// How much steeper than the distance an operator's result can be, its operands being 1-Lipschitz:
+/// sqrt(n) over n children for the blends exact in the plane of the operands' distances (chamfer,
+/// round, columns, pipe, engrave: docs/scene-format.md "Blends"), 1 for every other operator.
+double operator_lipschitz(const Node& node);
 
 /// Lipschitz constant of a displace node's field, 1 + amplitude * frequency * sqrt(3): its distance
 /// is divided by it so the march never steps past the displaced surface.

@@ -132,13 +132,171 @@ std::optional<BoundingSphere> primitive_bounds(const NodeParams& params) {
     std::optional<BoundingSphere> operator()(const Sierpinski& s) const {
       return BoundingSphere{s.center, s.size * std::sqrt(3.0)};
     }
+    // Both estimates are never below the distance to the ball that holds the set.
+    std::optional<BoundingSphere> operator()(const Mandelbox& m) const {
+      return BoundingSphere{m.center, mandelbox_half_size(m.scale) * std::sqrt(3.0)};
+    }
+    std::optional<BoundingSphere> operator()(const Julia& j) const { return BoundingSphere{j.center, julia_radius(j.c)}; }
     std::optional<BoundingSphere> operator()(const Terrain&) const { return std::nullopt; }
+    // A profile alone is a prism along z without end; revolve and extrude bound its section
+    // (section_bounds).
+#define CLMARCH_PROFILE(Kind, name, quality, cost, params_list) \
+  std::optional<BoundingSphere> operator()(const Kind&) const { return std::nullopt; }
     // Operators have operator_bounds instead.
 #define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) \
   std::optional<BoundingSphere> operator()(const Kind&) const { return std::nullopt; }
 #include "scene/node_kinds.def"
   };
   return std::visit(Visitor{}, params);
+}
+
+}  // namespace
+
+BoundingSphere turned_bounds(const BoundingSphere& child, int axis) {
+  glm::dvec3 center(0.0);
+  center[axis] = child.center[axis];
+  return BoundingSphere{center, std::hypot(turn_reach(child, axis), child.radius), 1.0};
+}
+
+double turn_reach(const BoundingSphere& child, int axis) {
+  glm::dvec3 across = child.center;
+  across[axis] = 0.0;
+  return glm::length(across) + child.radius;
+}
+
+namespace {
+
+/// The disc in the xy plane that holds a profile (as a sphere centred in that plane).
+std::optional<BoundingSphere> profile_disc(const NodeParams& params) {
+  struct Visitor {
+    std::optional<BoundingSphere> operator()(const Circle& c) const { return BoundingSphere{c.center, c.radius}; }
+    std::optional<BoundingSphere> operator()(const Rectangle& r) const {
+      return BoundingSphere{r.center, std::hypot(r.half_width, r.half_height)};
+    }
+    std::optional<BoundingSphere> operator()(const RoundedRectangle& r) const {
+      return BoundingSphere{r.center, std::hypot(r.half_width, r.half_height)};
+    }
+    std::optional<BoundingSphere> operator()(const Segment& s) const {
+      return BoundingSphere{0.5 * (s.a + s.b), 0.5 * glm::length(glm::dvec2(s.b - s.a)) + s.radius};
+    }
+    std::optional<BoundingSphere> operator()(const RegularPolygon& r) const { return BoundingSphere{r.center, r.radius}; }
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) \
+  std::optional<BoundingSphere> operator()(const Kind&) const { return std::nullopt; }
+#define CLMARCH_PROFILE(Kind, name, quality, cost, params_list)
+#define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) \
+  std::optional<BoundingSphere> operator()(const Kind&) const { return std::nullopt; }
+#include "scene/node_kinds.def"
+  };
+  std::optional<BoundingSphere> disc = std::visit(Visitor{}, params);
+  if (disc) disc->center.z = 0.0;
+  return disc;
+}
+
+/// Where the child's section at z = 0 (what revolve and extrude take of it) has its field below a
+/// threshold: a profile's disc, placed by its transform when that keeps the xy plane (a turn
+/// about z; a shift along z changes no profile), or the child's bounding sphere.
+std::optional<BoundingSphere> section_bounds(const Node& child) {
+  if (!is_profile(child.kind)) return node_bounds(child);
+  const Transform& t = child.transform;
+  if (t.rotate_degrees.x != 0.0 || t.rotate_degrees.y != 0.0) return std::nullopt;
+  std::optional<BoundingSphere> b = profile_disc(child.params);
+  if (!b) return std::nullopt;
+  b->center = t.translate + t.world_from_local_rotation() * (t.scale * b->center);
+  b->center.z = 0.0;
+  b->radius *= t.scale;
+  b->gain /= child.step_factor;
+  return b;
+}
+
+/// The sphere holding every child's; nothing if one is unbounded.
+std::optional<BoundingSphere> enclosing_children(const Node& node) {
+  std::optional<BoundingSphere> all;
+  for (const Node& child : node.children) {
+    const std::optional<BoundingSphere> b = node_bounds(child);
+    if (!b) return std::nullopt;
+    all = all ? enclosing(*all, *b) : *b;
+  }
+  return all;
+}
+
+/// The smallest bounded child's sphere: an intersection lies inside every operand.
+std::optional<BoundingSphere> smallest_child(const Node& node) {
+  std::optional<BoundingSphere> best;
+  for (const Node& child : node.children) {
+    const std::optional<BoundingSphere> b = node_bounds(child);
+    if (b && (!best || b->radius < best->radius)) best = b;
+  }
+  return best;
+}
+
+/// The node's sphere grown by growth (in its field's units, so times its gain).
+std::optional<BoundingSphere> node_bounds_grown(const Node& node, double growth) {
+  std::optional<BoundingSphere> b = node_bounds(node);
+  if (b) b->radius += b->gain * growth;
+  return b;
+}
+
+/// How far one fold of a union blend can put its surface outside its operands' union: where the
+/// field is below tau >= 0, min(a, b) < tau + growth. Chamfer: (a + b - r) / sqrt 2 < tau gives
+/// min(a, b) <= (a + b) / 2 < r / 2 + tau / sqrt 2 (reached at a = b = r / 2, the bevel's middle).
+/// Round: r - |(r - a, r - b)| < tau with m = min(a, b) < r gives sqrt 2 (r - m) > r - tau, so
+/// m < r (1 - 1 / sqrt 2) + tau / sqrt 2 (the fillet's middle). Stairs: their field is at least
+/// (a + b - r) / 2, so m < r / 2 + tau (the corners lie on a + b = r). Columns: at least
+/// (a + b - r) / sqrt 2 (the columns reach the line a + b = r), so as the chamfer. Xor is never
+/// below min(a, b). For tau < 0 (deep inside) the chamfer, round and columns fall faster than
+/// min(a, b) (they are estimates), which these spheres do not cover.
+double union_blend_growth(const Node& node) {
+  switch (node.kind) {
+    case NodeKind::UnionChamfer: return params_of<UnionChamfer>(node).radius / 2.0;
+    case NodeKind::UnionRound: return params_of<UnionRound>(node).radius * (1.0 - std::sqrt(0.5));
+    case NodeKind::UnionStairs: return params_of<UnionStairs>(node).radius / 2.0;
+    case NodeKind::UnionColumns: return params_of<UnionColumns>(node).radius / 2.0;
+    default: return 0.0;
+  }
+}
+
+/// The blends' spheres. Folded over n children, a union blend's growth adds up n - 1 times: each
+/// fold's left operand may itself lie growth outside the one before. Intersections and differences
+/// are never below max(a, b) or a (they only remove): as the hard ones. The pipe is never below
+/// max(|a|, |b|) - r, so inside each operand grown by r per fold it follows; the tongue never below
+/// a - ra; engrave and groove never below a.
+std::optional<BoundingSphere> blend_bounds(const Node& node) {
+  const double folds = static_cast<double>(node.children.size() - 1);
+  switch (node.kind) {
+    case NodeKind::UnionChamfer:
+    case NodeKind::UnionRound:
+    case NodeKind::UnionStairs:
+    case NodeKind::UnionColumns:
+    case NodeKind::Xor: {
+      std::optional<BoundingSphere> all = enclosing_children(node);
+      if (all) all->radius += all->gain * folds * union_blend_growth(node);
+      return all;
+    }
+    case NodeKind::IntersectionChamfer:
+    case NodeKind::IntersectionRound:
+    case NodeKind::IntersectionStairs:
+    case NodeKind::IntersectionColumns: return smallest_child(node);
+    case NodeKind::DifferenceChamfer:
+    case NodeKind::DifferenceRound:
+    case NodeKind::DifferenceStairs:
+    case NodeKind::DifferenceColumns:
+    case NodeKind::Engrave:
+    case NodeKind::Groove: return node_bounds(node.children.front());
+    case NodeKind::Tongue: return node_bounds_grown(node.children.front(), folds * params_of<Tongue>(node).ra);
+    case NodeKind::Pipe: {
+      // The last child within r, the left operand within r, so the child before within 2 r, ...;
+      // the first two children within folds * r.
+      const double r = params_of<Pipe>(node).radius;
+      std::optional<BoundingSphere> best;
+      for (std::size_t i = 0; i < node.children.size(); ++i) {
+        const double steps = folds - static_cast<double>(std::max<std::size_t>(i, 1)) + 1.0;
+        const std::optional<BoundingSphere> b = node_bounds_grown(node.children[i], steps * r);
+        if (b && (!best || b->radius < best->radius)) best = b;
+      }
+      return best;
+    }
+    default: return std::nullopt;
+  }
 }
 
 std::optional<BoundingSphere> operator_bounds(const Node& node) {
@@ -154,25 +312,9 @@ std::optional<BoundingSphere> operator_bounds(const Node& node) {
       return child;
     }
     case NodeKind::Union:
-    case NodeKind::SmoothUnion: {
-      std::optional<BoundingSphere> all;
-      for (const Node& child : node.children) {
-        const std::optional<BoundingSphere> b = node_bounds(child);
-        if (!b) return std::nullopt;
-        all = all ? enclosing(*all, *b) : *b;
-      }
-      return all;
-    }
+    case NodeKind::SmoothUnion: return enclosing_children(node);
     case NodeKind::Intersection:
-    case NodeKind::SmoothIntersection: {
-      // Inside every operand: the smallest bounded one serves.
-      std::optional<BoundingSphere> best;
-      for (const Node& child : node.children) {
-        const std::optional<BoundingSphere> b = node_bounds(child);
-        if (b && (!best || b->radius < best->radius)) best = b;
-      }
-      return best;
-    }
+    case NodeKind::SmoothIntersection: return smallest_child(node);
     case NodeKind::Subtraction:
     case NodeKind::SmoothSubtraction: return node_bounds(node.children.front());
     case NodeKind::Elongate: {
@@ -224,6 +366,44 @@ std::optional<BoundingSphere> operator_bounds(const Node& node) {
       child->radius += glm::length(half_span);
       return child;
     }
+    case NodeKind::Revolve: {
+      // The child's section at z = 0 lies in its sphere: profile x' = length(p.xz) - offset within
+      // r of c.x, y within r of c.y. (d < tau puts (x', y) within r + gain tau of (c.x, c.y), so
+      // the point within sqrt(2) gain tau more of the sphere's.)
+      const std::optional<BoundingSphere> child = section_bounds(node.children.front());
+      if (!child) return std::nullopt;
+      const double reach = std::abs(child->center.x + params_of<Revolve>(node).offset) + child->radius;
+      return BoundingSphere{{0.0, child->center.y, 0.0}, std::hypot(reach, child->radius), std::sqrt(2.0) * child->gain};
+    }
+    case NodeKind::Extrude: {
+      // The section's disc, extruded to |z| <= half_length (d < tau: the section's field and
+      // |z| - half_length are both below tau).
+      const std::optional<BoundingSphere> child = section_bounds(node.children.front());
+      if (!child) return std::nullopt;
+      return BoundingSphere{{child->center.x, child->center.y, 0.0}, std::hypot(child->radius, params_of<Extrude>(node).half_length),
+                            std::sqrt(2.0) * std::max(child->gain, 1.0)};
+    }
+    case NodeKind::Twist:
+    case NodeKind::Bend: {
+      // Both turn points about an axis (y, z), keeping their distance from it and their height
+      // along it: the child's surface stays in the cylinder round its sphere. Their fields are never
+      // below the distance to this sphere (the code generator and the reference take the larger of the
+      // two), so its gain is 1.
+      const std::optional<BoundingSphere> child = node_bounds(node.children.front());
+      if (!child) return std::nullopt;
+      return turned_bounds(*child, node.kind == NodeKind::Twist ? 1 : 2);
+    }
+    case NodeKind::NonuniformScale: {
+      // p = factors q: the sphere stretched by the largest factor; the field scaled by the smallest.
+      std::optional<BoundingSphere> child = node_bounds(node.children.front());
+      if (!child) return std::nullopt;
+      const glm::dvec3& f = params_of<NonuniformScale>(node).factors;
+      const double largest = std::max({f.x, f.y, f.z}), smallest = std::min({f.x, f.y, f.z});
+      return BoundingSphere{child->center * f, child->radius * largest, child->gain * largest / smallest};
+    }
+#define CLMARCH_BLEND(Kind, name, min_children, params_list) case NodeKind::Kind:
+#include "scene/node_kinds.def"
+      return blend_bounds(node);
     // Primitives have primitive_bounds instead.
 #define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind:
 #include "scene/node_kinds.def"
@@ -237,8 +417,11 @@ std::optional<BoundingSphere> operator_bounds(const Node& node) {
 std::optional<BoundingSphere> local_bounds(const Node& node) {
   std::optional<BoundingSphere> b = is_primitive(node.kind) ? primitive_bounds(node.params) : operator_bounds(node);
   if (!b) return std::nullopt;
-  // The polynomial smooth minimum and maximum undershoot the hard ones by at most k / 4.
-  if (is_smooth_operator(node.kind)) b->radius += b->gain * smooth_k(node) / 4.0;
+  // The polynomial smooth minimum and maximum undershoot the hard ones by at most k / 4 a fold:
+  // (n - 1) k / 4 over n children.
+  if (is_smooth_operator(node.kind)) {
+    b->radius += b->gain * smooth_k(node) / 4.0 * static_cast<double>(node.children.size() - 1);
+  }
   return b;
 }
 

@@ -23,6 +23,13 @@ std::optional<BoundingSphere> node_bounds(const Node& node);
 /// The same in the node's own frame, before its transform, step_factor and scale.
 std::optional<BoundingSphere> local_bounds(const Node& node);
 
+/// How far from the axis (0: x, 1: y, 2: z) through the origin the child's surface reaches: the
+/// twist's (y) and bend's (z) reach, which their Lipschitz factors take.
+double turn_reach(const BoundingSphere& child, int axis);
+/// The sphere holding child turned about that axis by any angles: centred on the axis at the
+/// child's height along it, radius hypot(turn_reach, child radius).
+BoundingSphere turned_bounds(const BoundingSphere& child, int axis);
+
 /// The sphere camera rays are clipped to: the tree's bound grown by the largest threshold a camera
 /// ray can hit with, the glow radius (misses near the surface glow) and a margin for float rounding.
 /// Nothing when render.bounds is none, the tree is unbounded, or the scene is tiled.

@@ -6,6 +6,7 @@
 #include "common/nearest_name.hpp"
 #include "scene/color_pattern_reader.hpp"
 #include "scene/instance_file.hpp"
+#include "scene/scene_bounds.hpp"
 #include "scene/yaml_reader.hpp"
 
 #include <fmt/format.h>
@@ -423,6 +424,13 @@ class SceneReader {
       value = glm::normalize(value);
     }
   }
+  void read_param(const ParamSpec& spec, const YAML::Node& given, const std::string& what, glm::dvec4& value) {
+    if (!given.IsSequence() || given.size() != 4) {
+      yaml_.fail(given, fmt::format("{} must be a list of 4 numbers [x, y, z, w] (got {})", what,
+                                    given.IsSequence() ? fmt::format("{} items", given.size()) : describe_yaml(given)));
+    }
+    for (int i = 0; i < 4; ++i) value[i] = yaml_.number(given[i], fmt::format("{}[{}]", what, i), spec.range);
+  }
   void read_param(const ParamSpec& spec, const YAML::Node& given, const std::string& what, double& value) {
     value = yaml_.number(given, what, spec.range);
   }
@@ -576,6 +584,33 @@ class SceneReader {
     }
   }
 
+  void check_params(RoundedRectangle& rectangle, const YAML::Node& map, const std::string& path) {
+    const double smallest = std::min(rectangle.half_width, rectangle.half_height);
+    if (map["radius"]) {
+      rectangle.radius = yaml_.number(map["radius"], path + ".radius", Range::closed(0.0, smallest));
+    } else {
+      rectangle.radius = std::min(rectangle.radius, smallest);
+    }
+  }
+
+  void check_params(Segment& segment, const YAML::Node& map, const std::string& path) {
+    if (segment.a.x == segment.b.x && segment.a.y == segment.b.y) {
+      yaml_.fail(map, path + ".a and " + path + ".b must differ in x or y (use a circle for a point)");
+    }
+  }
+
+  void check_params(Mandelbox& box, const YAML::Node& map, const std::string& path) {
+    // Between -1 and 1 the scale folds everything into a bounded orbit: no surface to trace.
+    if (std::abs(box.scale) <= 1.0) {
+      yaml_.fail(map["scale"], fmt::format("{}.scale must be in [-4, -1) or (1, 4] (got {})", path, box.scale));
+    }
+    if (box.min_radius > box.fixed_radius) {
+      yaml_.fail(map["min_radius"] ? map["min_radius"] : map,
+                 fmt::format("{}.min_radius must be at most {}.fixed_radius (got {} > {})", path, path, box.min_radius,
+                             box.fixed_radius));
+    }
+  }
+
   void check_params(Repeat& repeat, const YAML::Node& map, const std::string& path) {
     if (repeat.period == glm::dvec3(0.0)) {
       yaml_.fail(map["period"], path + ".period must repeat along at least one axis (a component > 0)");
@@ -646,6 +681,12 @@ class SceneReader {
       } else {
         node.children.push_back(read_node(child, child_path, depth + 1));
       }
+    }
+    // A turn's Lipschitz factor grows with the distance from its axis: it needs the child's reach.
+    if ((node.kind == NodeKind::Twist || node.kind == NodeKind::Bend) && !node_bounds(node.children.front())) {
+      yaml_.fail(children[0], fmt::format("{} needs a bounded child: {}[0] ({}) has no bounding sphere (planes, terrain, infinite "
+                                          "cylinders, 2D primitives alone and repeat have none)",
+                                          path, path, node_kind_name(node.children.front().kind)));
     }
   }
 
