@@ -468,13 +468,18 @@ class SceneReader {
   template <class Params>
   void check_params(const Params&, const YAML::Node&, const std::string&) {}
 
-  void check_params(RoundBox& box, const YAML::Node& map, const std::string& path) {
-    const double smallest = std::min({box.half_size.x, box.half_size.y, box.half_size.z});
-    if (map["radius"]) {
-      box.radius = yaml_.number(map["radius"], path + ".radius", Range::closed(0.0, smallest));
+  // A rounding radius at most the shape's smallest size: a given one is checked against it, the
+  // default lowered to it.
+  void limit_rounding(double& radius, double smallest, const YAML::Node& map, const std::string& key, const std::string& path) {
+    if (map[key]) {
+      radius = yaml_.number(map[key], path + "." + key, Range::closed(0.0, smallest));
     } else {
-      box.radius = std::min(box.radius, smallest);
+      radius = std::min(radius, smallest);
     }
+  }
+
+  void check_params(RoundBox& box, const YAML::Node& map, const std::string& path) {
+    limit_rounding(box.radius, std::min({box.half_size.x, box.half_size.y, box.half_size.z}), map, "radius", path);
   }
 
   void check_params(BoxFrame& frame, const YAML::Node& map, const std::string& path) {
@@ -497,12 +502,7 @@ class SceneReader {
   }
 
   void check_params(RoundedCylinder& cylinder, const YAML::Node& map, const std::string& path) {
-    const double smallest = std::min(cylinder.radius, cylinder.half_height);
-    if (map["edge_radius"]) {
-      cylinder.edge_radius = yaml_.number(map["edge_radius"], path + ".edge_radius", Range::closed(0.0, smallest));
-    } else {
-      cylinder.edge_radius = std::min(cylinder.edge_radius, smallest);
-    }
+    limit_rounding(cylinder.edge_radius, std::min(cylinder.radius, cylinder.half_height), map, "edge_radius", path);
   }
 
   void check_params(RoundCone& cone, const YAML::Node& map, const std::string& path) {
@@ -585,12 +585,7 @@ class SceneReader {
   }
 
   void check_params(RoundedRectangle& rectangle, const YAML::Node& map, const std::string& path) {
-    const double smallest = std::min(rectangle.half_width, rectangle.half_height);
-    if (map["radius"]) {
-      rectangle.radius = yaml_.number(map["radius"], path + ".radius", Range::closed(0.0, smallest));
-    } else {
-      rectangle.radius = std::min(rectangle.radius, smallest);
-    }
+    limit_rounding(rectangle.radius, std::min(rectangle.half_width, rectangle.half_height), map, "radius", path);
   }
 
   void check_params(Segment& segment, const YAML::Node& map, const std::string& path) {
