@@ -139,3 +139,242 @@ SDF_INLINE vfloat sd_ellipsoid(vec3v p, float4 center, float4 radii) {
   vfloat inner = (vfloat)(-fmin(radii.x, fmin(radii.y, radii.z)));
   return select(inner, k0 * (k0 - 1.0f) / k1, MASK(k1 > 0.0f));
 }
+
+/* Exact (Inigo Quilez's sdCone): apex at center, the base disc height below, of radius
+ * height tan(angle). In the half plane (r, y), q is the rim; a is the offset to the slanted
+ * side, b to the base; s < 0 inside both. */
+SDF_INLINE vfloat sd_cone(vec3v p, float4 center, float angle, float height) {
+  vec3v l = v3_sub(p, v3_from(center));
+  float qx = height * sinpi(angle / 180.0f) / cospi(angle / 180.0f);
+  float qy = -height;
+  vfloat wx = vsqrt(l.x * l.x + l.z * l.z);
+  vfloat wy = l.y;
+  vfloat ta = clamp((wx * qx + wy * qy) / (qx * qx + qy * qy), 0.0f, 1.0f);
+  vfloat ax = wx - qx * ta;
+  vfloat ay = wy - qy * ta;
+  vfloat bx = wx - qx * clamp(wx / qx, 0.0f, 1.0f);
+  vfloat by = wy - qy;
+  vfloat s = fmax(wy * qx - wx * qy, qy - wy);
+  return vsqrt(fmin(ax * ax + ay * ay, bx * bx + by * by)) * sign(s);
+}
+
+/* Exact (Inigo Quilez's sdRoundedCylinder, sized by the outer radius and half height): the
+ * cylinder shrunk by edge_radius, grown back by it. */
+SDF_INLINE vfloat sd_rounded_cylinder(vec3v p, float4 center, float radius, float half_height, float edge_radius) {
+  vec3v l = v3_sub(p, v3_from(center));
+  vfloat dr = vsqrt(l.x * l.x + l.z * l.z) - (radius - edge_radius);
+  vfloat dh = fabs(l.y) - (half_height - edge_radius);
+  vfloat outside_r = fmax(dr, 0.0f);
+  vfloat outside_h = fmax(dh, 0.0f);
+  return fmin(fmax(dr, dh), 0.0f) + vsqrt(outside_r * outside_r + outside_h * outside_h) - edge_radius;
+}
+
+/* Exact (Inigo Quilez's sdRoundCone between two points, one square root): y is the position
+ * along a-b times |b - a|^2, x2 the squared distance from the axis times |b - a|^4; the
+ * comparisons with k pick the sphere at b, the sphere at a or the tangent cone between them.
+ * Needs |radius_a - radius_b| < |b - a| (the loader checks it). */
+SDF_INLINE vfloat sd_round_cone(vec3v p, float4 a, float4 b, float radius_a, float radius_b) {
+  float4 ba = b - a;
+  float l2 = dot(ba.xyz, ba.xyz);
+  float rr = radius_a - radius_b;
+  float a2 = l2 - rr * rr;
+  float il2 = 1.0f / l2;
+  vec3v pa = v3_sub(p, v3_from(a));
+  vfloat y = v3_dot(pa, v3_from(ba));
+  vfloat z = y - l2;
+  vec3v off = v3_sub(v3_scale(pa, (vfloat)(l2)), v3_scale(v3_from(ba), y));
+  vfloat x2 = v3_dot(off, off);
+  vfloat y2 = y * y * l2;
+  vfloat z2 = z * z * l2;
+  vfloat k = sign(rr) * rr * rr * x2;
+  vfloat near_b = vsqrt(x2 + z2) * il2 - radius_b;
+  vfloat near_a = vsqrt(x2 + y2) * il2 - radius_a;
+  vfloat side = (vsqrt(x2 * a2 * il2) + y * rr) * il2 - radius_a;
+  vfloat d = select(side, near_a, MASK(sign(y) * a2 * y2 < k));
+  return select(d, near_b, MASK(sign(z) * a2 * z2 > k));
+}
+
+/* Exact (Inigo Quilez's sdCappedTorus, his xy plane laid on our xz): k is the distance along
+ * the spine's plane to the nearest spine point's direction, the arc itself within angle of +z,
+ * else the end's. The square's argument is clamped at 0: it is a squared distance that
+ * rounding can take just below. */
+SDF_INLINE vfloat sd_capped_torus(vec3v p, float4 center, float angle, float major_radius, float minor_radius) {
+  vec3v l = v3_sub(p, v3_from(center));
+  float s = sinpi(angle / 180.0f);
+  float c = cospi(angle / 180.0f);
+  vfloat x = fabs(l.x);
+  vfloat k = select(vsqrt(x * x + l.z * l.z), x * s + l.z * c, MASK(c * x > s * l.z));
+  vfloat squared = x * x + l.y * l.y + l.z * l.z + major_radius * major_radius - 2.0f * major_radius * k;
+  return vsqrt(fmax(squared, 0.0f)) - minor_radius;
+}
+
+/* Exact (Inigo Quilez's sdLink): the torus about z, elongated along y by half_length. */
+SDF_INLINE vfloat sd_link(vec3v p, float4 center, float half_length, float major_radius, float minor_radius) {
+  vec3v l = v3_sub(p, v3_from(center));
+  vfloat y = fmax(fabs(l.y) - half_length, 0.0f);
+  vfloat ring = vsqrt(l.x * l.x + y * y) - major_radius;
+  return vsqrt(ring * ring + l.z * l.z) - minor_radius;
+}
+
+/* Exact (Inigo Quilez's sdCutSphere): the part y >= cut_height of the ball, in the half plane
+ * (r, y); w is the rim's radius. s < 0 picks the sphere; else the flat disc within the rim, or
+ * the rim itself. */
+SDF_INLINE vfloat sd_cut_sphere(vec3v p, float4 center, float radius, float cut_height) {
+  vec3v l = v3_sub(p, v3_from(center));
+  float h = cut_height;
+  float w = sqrt(radius * radius - h * h);
+  vfloat qx = vsqrt(l.x * l.x + l.z * l.z);
+  vfloat qy = l.y;
+  vfloat s = fmax((h - radius) * qx * qx + w * w * (h + radius - 2.0f * qy), h * qx - w * qy);
+  vfloat sphere = vsqrt(qx * qx + qy * qy) - radius;
+  vfloat rim = vsqrt((qx - w) * (qx - w) + (qy - h) * (qy - h));
+  return select(select(rim, h - qy, MASK(qx < w)), sphere, MASK(s < 0.0f));
+}
+
+/* Exact: Inigo Quilez's sdPyramid for a base of side 1, scaled by 2 half_width, with the base
+ * square added (his measures the side faces alone, too far below the base). Folded into the
+ * octant x >= z >= 0 and measured to the face there and its edges; m2 is the squared length of
+ * the face's slope vector (height, 1/2). */
+SDF_INLINE vfloat sd_pyramid(vec3v p, float4 center, float half_width, float height) {
+  float side = 2.0f * half_width;
+  float h = height / side;
+  float m2 = h * h + 0.25f;
+  vec3v l = v3_scale(v3_sub(p, v3_from(center)), (vfloat)(1.0f / side));
+  vfloat ax = fabs(l.x);
+  vfloat az = fabs(l.z);
+  vint swap = MASK(az > ax);
+  vfloat px = select(ax, az, swap) - 0.5f;
+  vfloat pz = select(az, ax, swap) - 0.5f;
+  vfloat py = l.y;
+  vfloat qx = pz;
+  vfloat qy = h * py - 0.5f * px;
+  vfloat qz = h * px + 0.5f * py;
+  vfloat s = fmax(-qx, 0.0f);
+  vfloat t = clamp((qy - 0.5f * pz) / (m2 + 0.25f), 0.0f, 1.0f);
+  vfloat a = m2 * (qx + s) * (qx + s) + qy * qy;
+  vfloat b = m2 * (qx + 0.5f * t) * (qx + 0.5f * t) + (qy - m2 * t) * (qy - m2 * t);
+  vfloat d2 = select(fmin(a, b), (vfloat)(0.0f), MASK(fmin(qy, -qx * m2 - qy * 0.5f) > 0.0f));
+  /* Quilez's measures the nearest side face only, which below the base overestimates: the base
+   * square is the other candidate, outside to the square, inside to its plane. */
+  vfloat bx = fmax(px, 0.0f);
+  vfloat bz = fmax(pz, 0.0f);
+  vfloat outside = fmin(vsqrt((d2 + qz * qz) / m2), vsqrt(bx * bx + bz * bz + py * py));
+  vfloat inside = fmax(qz / sqrt(m2), -py);
+  return side * select(outside, inside, MASK(qz < 0.0f) & MASK(py > 0.0f));
+}
+
+/* The squared distance from the point pa (relative to an edge's start) to the edge e. */
+SDF_INLINE vfloat edge_distance2(vec3v pa, float4 e) {
+  vfloat t = clamp(v3_dot(pa, v3_from(e)) / dot(e.xyz, e.xyz), 0.0f, 1.0f);
+  vec3v off = v3_sub(v3_scale(v3_from(e), t), pa);
+  return v3_dot(off, off);
+}
+
+/* 1 where the point pa (relative to an edge's start) is inside the edge e of a face of normal
+ * n, -1 outside, 0 on its line. */
+SDF_INLINE vfloat edge_side(vec3v pa, float4 e, float4 n) {
+  return sign(v3_dot(v3_from(cross(e, n)), pa));
+}
+
+/* Exact (Inigo Quilez's udTriangle, thickened): the plane's distance where p projects inside
+ * all three edges, else the nearest edge's. */
+SDF_INLINE vfloat sd_triangle(vec3v p, float4 a, float4 b, float4 c, float thickness) {
+  float4 ba = b - a;
+  float4 cb = c - b;
+  float4 ac = a - c;
+  float4 n = cross(ba, ac);
+  vec3v pa = v3_sub(p, v3_from(a));
+  vec3v pb = v3_sub(p, v3_from(b));
+  vec3v pc = v3_sub(p, v3_from(c));
+  vfloat sides = edge_side(pa, ba, n) + edge_side(pb, cb, n) + edge_side(pc, ac, n);
+  vfloat edges = fmin(fmin(edge_distance2(pa, ba), edge_distance2(pb, cb)), edge_distance2(pc, ac));
+  vfloat plane = v3_dot(v3_from(n), pa);
+  return vsqrt(select(plane * plane / dot(n.xyz, n.xyz), edges, MASK(sides < 2.0f))) - thickness;
+}
+
+/* Exact (Inigo Quilez's udQuad, thickened) for a planar convex quadrilateral. */
+SDF_INLINE vfloat sd_quad(vec3v p, float4 a, float4 b, float4 c, float4 d, float thickness) {
+  float4 ba = b - a;
+  float4 cb = c - b;
+  float4 dc = d - c;
+  float4 ad = a - d;
+  float4 n = cross(ba, ad);
+  vec3v pa = v3_sub(p, v3_from(a));
+  vec3v pb = v3_sub(p, v3_from(b));
+  vec3v pc = v3_sub(p, v3_from(c));
+  vec3v pd = v3_sub(p, v3_from(d));
+  vfloat sides = edge_side(pa, ba, n) + edge_side(pb, cb, n) + edge_side(pc, dc, n) + edge_side(pd, ad, n);
+  vfloat edges = fmin(fmin(edge_distance2(pa, ba), edge_distance2(pb, cb)), fmin(edge_distance2(pc, dc), edge_distance2(pd, ad)));
+  vfloat plane = v3_dot(v3_from(n), pa);
+  return vsqrt(select(plane * plane / dot(n.xyz, n.xyz), edges, MASK(sides < 3.0f))) - thickness;
+}
+
+/* A bound (Inigo Quilez's sdTriPrism): the largest signed distance to the two slanted sides
+ * (normals (+-cos 30, sin 30)), the bottom side (inradius radius / 2) and the end caps. Below
+ * the true distance near the edges outside. */
+SDF_INLINE vfloat sd_triangular_prism(vec3v p, float4 center, float radius, float half_length) {
+  vec3v l = v3_sub(p, v3_from(center));
+  vfloat sides = fmax(fabs(l.x) * 0.8660254f + l.y * 0.5f, -l.y) - 0.5f * radius;
+  return fmax(fabs(l.z) - half_length, sides);
+}
+
+/* Exact (Inigo Quilez's sdSolidAngle): in the half plane (r, y), l is the distance to the
+ * circle, m to the sector's straight side (c its direction), signed by the side of it. */
+SDF_INLINE vfloat sd_solid_angle(vec3v p, float4 center, float angle, float radius) {
+  vec3v l = v3_sub(p, v3_from(center));
+  float s = sinpi(angle / 180.0f);
+  float c = cospi(angle / 180.0f);
+  vfloat qx = vsqrt(l.x * l.x + l.z * l.z);
+  vfloat qy = l.y;
+  vfloat circle = vsqrt(qx * qx + qy * qy) - radius;
+  vfloat t = clamp(qx * s + qy * c, 0.0f, radius);
+  vfloat mx = qx - s * t;
+  vfloat my = qy - c * t;
+  return fmax(circle, vsqrt(mx * mx + my * my) * sign(c * qx - s * qy));
+}
+
+/* Exact (Inigo Quilez's sdCutHollowSphere): above the line from the centre through the rim
+ * (w, cut_height) the rim is nearest, below it the sphere. */
+SDF_INLINE vfloat sd_cut_hollow_sphere(vec3v p, float4 center, float radius, float cut_height, float thickness) {
+  vec3v l = v3_sub(p, v3_from(center));
+  float h = cut_height;
+  float w = sqrt(radius * radius - h * h);
+  vfloat qx = vsqrt(l.x * l.x + l.z * l.z);
+  vfloat qy = l.y;
+  vfloat rim = vsqrt((qx - w) * (qx - w) + (qy - h) * (qy - h));
+  vfloat shell = fabs(vsqrt(qx * qx + qy * qy) - radius);
+  return select(shell, rim, MASK(h * qx < w * qy)) - thickness;
+}
+
+/* Exact (Inigo Quilez's sdDeathStar, carved along +x): (a, b) is the circle where the spheres
+ * meet, in the half plane (x, distance from the x axis); within the cone of the centre and that
+ * circle, beyond it, the circle is nearest. */
+SDF_INLINE vfloat sd_death_star(vec3v p, float4 center, float radius, float carve_radius, float carve_distance) {
+  vec3v l = v3_sub(p, v3_from(center));
+  float d = carve_distance;
+  float a = (radius * radius - carve_radius * carve_radius + d * d) / (2.0f * d);
+  float b = sqrt(radius * radius - a * a);
+  vfloat px = l.x;
+  vfloat py = vsqrt(l.y * l.y + l.z * l.z);
+  vfloat rim = vsqrt((px - a) * (px - a) + (py - b) * (py - b));
+  vfloat body = fmax(vsqrt(px * px + py * py) - radius, carve_radius - vsqrt((px - d) * (px - d) + py * py));
+  return select(body, rim, MASK(px * b - py * a > d * fmax(b - py, 0.0f)));
+}
+
+/* Exact (Inigo Quilez's sdRhombus): in the quarter x, z >= 0 the nearest point of the side from
+ * (half_width, 0) to (0, half_depth) is at f in [-1, 1] along it; signed by the side's line,
+ * grown by corner_radius, then extruded along y. */
+SDF_INLINE vfloat sd_rhombus(vec3v p, float4 center, float half_width, float half_depth, float half_height,
+                             float corner_radius) {
+  vec3v a = v3_abs(v3_sub(p, v3_from(center)));
+  float la = half_width;
+  float lb = half_depth;
+  vfloat f = clamp((la * (la - 2.0f * a.x) - lb * (lb - 2.0f * a.z)) / (la * la + lb * lb), -1.0f, 1.0f);
+  vfloat ex = a.x - 0.5f * la * (1.0f - f);
+  vfloat ez = a.z - 0.5f * lb * (1.0f + f);
+  vfloat qx = vsqrt(ex * ex + ez * ez) * sign(a.x * lb + a.z * la - la * lb) - corner_radius;
+  vfloat qy = a.y - half_height;
+  vfloat outside_x = fmax(qx, 0.0f);
+  vfloat outside_y = fmax(qy, 0.0f);
+  return fmin(fmax(qx, qy), 0.0f) + vsqrt(outside_x * outside_x + outside_y * outside_y);
+}

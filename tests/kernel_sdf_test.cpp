@@ -78,6 +78,73 @@ const std::vector<SdfCase>& sdf_cases() {
       // Quilez's bound is exact on the axes outside.
       {"ellipsoid", "ellipsoid: {center: [1, 0, 0], radii: [1, 0.5, 0.75]}",
        {{{3, 0, 0}, 1.0}, {{-1, 0, 0}, 1.0}, {{1, 1.5, 0}, 1.0}, {{1, -1.5, 0}, 1.0}, {{1, 0, 1.75}, 1.0}, {{1, 0, -1.75}, 1.0}}},
+      // Apex (0, 1, 0), base the unit disc at y = 0: in the (r, y) half plane the slant is r + y = 1.
+      {"cone", "cone: {center: [0, 1, 0], angle: 45, height: 1}",
+       {{{0, 3, 0}, 2.0}, {{0, -2, 0}, 2.0}, {{2, 0, 0}, 1.0}, {{-2, 0, 0}, 1.0}, {{0, 0, 2}, 1.0},
+        {{1, 1, 0}, 1.0 / kSqrt2}, {{0, 1, -1}, 1.0 / kSqrt2}, {{0, 0.5, 0}, -0.5 / kSqrt2}, {{0.2, 0.1, 0}, -0.1}}},
+      // Outer radius 1 and half height 2; the rim's quarter circle is about (0.5, 1.5) in (r, y).
+      {"rounded_cylinder", "rounded_cylinder: {radius: 1, half_height: 2, edge_radius: 0.5}",
+       {{{3, 0, 0}, 2.0}, {{-3, 0, 0}, 2.0}, {{0, 4, 0}, 2.0}, {{0, -4, 0}, 2.0}, {{3.5, 5.5, 0}, 4.5},
+        {{0, -5.5, -3.5}, 4.5}, {{0, 0, 0}, -1.0}, {{0, 1.8, 0}, -0.2}}},
+      // Balls of radius 1 at (1, 0, 0) and 0.5 at (1, 2, 0): the tangent's normal in (r, y) is
+      // (sqrt 15, 1) / 4, the line n . q = 1 about a.
+      {"round_cone", "round_cone: {a: [1, 0, 0], b: [1, 2, 0], radius_a: 1, radius_b: 0.5}",
+       {{{1, -3, 0}, 2.0}, {{1, 4, 0}, 1.5}, {{4, 1, 0}, (3.0 * std::sqrt(15.0) - 3.0) / 4.0},
+        {{1, 1, -3}, (3.0 * std::sqrt(15.0) - 3.0) / 4.0}, {{-2, 1, 0}, (3.0 * std::sqrt(15.0) - 3.0) / 4.0}, {{1, 0, 0}, -1.0}}},
+      // The half ring z >= 0 of radius 1: its ends at (+-1, 0, 0).
+      {"capped_torus", "capped_torus: {angle: 90, major_radius: 1, minor_radius: 0.25}",
+       {{{0, 0, 1}, -0.25}, {{0, 0, 3}, 1.75}, {{0, 0, -1}, kSqrt2 - 0.25}, {{0, 2, 1}, 1.75}, {{3, 0, 0}, 1.75},
+        {{-3, 0, 0}, 1.75}, {{2, 0, -2}, std::sqrt(5.0) - 0.25}, {{-2, 0, -2}, std::sqrt(5.0) - 0.25}}},
+      {"capped_torus_full", "capped_torus: {center: [0, 1, 0], angle: 180, major_radius: 1, minor_radius: 0.25}",
+       {{{0, 1, -1}, -0.25}, {{0, 1, -3}, 1.75}, {{0, 1, 0}, 0.75}, {{-1, 1, 0}, -0.25}}},
+      // Bars x = +-1 for |y| <= 1, half circles about (0, +-1, 0) beyond.
+      {"link", "link: {half_length: 1, major_radius: 1, minor_radius: 0.25}",
+       {{{1, 0, 0}, -0.25}, {{-1, 0.5, 0}, -0.25}, {{3, 0, 0}, 1.75}, {{0, 3, 0}, 0.75}, {{0, -3, 0}, 0.75},
+        {{0, 0, 0}, 0.75}, {{0, 0, 2}, std::sqrt(5.0) - 0.25}, {{0, 1, 0}, 0.75}, {{0, -1, 0}, 0.75}}},
+      // The cap y >= 0.6 of the unit ball: its rim (0.8, 0.6) in (r, y).
+      {"cut_sphere", "cut_sphere: {radius: 1, cut_height: 0.6}",
+       {{{0, 3, 0}, 2.0}, {{0, 0, 0}, 0.6}, {{0, -2, 0}, 2.6}, {{2, 0.6, 0}, 1.2}, {{0, 0.6, -2}, 1.2},
+        {{0, 0.7, 0}, -0.1}, {{1.5, 2, 0}, 1.5}, {{0, 2, -1.5}, 1.5}}},
+      {"cut_sphere_below_centre", "cut_sphere: {center: [1, 0, 0], radius: 1, cut_height: -0.6}",
+       {{{1, -3, 0}, 2.4}, {{1, 0, 0}, -0.6}, {{3.5, 0, 0}, 1.5}, {{1, 0, -2.5}, 1.5}}},
+      // Base corners (+-1, 0, +-1), apex (0, 2, 0): the sides' planes 2 |x| + y = 2 and 2 |z| + y = 2.
+      {"pyramid", "pyramid: {half_width: 1, height: 2}",
+       {{{0, -1, 0}, 1.0}, {{0, 5, 0}, 3.0}, {{0, 0.5, 0}, -0.5}, {{2, 1, 0}, 3.0 / std::sqrt(5.0)},
+        {{-2, 1, 0}, 3.0 / std::sqrt(5.0)}, {{0, 1, 2}, 3.0 / std::sqrt(5.0)}, {{0, 1, -2}, 3.0 / std::sqrt(5.0)},
+        {{2, -1, 2}, kSqrt3}, {{-2, -1, -2}, kSqrt3}}},
+      {"triangle", "triangle: {a: [0, 0, 0], b: [2, 0, 0], c: [0, 2, 0], thickness: 0.1}",
+       {{{0.5, 0.5, 1}, 0.9}, {{0.5, 0.5, -2}, 1.9}, {{-1, -1, 0}, kSqrt2 - 0.1}, {{1, -1, 0}, 0.9},
+        {{2, 2, 0}, kSqrt2 - 0.1}, {{0.5, 0.5, 0}, -0.1}, {{1, -1, 1}, kSqrt2 - 0.1}}},
+      {"quad", "quad: {a: [-1, 1, -1], b: [1, 1, -1], c: [1, 1, 1], d: [-1, 1, 1], thickness: 0.1}",
+       {{{0, 3, 0}, 1.9}, {{0.5, -1, 0.5}, 1.9}, {{3, 1, 0}, 1.9}, {{2, 1, 2}, kSqrt2 - 0.1}, {{0, 1, 0}, -0.1},
+        {{0, 2, 3}, std::sqrt(5.0) - 0.1}, {{-3, 1, 0}, 1.9}}},
+      // A parallelogram of normal (-1, 0, 2) / sqrt 5 about (1, 1, 0.5).
+      {"quad_tilted", "quad: {a: [0, 0, 0], b: [2, 0, 1], c: [2, 2, 1], d: [0, 2, 0], thickness: 0.1}",
+       {{{1.0 - 1.0 / std::sqrt(5.0), 1, 0.5 + 2.0 / std::sqrt(5.0)}, 0.9}, {{1, 1, 0.5}, -0.1}}},
+      // Corners (0, 1), (+-sqrt 3 / 2, -1 / 2) in xy, |z| <= 2. On the faces' normals through their
+      // middles the bound is the distance; above the apex it is only half of it.
+      {"triangular_prism", "triangular_prism: {radius: 1, half_length: 2}",
+       {{{0, -1.5, 0}, 1.0}, {{0, 0, 3}, 1.0}, {{0, 0, -3}, 1.0}, {{0, 0, 0}, -0.5},
+        {{3.0 * kSqrt3 / 4.0, 0.75, 0}, 1.0}, {{-3.0 * kSqrt3 / 4.0, 0.75, 0}, 1.0}, {{0, 3, 0}, 1.0}}},
+      // The sector within 60 degrees of +y of the ball of radius 2: its side ends at (sqrt 3, 1) in (r, y).
+      {"solid_angle", "solid_angle: {angle: 60, radius: 2}",
+       {{{0, 3, 0}, 1.0}, {{0, 1, 0}, -kSqrt3 / 2.0}, {{0, -1, 0}, 1.0}, {{2, 0, 0}, 1.0}, {{-2, 0, 0}, 1.0},
+        {{0, 0, 2}, 1.0}}},
+      // Wider than a half space: the side ends at (sqrt 3 / 2, -1 / 2).
+      {"solid_angle_wide", "solid_angle: {center: [0, 1, 0], angle: 120, radius: 1}",
+       {{{0, -1, 0}, kSqrt3}, {{0, 3, 0}, 1.0}, {{0, 1.5, 0}, -0.5}}},
+      // The unit sphere below y = 0.6, the rim at (0.8, 0.6) in (r, y), 0.1 thick on each side.
+      {"cut_hollow_sphere", "cut_hollow_sphere: {radius: 1, cut_height: 0.6, thickness: 0.1}",
+       {{{0, -3, 0}, 1.9}, {{0, 0, 0}, 0.9}, {{0, 3, 0}, std::sqrt(6.4) - 0.1}, {{2, 0, 0}, 0.9}, {{0, 0, -2}, 0.9},
+        {{0, -1, 0}, -0.1}, {{1.6, 1.2, 0}, 0.9}, {{0, 1.2, -1.6}, 0.9}}},
+      // Unit balls at 0 and (1, 0, 0): they meet in the circle x = 1/2 of radius sqrt 3 / 2.
+      {"death_star", "death_star: {radius: 1, carve_radius: 1, carve_distance: 1}",
+       {{{-3, 0, 0}, 2.0}, {{0, 3, 0}, 2.0}, {{0, 0, -3}, 2.0}, {{0.5, 0, 0}, 0.5}, {{-0.5, 0, 0}, -0.5}, {{2, 0, 0}, kSqrt3}}},
+      // Half diagonals 2 (x) and 1 (z), grown by 0.1, |y| <= 0.5: the side x + 2 z = 2 in the quarter.
+      {"rhombus", "rhombus: {half_width: 2, half_depth: 1, half_height: 0.5, corner_radius: 0.1}",
+       {{{0, 2, 0}, 1.5}, {{0, -2, 0}, 1.5}, {{4, 0, 0}, 1.9}, {{-4, 0, 0}, 1.9}, {{0, 0, 2}, 0.9}, {{0, 0, -2}, 0.9},
+        {{0, 0, 0}, -0.5}, {{1.0 + 1.0 / std::sqrt(5.0), 0, 0.5 + 2.0 / std::sqrt(5.0)}, 0.9},
+        {{-1.0 - 1.0 / std::sqrt(5.0), 0, -0.5 - 2.0 / std::sqrt(5.0)}, 0.9}}},
       // The unit sphere stretched along x into a capsule of half length 1.
       {"elongate", "elongate: {h: [1, 0, 0], children: [{sphere: {radius: 1}}]}",
        {{{3, 0, 0}, 1.0}, {{-2.5, 0, 0}, 0.5}, {{0.5, 2, 0}, 1.0}, {{0.5, 0, 0}, -1.0}, {{-0.5, 0, -3}, 2.0}}},
@@ -320,6 +387,12 @@ INSTANTIATE_TEST_SUITE_P(AllKinds, SdfClosedForm, ::testing::ValuesIn(sdf_cases(
 TEST(SdfClosedForm, CatalogueKernelMatchesTheReferenceEverywhere) {
   const std::set<std::string> catalogue = {"octahedron", "hex_prism", "capped_cone", "capped_cone_frustum", "ellipsoid",
                                            "elongate", "onion", "round", "mirror", "repeat_polar", "repeat_limited",
+                                           // Later catalogue primitives.
+                                           "cone", "rounded_cylinder", "round_cone", "capped_torus", "capped_torus_full", "link",
+                                           "cut_sphere", "cut_sphere_below_centre", "pyramid", "triangle", "quad",
+                                           "quad_tilted", "triangular_prism", "solid_angle", "solid_angle_wide",
+                                           "cut_hollow_sphere", "death_star", "rhombus",
+                                           // Profiles and modifiers.
                                            "circle", "rectangle", "rounded_rectangle", "segment", "regular_polygon", "revolve",
                                            "extrude", "twist", "bend", "nonuniform_scale"};
   std::mt19937 rng(11);

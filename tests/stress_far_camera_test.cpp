@@ -254,6 +254,42 @@ TEST(FarCamera, EveryNodeKindRendersInTheMapFrame) {
         1.0 - offset.y, at(-1.5, 0, 0), at(-0.5, -0.5, 1), at(0.5, 0.2, 1.2), at(1.5, 0, 0), at(0, -0.4, 0),
         at(0, 0.8, -1.5), at(1.5, 0.6, -1.2), at(-1.5, 0.6, -1.2), at(0, -0.2, 2.2), at(0, -0.6, -2.5));
   });
+  // The later catalogue primitives; those given by points (round_cone, triangle, quad) move each
+  // point, and the turned ones are placed by translate (a far centre would turn about the origin).
+  expect_checks_near_and_far([](const auto& at, const glm::dvec3& offset) {
+    return fmt::format(
+        "  union:\n"
+        "    - plane: {{normal: [0, 1, 0], offset: {}}}\n"
+        "    - cone: {{center: {}, angle: 30, height: 0.8}}\n"
+        "    - rounded_cylinder: {{center: {}, radius: 0.35, half_height: 0.4, edge_radius: 0.1}}\n"
+        "    - round_cone: {{a: {}, b: {}, radius_a: 0.3, radius_b: 0.15}}\n"
+        "    - capped_torus: {{angle: 120, major_radius: 0.35, minor_radius: 0.1, translate: {}, rotate: [-60, 0, 0]}}\n"
+        "    - link: {{center: {}, half_length: 0.2, major_radius: 0.25, minor_radius: 0.08}}\n",
+        1.0 - offset.y, at(-1.5, 0.2, 0), at(-0.5, -0.5, 1), at(0.5, -0.6, 1.2), at(0.6, 0.1, 1.0), at(1.5, 0, 0),
+        at(0, -0.4, 0));
+  });
+  expect_checks_near_and_far([](const auto& at, const glm::dvec3& offset) {
+    return fmt::format(
+        "  union:\n"
+        "    - plane: {{normal: [0, 1, 0], offset: {}}}\n"
+        "    - cut_sphere: {{center: {}, radius: 0.45, cut_height: -0.2}}\n"
+        "    - pyramid: {{center: {}, half_width: 0.35, height: 0.7}}\n"
+        "    - triangle: {{a: {}, b: {}, c: {}, thickness: 0.03}}\n"
+        "    - quad: {{a: {}, b: {}, c: {}, d: {}, thickness: 0.03}}\n"
+        "    - triangular_prism: {{center: {}, radius: 0.4, half_length: 0.4}}\n",
+        1.0 - offset.y, at(-1.5, 0.2, 0), at(-0.5, -0.9, 1), at(0.3, -0.5, 1.2), at(0.9, -0.5, 1.0), at(0.6, 0.3, 1.1),
+        at(1.2, -0.6, -0.4), at(1.9, -0.6, -0.4), at(1.9, 0.1, -0.2), at(1.2, 0.1, -0.2), at(0, -0.4, 0));
+  });
+  expect_checks_near_and_far([](const auto& at, const glm::dvec3& offset) {
+    return fmt::format(
+        "  union:\n"
+        "    - plane: {{normal: [0, 1, 0], offset: {}}}\n"
+        "    - solid_angle: {{center: {}, angle: 40, radius: 0.6}}\n"
+        "    - cut_hollow_sphere: {{center: {}, radius: 0.4, cut_height: 0.1, thickness: 0.04}}\n"
+        "    - death_star: {{radius: 0.45, carve_radius: 0.35, carve_distance: 0.4, translate: {}, rotate: [0, -40, 0]}}\n"
+        "    - rhombus: {{center: {}, half_width: 0.5, half_depth: 0.3, half_height: 0.1, corner_radius: 0.05}}\n",
+        1.0 - offset.y, at(-1.5, -0.6, 0), at(-0.5, -0.4, 1), at(0.6, 0.1, 1.0), at(1.5, -0.7, -0.3));
+  });
   // The blends: a sphere and a box, the first ones by their centres, the others under a translate;
   // the estimates with step_factor 0.7 (they are up to sqrt 2 steeper than the distance).
   expect_checks_near_and_far([](const auto& at, const glm::dvec3& offset) {

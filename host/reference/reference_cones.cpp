@@ -19,15 +19,15 @@ constexpr int kBlock = CLMARCH_COARSE_BLOCK;
 /// The cone stops once its step falls below this fraction of the plain sphere-tracing step.
 constexpr double kStopFraction = 0.25;
 
-struct Cone {
+struct BlockCone {
   glm::dvec3 axis{0.0};
   double spread = 0.0;  ///< bound on |u - axis| over the block's unit rays u
 };
 
-Cone block_cone(const CameraBasis& basis, int x0, int y0, int x1, int y1) {
+BlockCone block_cone(const CameraBasis& basis, int x0, int y0, int x1, int y1) {
   // Pixel centres at i + 0.5; the block's rays form a convex patch of the image plane, and the
   // angle to the axis is quasi-convex there, so a corner ray is the farthest.
-  Cone cone;
+  BlockCone cone;
   cone.axis = camera_ray_direction(basis, 0.5 * (x0 + x1) + 0.5, 0.5 * (y0 + y1) + 0.5);
   double chord = 0.0;
   for (int x : {x0, x1}) {
@@ -63,7 +63,7 @@ ConeStarts reference_cone_starts(const Scene& scene) {
   cones.steps.assign(cones.start.size(), 0);
   tbb::parallel_for(0, static_cast<int>(cones.start.size()), [&](int b) {
     const int x0 = (b % cones.blocks_x) * kBlock, y0 = (b / cones.blocks_x) * kBlock;
-    const Cone cone = block_cone(basis, x0, y0, std::min(x0 + kBlock, width) - 1, std::min(y0 + kBlock, height) - 1);
+    const BlockCone cone = block_cone(basis, x0, y0, std::min(x0 + kBlock, width) - 1, std::min(y0 + kBlock, height) - 1);
     const double k = cone.spread, slope = limits.hit_cone_slope;
     double t = t_first;
     int steps = 0;

@@ -6,6 +6,7 @@
 #include "reference/reference_patterns.hpp"
 
 #include "reference/reference_fractals.hpp"
+#include "reference/reference_geometry.hpp"
 #include "reference/reference_noise.hpp"
 #include "scene/scene_bounds.hpp"
 
@@ -22,6 +23,11 @@
 
 namespace clmarch {
 namespace {
+
+using geometry::convex_polygon_distance;
+using geometry::distance_to_segment;
+using geometry::distance_to_triangle;
+using geometry::extrude;
 
 // mix as the scene format defines it, x + (y - x) * h; glm::mix rounds differently.
 double mix(double x, double y, double h) { return x + (y - x) * h; }
@@ -56,46 +62,6 @@ const T& params(const Node& node) {
 }
 
 SdfSample sample_node(const Node& node, const glm::dvec3& p_parent, const Material& parent, bool colored);
-
-/// The distance from p to the segment a-b (in the plane or in space).
-template <class Vec>
-double distance_to_segment(const Vec& p, const Vec& a, const Vec& b) {
-  const Vec ab = b - a;
-  const double t = std::clamp(glm::dot(p - a, ab) / glm::dot(ab, ab), 0.0, 1.0);
-  return glm::length(p - (a + t * ab));
-}
-
-/// The distance from p to the triangle abc: to its plane where p projects inside it, else to the
-/// nearest edge.
-double distance_to_triangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
-  const glm::dvec3 n = glm::cross(b - a, c - a);
-  const bool inside = glm::dot(glm::cross(b - a, p - a), n) >= 0.0 && glm::dot(glm::cross(c - b, p - b), n) >= 0.0 &&
-                      glm::dot(glm::cross(a - c, p - c), n) >= 0.0;
-  if (inside) return std::abs(glm::dot(p - a, n)) / glm::length(n);
-  return std::min({distance_to_segment(p, a, b), distance_to_segment(p, b, c), distance_to_segment(p, c, a)});
-}
-
-/// The signed distance to a convex polygon given by its vertices in order, in the plane: the
-/// nearest edge's distance, negative inside.
-double convex_polygon_distance(const glm::dvec2& p, const std::vector<glm::dvec2>& corners) {
-  double nearest = std::numeric_limits<double>::infinity();
-  bool inside = true;
-  for (std::size_t i = 0; i < corners.size(); ++i) {
-    const glm::dvec2& a = corners[i];
-    const glm::dvec2& b = corners[(i + 1) % corners.size()];
-    nearest = std::min(nearest, distance_to_segment(p, a, b));
-    const glm::dvec2 edge = b - a;
-    // Counter-clockwise corners: inside is left of every edge.
-    if (edge.x * (p.y - a.y) - edge.y * (p.x - a.x) < 0.0) inside = false;
-  }
-  return inside ? -nearest : nearest;
-}
-
-/// A 2D signed distance d turned into a prism of half height h along the third axis y.
-double extrude(double d, double y, double h) {
-  const glm::dvec2 w(d, std::abs(y) - h);
-  return std::min(std::max(w.x, w.y), 0.0) + glm::length(glm::max(w, 0.0));
-}
 
 template <class Op>
 SdfSample fold_children(const Node& node, const glm::dvec3& p, const Material& color, bool colored, Op op) {

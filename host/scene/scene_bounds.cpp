@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
+#include <numbers>
 
 namespace clmarch {
 namespace {
@@ -16,6 +18,15 @@ BoundingSphere enclosing(const BoundingSphere& a, const BoundingSphere& b) {
   const double radius = 0.5 * (distance + a.radius + b.radius);
   const glm::dvec3 center = a.center + (b.center - a.center) * ((radius - a.radius) / distance);
   return {center, radius, gain};
+}
+
+/// A flat shape of these corners, thickened: about their mean, out to the farthest.
+BoundingSphere corners_bounds(std::initializer_list<glm::dvec3> corners, double thickness) {
+  glm::dvec3 center(0.0);
+  for (const glm::dvec3& c : corners) center += c / static_cast<double>(corners.size());
+  double radius = 0.0;
+  for (const glm::dvec3& c : corners) radius = std::max(radius, glm::length(c - center));
+  return {center, radius + thickness};
 }
 
 /// Each primitive's bounding sphere, written by hand for its kind (none: an unbounded one).
@@ -51,6 +62,57 @@ std::optional<BoundingSphere> primitive_bounds(const NodeParams& params) {
       const double most = std::max({e.radii.x, e.radii.y, e.radii.z});
       const double least = std::min({e.radii.x, e.radii.y, e.radii.z});
       return BoundingSphere{e.center, most, (most * most + least * least) / (2.0 * most * least)};
+    }
+    // The smallest sphere through the apex and the rim, its centre on the axis within the cone.
+    std::optional<BoundingSphere> operator()(const Cone& c) const {
+      const double rim = c.height * std::tan(c.angle * std::numbers::pi / 180.0);
+      const double below = std::min((rim * rim + c.height * c.height) / (2.0 * c.height), c.height);
+      return BoundingSphere{c.center - glm::dvec3(0.0, below, 0.0), std::max(below, std::hypot(rim, c.height - below))};
+    }
+    std::optional<BoundingSphere> operator()(const RoundedCylinder& c) const {
+      return BoundingSphere{c.center, std::hypot(c.radius, c.half_height)};
+    }
+    // The hull of two balls lies in any sphere holding both (the loader keeps either out of the other).
+    std::optional<BoundingSphere> operator()(const RoundCone& c) const {
+      const double length = glm::length(c.b - c.a);
+      const double radius = 0.5 * (length + c.radius_a + c.radius_b);
+      return BoundingSphere{c.a + (c.b - c.a) * ((radius - c.radius_a) / length), radius};
+    }
+    std::optional<BoundingSphere> operator()(const CappedTorus& t) const {
+      return BoundingSphere{t.center, t.major_radius + t.minor_radius};
+    }
+    std::optional<BoundingSphere> operator()(const Link& l) const {
+      return BoundingSphere{l.center, l.half_length + l.major_radius + l.minor_radius};
+    }
+    // Above the centre the cap lies within its rim's radius of the disc's centre.
+    std::optional<BoundingSphere> operator()(const CutSphere& c) const {
+      if (c.cut_height <= 0.0) return BoundingSphere{c.center, c.radius};
+      return BoundingSphere{c.center + glm::dvec3(0.0, c.cut_height, 0.0), std::sqrt(c.radius * c.radius - c.cut_height * c.cut_height)};
+    }
+    // The smallest sphere through the apex and the base's corners, its centre on the axis.
+    std::optional<BoundingSphere> operator()(const Pyramid& p) const {
+      const double corner = std::sqrt(2.0) * p.half_width;
+      const double up = std::clamp((p.height * p.height - corner * corner) / (2.0 * p.height), 0.0, p.height);
+      return BoundingSphere{p.center + glm::dvec3(0.0, up, 0.0), std::max(p.height - up, std::hypot(corner, up))};
+    }
+    std::optional<BoundingSphere> operator()(const Triangle& t) const { return corners_bounds({t.a, t.b, t.c}, t.thickness); }
+    std::optional<BoundingSphere> operator()(const Quad& q) const { return corners_bounds({q.a, q.b, q.c, q.d}, q.thickness); }
+    // The field is the largest of the face planes' distances: below tau it holds the prism grown
+    // by tau on each face, whose triangle reaches radius + 2 tau and whose caps half_length + tau,
+    // within |(radius, half_length)| + sqrt(5) tau of the centre.
+    std::optional<BoundingSphere> operator()(const TriangularPrism& t) const {
+      return BoundingSphere{t.center, std::hypot(t.radius, t.half_length), std::sqrt(5.0)};
+    }
+    std::optional<BoundingSphere> operator()(const SolidAngle& s) const { return BoundingSphere{s.center, s.radius}; }
+    // Below the centre the bowl lies within its rim's radius of the rim's centre.
+    std::optional<BoundingSphere> operator()(const CutHollowSphere& c) const {
+      if (c.cut_height >= 0.0) return BoundingSphere{c.center, c.radius + c.thickness};
+      const double rim = std::sqrt(c.radius * c.radius - c.cut_height * c.cut_height);
+      return BoundingSphere{c.center + glm::dvec3(0.0, c.cut_height, 0.0), rim + c.thickness};
+    }
+    std::optional<BoundingSphere> operator()(const DeathStar& d) const { return BoundingSphere{d.center, d.radius}; }
+    std::optional<BoundingSphere> operator()(const Rhombus& r) const {
+      return BoundingSphere{r.center, std::hypot(std::max(r.half_width, r.half_depth) + r.corner_radius, r.half_height)};
     }
     std::optional<BoundingSphere> operator()(const Capsule& c) const {
       return BoundingSphere{0.5 * (c.a + c.b), 0.5 * glm::length(c.b - c.a) + c.radius};

@@ -468,13 +468,18 @@ class SceneReader {
   template <class Params>
   void check_params(const Params&, const YAML::Node&, const std::string&) {}
 
-  void check_params(RoundBox& box, const YAML::Node& map, const std::string& path) {
-    const double smallest = std::min({box.half_size.x, box.half_size.y, box.half_size.z});
-    if (map["radius"]) {
-      box.radius = yaml_.number(map["radius"], path + ".radius", Range::closed(0.0, smallest));
+  // A rounding radius at most the shape's smallest size: a given one is checked against it, the
+  // default lowered to it.
+  void limit_rounding(double& radius, double smallest, const YAML::Node& map, const std::string& key, const std::string& path) {
+    if (map[key]) {
+      radius = yaml_.number(map[key], path + "." + key, Range::closed(0.0, smallest));
     } else {
-      box.radius = std::min(box.radius, smallest);
+      radius = std::min(radius, smallest);
     }
+  }
+
+  void check_params(RoundBox& box, const YAML::Node& map, const std::string& path) {
+    limit_rounding(box.radius, std::min({box.half_size.x, box.half_size.y, box.half_size.z}), map, "radius", path);
   }
 
   void check_params(BoxFrame& frame, const YAML::Node& map, const std::string& path) {
@@ -496,6 +501,79 @@ class SceneReader {
     }
   }
 
+  void check_params(RoundedCylinder& cylinder, const YAML::Node& map, const std::string& path) {
+    limit_rounding(cylinder.edge_radius, std::min(cylinder.radius, cylinder.half_height), map, "edge_radius", path);
+  }
+
+  void check_params(RoundCone& cone, const YAML::Node& map, const std::string& path) {
+    if (cone.a == cone.b) yaml_.fail(map, path + ".a and " + path + ".b must differ (use a sphere for a point)");
+    if (cone.radius_a == 0.0 && cone.radius_b == 0.0) {
+      yaml_.fail(map, path + ".radius_a and " + path + ".radius_b must not both be 0 (that is a segment)");
+    }
+    const double length = glm::length(cone.b - cone.a);
+    if (!(std::abs(cone.radius_a - cone.radius_b) < length)) {
+      yaml_.fail(map, fmt::format("{}.radius_a and {}.radius_b must differ by less than |b - a| = {} (got {} and {}: one "
+                                  "ball holds the other, use a sphere)", path, path, length, cone.radius_a, cone.radius_b));
+    }
+  }
+
+  // A sphere's cut: a plane through it, not touching it.
+  void check_cut_height(double cut_height, double radius, const YAML::Node& map, const std::string& path) {
+    if (!(std::abs(cut_height) < radius)) {
+      yaml_.fail(map["cut_height"] ? map["cut_height"] : map,
+                 fmt::format("{}.cut_height must be in (-radius, radius) = ({}, {}) (got {})", path, -radius, radius, cut_height));
+    }
+  }
+
+  void check_params(CutSphere& cut, const YAML::Node& map, const std::string& path) {
+    check_cut_height(cut.cut_height, cut.radius, map, path);
+  }
+
+  void check_params(CutHollowSphere& bowl, const YAML::Node& map, const std::string& path) {
+    check_cut_height(bowl.cut_height, bowl.radius, map, path);
+  }
+
+  void check_params(DeathStar& star, const YAML::Node& map, const std::string& path) {
+    // The spheres must meet in a circle: a carve that misses, hides inside or swallows the ball
+    // is no death star (and Quilez's formula assumes the circle).
+    const double low = std::abs(star.radius - star.carve_radius), high = star.radius + star.carve_radius;
+    if (!(star.carve_distance > low && star.carve_distance < high)) {
+      yaml_.fail(map["carve_distance"] ? map["carve_distance"] : map,
+                 fmt::format("{}.carve_distance must be in (|radius - carve_radius|, radius + carve_radius) = ({}, {}) so "
+                             "that the spheres meet (got {})", path, low, high, star.carve_distance));
+    }
+  }
+
+  // The corners of a flat shape: not on one line (sine of the angle between two spans above
+  // 1e-6, so that the device's float normal is well defined).
+  void check_spans_a_plane(const glm::dvec3& u, const glm::dvec3& v, const YAML::Node& map, const std::string& what) {
+    if (!(glm::length(glm::cross(u, v)) > 1e-6 * glm::length(u) * glm::length(v))) {
+      yaml_.fail(map, what + " must span a plane (they are on one line, or nearly)");
+    }
+  }
+
+  void check_params(Triangle& triangle, const YAML::Node& map, const std::string& path) {
+    check_spans_a_plane(triangle.b - triangle.a, triangle.c - triangle.a, map, path + ".a, " + path + ".b and " + path + ".c");
+  }
+
+  void check_params(Quad& quad, const YAML::Node& map, const std::string& path) {
+    const std::string corners = path + ".a, .b, .c and .d";
+    const glm::dvec3 v[4] = {quad.a, quad.b, quad.c, quad.d};
+    // The diagonals' cross product: the normal of a convex quadrilateral listed in order.
+    check_spans_a_plane(quad.c - quad.a, quad.d - quad.b, map, path + "'s diagonals a-c and b-d");
+    const glm::dvec3 n = glm::normalize(glm::cross(quad.c - quad.a, quad.d - quad.b));
+    const double size = std::max(glm::length(quad.c - quad.a), glm::length(quad.d - quad.b));
+    for (int i = 0; i < 4; ++i) {
+      if (std::abs(glm::dot(v[i] - v[0], n)) > 1e-6 * size) {
+        yaml_.fail(map, fmt::format("{} must lie in one plane (corner {} is off it)", corners, "abcd"[i]));
+      }
+    }
+    for (int i = 0; i < 4; ++i) {
+      const glm::dvec3 turn = glm::cross(v[(i + 1) % 4] - v[i], v[(i + 2) % 4] - v[(i + 1) % 4]);
+      if (!(glm::dot(turn, n) > 0.0)) yaml_.fail(map, corners + " must be the corners of a convex quadrilateral, in order");
+    }
+  }
+
   void check_params(Mandelbulb& bulb, const YAML::Node& map, const std::string& path) {
     // An escaping orbit reaches |z| ~ bailout^power; the kernel squares it in float (max ~3e38).
     const double largest_bailout = std::pow(10.0, 18.0 / bulb.power);
@@ -507,12 +585,7 @@ class SceneReader {
   }
 
   void check_params(RoundedRectangle& rectangle, const YAML::Node& map, const std::string& path) {
-    const double smallest = std::min(rectangle.half_width, rectangle.half_height);
-    if (map["radius"]) {
-      rectangle.radius = yaml_.number(map["radius"], path + ".radius", Range::closed(0.0, smallest));
-    } else {
-      rectangle.radius = std::min(rectangle.radius, smallest);
-    }
+    limit_rounding(rectangle.radius, std::min(rectangle.half_width, rectangle.half_height), map, "radius", path);
   }
 
   void check_params(Segment& segment, const YAML::Node& map, const std::string& path) {
