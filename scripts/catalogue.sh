@@ -26,6 +26,20 @@ octahedron|3|exact|abs(x) + abs(y) + abs(z) ≤ size, by its faces' regions|octa
 hex_prism|3|exact|hexagon in xz extruded along y|hex_prism: {radius: 0.6, half_height: 0.6}
 capped_cone|3|exact|trapezoid (r, y) turned about y|capped_cone: {half_height: 0.7, bottom_radius: 0.6, top_radius: 0.2}
 ellipsoid|3|bound outside (Quilez's k0 (k0 − 1) / k1)|k0 = length(q / radii), k1 = length(q / radii²)|ellipsoid: {radii: [0.9, 0.5, 0.6]}
+cone|3|exact|apex at centre, base disc height below; (r, y) triangle turned about y|cone: {center: [0, 0.6, 0], angle: 30, height: 1.2}
+rounded_cylinder|3|exact|2D box of (length(q.xz), q.y) with its corners rounded by edge_radius|rounded_cylinder: {radius: 0.6, half_height: 0.6, edge_radius: 0.15}
+round_cone|3|exact|the hull of the balls of radius_a at a and radius_b at b|round_cone: {a: [0, -0.5, 0], b: [0, 0.6, 0], radius_a: 0.5, radius_b: 0.2}
+capped_torus|3.2|exact|the torus's arc of the given half angle about +z|capped_torus: {angle: 120, major_radius: 0.8, minor_radius: 0.2}
+link|3.2|exact|a torus stretched by half_length along y (a chain link)|link: {half_length: 0.4, major_radius: 0.45, minor_radius: 0.12}
+cut_sphere|3|exact|the sphere above y = cut_height|cut_sphere: {radius: 0.8, cut_height: -0.3}
+cut_hollow_sphere|3|exact|the spherical shell below y = cut_height, thickened|cut_hollow_sphere: {radius: 0.8, cut_height: 0.3, thickness: 0.05}
+death_star|3.4|exact|the sphere less a sphere carve_distance along +x|death_star: {radius: 0.8, carve_radius: 0.6, carve_distance: 0.9}
+solid_angle|3|exact|the ball's cone of the given half angle about +y|solid_angle: {angle: 40, radius: 0.9}
+rhombus|3|exact|a rhombus in xz extruded along y, rounded|rhombus: {half_width: 0.8, half_depth: 0.45, half_height: 0.1, corner_radius: 0.08}
+triangular_prism|3|bound|an equilateral triangle in xy extruded along z|triangular_prism: {radius: 0.7, half_length: 0.5}
+pyramid|3|exact|square base on y = 0, apex height above; side faces and base|pyramid: {center: [0, -0.4, 0], half_width: 0.6, height: 1}
+triangle|3|exact (unsigned, thickened)|distance to the triangle abc, less thickness|triangle: {a: [-0.7, -0.4, 0], b: [0.7, -0.4, 0.2], c: [0, 0.7, -0.2], thickness: 0.03}
+quad|3|exact (unsigned, thickened)|distance to the planar quad abcd, less thickness|quad: {a: [-0.6, -0.2, -0.6], b: [0.6, -0.2, -0.6], c: [0.6, 0.3, 0.6], d: [-0.6, 0.3, 0.6], thickness: 0.03}
 mandelbulb|3|estimate (bound near the set)|0.5 log(r) r / dr of z → z⁸ + c|mandelbulb: {step_factor: 0.8}
 menger|3.6|bound|the cube less iterated crosses|menger: {iterations: 3}
 sierpinski|4.4|estimate|folds, z → 2 z − (1, 1, 1); distance to the last tetrahedron|sierpinski: {iterations: 6, step_factor: 0.8}

@@ -371,6 +371,11 @@ Node default_node(NodeKind kind) {
     case NodeKind::RepeatPolar: return unary(RepeatPolar{6}, sphere_node({1.0, 0.1, 0.0}, 0.3));
     case NodeKind::RepeatLimited:
       return unary(RepeatLimited{{1.5, 0.0, 1.5}, {-1, 0, -1}, {1, 0, 1}}, sphere_node({0.0, 0.0, 0.0}, 0.5));
+    case NodeKind::Revolve: return unary(Revolve{0.5}, leaf(Circle{{0.3, 0.1, 0.0}, 0.3}, NodeKind::Circle));
+    case NodeKind::Extrude: return unary(Extrude{0.4}, leaf(Rectangle{{0.1, 0.0, 0.0}, 0.5, 0.3}, NodeKind::Rectangle));
+    case NodeKind::Twist: return unary(Twist{60.0}, box_child);
+    case NodeKind::Bend: return unary(Bend{-40.0}, box_child);
+    case NodeKind::NonuniformScale: return unary(NonuniformScale{{1.5, 0.7, 1.0}}, box_child);
     default: break;
   }
   Node other = sphere_node({0.3, 0.2, 0.0}, 0.6, kRed);
