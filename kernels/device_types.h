@@ -177,6 +177,9 @@ typedef struct MarchParams {
                             y - 1 (y = render.samples) of the z pixels of its refine_pixels instead
                             of tiles (kernels/march.cl, sample_packet); x = y = z = 0 on the centre
                             pass; w = 0 */
+  float4 cell_bounds;    /* tiling (cells): xyz = centre, in the cell's frame, of the sphere holding
+                            the cell's content (host/scene/scene_bounds.hpp, cell_bounds), w = its
+                            radius; w = 0: none */
   CLMARCH_INT width;
   CLMARCH_INT height;
   CLMARCH_INT first_row;    /* first image row of this dispatch (images render in chunks of rows) */
@@ -208,8 +211,8 @@ static_assert(offsetof(LightParams, kind) == 3 * 16, "LightParams: the scalars a
 static_assert(sizeof(ShadingParams) == 11 * 16 + 20 * 4, "ShadingParams layout must match OpenCL C");
 static_assert(offsetof(ShadingParams, diffuse) == 11 * 16, "ShadingParams: scalars after the float4s");
 static_assert(sizeof(ShadingParams) % 16 == 0, "ShadingParams keeps the float4 alignment of what follows");
-static_assert(offsetof(MarchParams, shading) == 8 * 16 + 16 * 4, "MarchParams: the shading after the march limits");
-static_assert(sizeof(MarchParams) == 8 * 16 + 16 * 4 + sizeof(ShadingParams) + CLMARCH_CAMERA_DOUBLES * 8,
+static_assert(offsetof(MarchParams, shading) == 9 * 16 + 16 * 4, "MarchParams: the shading after the march limits");
+static_assert(sizeof(MarchParams) == 9 * 16 + 16 * 4 + sizeof(ShadingParams) + CLMARCH_CAMERA_DOUBLES * 8,
               "MarchParams layout must match OpenCL C");
 static_assert(offsetof(MarchParams, camera_double) % 8 == 0, "doubles at 8-byte boundaries, as OpenCL C aligns them");
 #endif

@@ -193,7 +193,7 @@ SDF_INLINE vfloat sd_menger(vec3v p, float4 center, float half_size, int iterati
     const vec3v a = v3(menger_mod2(q.x * s) - 1.0f, menger_mod2(q.y * s) - 1.0f, menger_mod2(q.z * s) - 1.0f);
     s *= 3.0f;
     const vec3v r = v3(fabs(1.0f - 3.0f * fabs(a.x)), fabs(1.0f - 3.0f * fabs(a.y)), fabs(1.0f - 3.0f * fabs(a.z)));
-    const vfloat cross = (fmin(fmax(r.x, r.y), fmin(fmax(r.y, r.z), fmax(r.z, r.x))) - 1.0f) / s;
+    const vfloat cross = (fmin(fmax(r.x, r.y), fmin(fmax(r.y, r.z), fmax(r.z, r.x))) - 1.0f) * (1.0f / s);
     d = fmax(d, cross);
   }
   return d * half_size;

@@ -30,9 +30,9 @@ SDF_INLINE Hit surface_at(SceneValues values, const MarchResult* m, vec3v relati
 SDF_INLINE vec3v add_reflections(SceneValues values, vec3v color, Hit hit, vec3v dir, vint live, const MarchParams* params,
                                  __global const LightParams* lights) {
   const ShadingParams* shading = &params->shading;
-  /* Mirror rays march plainly with the fixed epsilon: the pixel cone is the camera's, and their t
-   * starts again at the mirror. */
-  MarchLimits limits = {values, params->max_steps, params->epsilon, CLMARCH_SHADOW_HARD, 0.0f, 1.0f, 0.0f};
+  /* Mirror rays march plainly with the fixed epsilon, inside the scene's bounding sphere: the pixel
+   * cone is the camera's, and their t starts again at the mirror. */
+  MarchLimits limits = {values, params->max_steps, params->epsilon, CLMARCH_SHADOW_HARD, 0.0f, 1.0f, 0.0f, params->cell_bounds};
   vfloat weight = (vfloat)(1.0f);
   vint active = live;
   for (int bounce = 0; bounce < shading->reflection_bounces; ++bounce) {
@@ -43,7 +43,12 @@ SDF_INLINE vec3v add_reflections(SceneValues values, vec3v color, Hit hit, vec3v
     dir = v3_sub(dir, v3_scale(hit.normal, 2.0f * v3_dot(dir, hit.normal)));
     const vec3v origin = v3_add(hit.point, v3_scale(hit.normal, shading->reflection_offset));
     const vec3v relative_origin = v3_add(hit.relative, v3_scale(hit.normal, shading->reflection_offset));
-    const MarchResult r = MARCH(origin, dir, active, (vfloat)(0.0f), (vfloat)(params->max_distance), limits);
+    vint marching = active;
+    vfloat t_start = (vfloat)(0.0f), t_end = (vfloat)(params->max_distance);
+    if (params->bounds.w > 0.0f) {
+      clip_to_sphere(v3_add(relative_origin, v3_from(params->bounds)), params->bounds.w, dir, &marching, &t_start, &t_end);
+    }
+    const MarchResult r = MARCH(origin, dir, marching, t_start, t_end, limits);
     vec3v seen = miss_color(shading, dir, r.closest);
     const vint reflected_hit = active & r.hit;
     if (LANE_ANY(reflected_hit)) {
@@ -63,18 +68,12 @@ SDF_INLINE vec3v add_reflections(SceneValues values, vec3v color, Hit hit, vec3v
 
 /* Camera rays march only inside the scene's bounding sphere (host/scene/scene_bounds.cpp): lanes
  * whose ray misses it do not march at all, the others start where they enter it (or at the camera)
- * and end where they leave it. bounds.xyz = camera - centre; the discriminant is taken as
- * r^2 - |offset - b dir|^2, which keeps its precision far from the sphere. */
+ * and end where they leave it. bounds.xyz = camera - centre. */
 SDF_INLINE void clip_to_bounds(float4 bounds, vec3v dir, vint* marching, vfloat* t_start, vfloat* t_end) {
-  const vfloat b = bounds.x * dir.x + bounds.y * dir.y + bounds.z * dir.z;
-  const vec3v closest = v3(bounds.x - b * dir.x, bounds.y - b * dir.y, bounds.z - b * dir.z);
-  const vfloat h = bounds.w * bounds.w - v3_dot(closest, closest);
-  const vfloat root = sqrt(fmax(h, 0.0f));
   /* A lane whose ray misses the sphere starts (and ends: the status channel) at 0, as in the
    * reference, not at its closest approach, which may lie past max_distance. */
-  *t_start = select((vfloat)(0.0f), fmax(-b - root, 0.0f), MASK(h >= 0.0f));
-  *t_end = fmin(-b + root, *t_end);
-  *marching &= MASK(h >= 0.0f) & MASK(*t_end > *t_start);
+  *t_start = (vfloat)(0.0f);
+  clip_to_sphere(v3_from(bounds), bounds.w, dir, marching, t_start, t_end);
 }
 
 /* Writes one value per lane into a plane: whole tiles as rows of vector stores, tiles cut by the
@@ -187,7 +186,8 @@ SDF_INLINE Packet packet_at(const MarchParams* params, int index, __global const
 
 /* The march limits of camera rays; with RECORD_SAMPLES, where the packet's points go. */
 SDF_INLINE MarchLimits camera_limits(SceneValues values, const MarchParams* params, const Packet* k, const MarchRecord* record) {
-  MarchLimits limits = {values, params->max_steps, params->epsilon, CLMARCH_SHADOW_HARD, 0.0f, params->over_relaxation, params->hit_cone_slope};
+  MarchLimits limits = {values, params->max_steps, params->epsilon, CLMARCH_SHADOW_HARD, 0.0f, params->over_relaxation, params->hit_cone_slope,
+                        params->cell_bounds};
 #if defined(RECORD_SAMPLES)
   limits.samples = record->samples;
   limits.sample_stride = record->sample_stride;

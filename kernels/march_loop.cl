@@ -16,9 +16,9 @@ typedef struct {
   vfloat penumbra;   /* soft shadows: light reaching the start point, 1 when unoccluded */
 } MarchResult;
 
-/* Limits of one march; shadow_mode and soft_k only matter for shadow rays. Camera rays set the last
- * two; an initialiser that leaves them out gives 0 (plain sphere tracing, the fixed epsilon), which
- * is what shadow and mirror rays use. */
+/* Limits of one march; shadow_mode and soft_k only matter for shadow rays. Camera rays set
+ * over_relaxation and hit_cone_slope; shadow and mirror rays march plainly with the fixed epsilon
+ * (1 and 0). */
 typedef struct {
   SceneValues values; /* the scene's animated values (map()) */
   int max_steps;
@@ -28,6 +28,7 @@ typedef struct {
   float soft_k;
   float over_relaxation; /* Keinert et al.'s omega; steps of omega * d while it is > 1 */
   float hit_cone_slope;  /* a lane arrives below max(epsilon, hit_cone_slope * t) */
+  float4 cell_bounds;    /* the cells tiling: MarchParams.cell_bounds (kernels/tiling.cl) */
 #if defined(RECORD_SAMPLES)
   /* The benchmark's record of every point the march evaluates (kernels/replay.cl): lane l writes
    * its k-th point to index sample_base[l] + k of the planes x, y, z of samples, sample_stride
@@ -68,6 +69,23 @@ SDF_INLINE void record_samples(const MarchLimits* limits, vec3v p, vint active, 
 SDF_INLINE vfloat hit_threshold(const MarchLimits* limits, vfloat t) {
   const vfloat base = limits->hit_cone_slope > 0.0f ? fmax(limits->hit_cone_slope * t, limits->epsilon) : (vfloat)(limits->epsilon);
   return fmax(base, REAL_EPSILON * t);
+}
+
+/* Clips the rays offset + t dir (offset: the rays' origins less the sphere's centre; dir unit) to
+ * the sphere of the given radius: t_start moves up to where a ray enters it, t_end down to where it
+ * leaves, and lanes whose ray misses it or whose span is then empty stop marching. Nothing lies
+ * outside the scene's bounding sphere, so camera rays and the secondary rays (shadow, mirror) all
+ * march inside it alone. The discriminant is taken as r^2 - |offset - b dir|^2, which keeps its
+ * precision far from the sphere. */
+SDF_INLINE void clip_to_sphere(vec3v offset, float radius, vec3v dir, vint* marching, vfloat* t_start, vfloat* t_end) {
+  const vfloat b = v3_dot(offset, dir);
+  const vec3v closest = v3_sub(offset, v3_scale(dir, b));
+  const vfloat h = radius * radius - v3_dot(closest, closest);
+  const vfloat root = sqrt(fmax(h, 0.0f));
+  const vint meets = MASK(h >= 0.0f);
+  *t_start = select(*t_start, fmax(-b - root, *t_start), meets);
+  *t_end = fmin(-b + root, *t_end);
+  *marching &= meets & MASK(*t_end > *t_start);
 }
 
 /* Lanes that march over-relaxed from the start: all or none (masks are -1, also for LANES 1). */

@@ -25,14 +25,18 @@ typedef struct {
 SDF_INLINE vec3v point_light_direction(vec3v p, float4 position) { return v3_normalize(v3_sub(v3_from(position), p)); }
 
 #if defined(SHADOW_MODE)
-/* Light reaching p from unit direction l over distance t_end: 0 behind an occluder, 1 unlit by
- * none, the penumbra in between for soft shadows. */
-SDF_INLINE vfloat shadow_factor(SceneValues values, const MarchParams* params, vec3v p, vec3v n, vec3v l, vfloat t_end, vint live) {
+/* Light reaching p (relative: p relative to the camera) from unit direction l over distance t_end:
+ * 0 behind an occluder, 1 unlit by none, the penumbra in between for soft shadows. The ray marches
+ * inside the scene's bounding sphere only: past it the light is unoccluded. */
+SDF_INLINE vfloat shadow_factor(SceneValues values, const MarchParams* params, vec3v p, vec3v relative, vec3v n, vec3v l, vfloat t_end, vint live) {
   const ShadingParams* shading = &params->shading;
-  MarchLimits limits = {values, shading->shadow_max_steps, params->epsilon, SHADOW_MODE, shading->shadow_k};
+  MarchLimits limits = {values, shading->shadow_max_steps, params->epsilon, SHADOW_MODE, shading->shadow_k, 1.0f, 0.0f,
+                        params->cell_bounds};
   /* Leave the surface along its normal first so the ray does not hit its own start. */
   const vec3v origin = v3_add(p, v3_scale(n, params->epsilon * 4.0f));
-  const MarchResult m = MARCH(origin, l, live, (vfloat)(shading->shadow_min_t), t_end, limits);
+  vfloat t_start = (vfloat)(shading->shadow_min_t);
+  if (params->bounds.w > 0.0f) clip_to_sphere(v3_add(relative, v3_from(params->bounds)), params->bounds.w, l, &live, &t_start, &t_end);
+  const MarchResult m = MARCH(origin, l, live, t_start, t_end, limits);
   const vfloat lit = SHADOW_MODE == CLMARCH_SHADOW_HARD ? (vfloat)(1.0f) : clamp(m.penumbra, 0.0f, 1.0f);
   return select(lit, (vfloat)(0.0f), m.hit);
 }
@@ -201,7 +205,7 @@ SDF_INLINE LightTerms light_terms(SceneValues values, const MarchParams* params,
 #endif
 #if defined(SHADOW_MODE)
     if (lights[k].casts_shadows) {
-      reaching = v3_scale(reaching, shadow_factor(values, params, hit->point, hit->normal, l, distance,
+      reaching = v3_scale(reaching, shadow_factor(values, params, hit->point, hit->relative, hit->normal, l, distance,
                                                   live & MASK(v3_dot(hit->normal, l) > 0.0f)));
     }
 #else

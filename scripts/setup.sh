@@ -4,7 +4,8 @@
 # sanitizer runtimes) are for scripts/fuzz.sh; libopenmpi-dev and openmpi-bin let `clmarch render`
 # run under mpirun (docs/cli.md#mpi); python3 runs scripts/large-scene.py, whose scenes the tests
 # check. `setup.sh --plots` also installs python3-matplotlib
-# for scripts/sweep-plot.py (run it with /usr/bin/python3).
+# for scripts/sweep-plot.py (run it with /usr/bin/python3); `setup.sh --peers` the GLSL peer's
+# libraries (EGL, OSMesa, libpng, Mesa's llvmpipe) for scripts/speed-vs-peers.sh.
 set -euo pipefail
 
 packages=(
@@ -20,7 +21,8 @@ packages=(
 for arg in "$@"; do
   case "$arg" in
     --plots) packages+=(python3-matplotlib) ;;
-    *) echo "setup.sh: unknown option $arg (expected --plots)" >&2; exit 2 ;;
+    --peers) packages+=(libegl-dev libosmesa6-dev libpng-dev libgl1-mesa-dri) ;;
+    *) echo "setup.sh: unknown option $arg (expected --plots or --peers)" >&2; exit 2 ;;
   esac
 done
 

@@ -156,9 +156,10 @@ struct OneRay {
   float wall_steps;
 };
 
-OneRay march_one_ray(const glm::dvec3& position, const glm::dvec3& direction, int lanes) {
+OneRay march_one_ray(const glm::dvec3& position, const glm::dvec3& direction, int lanes, SceneBounds bounds = SceneBounds::Sphere) {
   const bool vertical = direction.x == 0.0 && direction.z == 0.0;
-  const Scene scene = testing::scene_from_yaml(lattice_yaml(position, position + direction, 1, 1, vertical ? "[1, 0, 0]" : "[0, 1, 0]"));
+  Scene scene = testing::scene_from_yaml(lattice_yaml(position, position + direction, 1, 1, vertical ? "[1, 0, 0]" : "[0, 1, 0]"));
+  scene.render.bounds = bounds;
   OpenClOptions options;
   options.lanes = lanes;
   options.purpose = KernelPurpose::Normals;
@@ -202,14 +203,18 @@ TEST_P(TilingSpecialRays, TerminateAndMatchTheGridWalk) {
   const SpecialRay& r = GetParam();
   const glm::dvec3 dir = glm::normalize(r.direction);
   const std::optional<LatticeHit> truth = lattice_first_hit(r.position, dir, 30.0);
-  for (int lanes : {1, 16}) {
-    const OneRay ray = march_one_ray(r.position, dir, lanes);
-    EXPECT_LT(ray.steps, 1000.0f) << "the step budget must not run out on a " << r.name << " ray";
-    EXPECT_LE(ray.wall_steps, ray.steps);
-    ASSERT_EQ(std::isfinite(ray.depth), truth.has_value()) << "lanes " << lanes;
-    if (truth) {
-      const double bound = 1e-4 / std::max(std::abs(glm::dot(dir, truth->normal)), kGrazingCosine) + 1e-5;
-      EXPECT_NEAR(ray.depth, truth->depth, bound) << "lanes " << lanes;
+  // With the cell content's bounding sphere (the default) and without it (distance steps alone).
+  for (SceneBounds bounds : {SceneBounds::Sphere, SceneBounds::None}) {
+    for (int lanes : {1, 16}) {
+      SCOPED_TRACE(fmt::format("lanes {}, bounds {}", lanes, bounds == SceneBounds::Sphere ? "sphere" : "none"));
+      const OneRay ray = march_one_ray(r.position, dir, lanes, bounds);
+      EXPECT_LT(ray.steps, 1000.0f) << "the step budget must not run out on a " << r.name << " ray";
+      EXPECT_LE(ray.wall_steps, ray.steps);
+      ASSERT_EQ(std::isfinite(ray.depth), truth.has_value());
+      if (truth) {
+        const double bound = 1e-4 / std::max(std::abs(glm::dot(dir, truth->normal)), kGrazingCosine) + 1e-5;
+        EXPECT_NEAR(ray.depth, truth->depth, bound);
+      }
     }
   }
 }
@@ -218,12 +223,21 @@ INSTANTIATE_TEST_SUITE_P(Rays, TilingSpecialRays, ::testing::ValuesIn(special_ra
                          [](const auto& info) { return info.param.name; });
 
 TEST(TilingCells, StepsCountWallStepsToo) {
-  // Straight along x through the gaps between the spheres: only wall steps and distance steps
-  // in between, and every one is counted.
-  const OneRay ray = march_one_ray({0.0, 0.05, 0.05}, {1, 0, 0}, 16);
+  // Straight along x through the gaps between the spheres, without the cells' bounding sphere:
+  // only wall steps and distance steps in between, and every one is counted.
+  const OneRay ray = march_one_ray({0.0, 0.05, 0.05}, {1, 0, 0}, 16, SceneBounds::None);
   EXPECT_TRUE(std::isinf(ray.depth));
   EXPECT_GE(ray.wall_steps, 29.0f) << "one wall per cell over max_distance 30";
   EXPECT_GT(ray.steps, ray.wall_steps);
+}
+
+TEST(TilingCells, CellsPassedByTakeOneStepEach) {
+  // The same ray with the cell content's bounding sphere (render.bounds: sphere, the default):
+  // it passes every sphere by, so each cell takes one step, straight to its wall.
+  const OneRay ray = march_one_ray({0.0, 0.05, 0.05}, {1, 0, 0}, 16);
+  EXPECT_TRUE(std::isinf(ray.depth));
+  EXPECT_GE(ray.wall_steps, 29.0f) << "one wall per cell over max_distance 30";
+  EXPECT_EQ(ray.steps, ray.wall_steps);
 }
 
 /// Share of pixels whose depth is wrong (hit/miss differs from the grid walk, or off by more than

@@ -2,10 +2,12 @@
 #include "reference/reference_march.hpp"
 
 #include "reference/reference_sdf.hpp"
+#include "scene/scene_bounds.hpp"
 #include "scene/tiling_model.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace clmarch {
 namespace {
@@ -66,9 +68,9 @@ MarchEnd march_plain(const Field& field, const glm::dvec3& origin, const glm::dv
 }
 
 // The unit-cell traversal: inside the current cell the ray is entry + s * direction; when the
-// wall it heads for is no farther along the ray than the surface, it steps exactly onto that wall
-// and re-enters the neighbouring cell at the opposite wall (several axes at once at edges and
-// corners).
+// wall it heads for is no farther along the ray than the surface (or than the cell content's
+// bounding sphere, cell_bounds), it steps exactly onto that wall and re-enters the neighbouring
+// cell at the opposite wall (several axes at once at edges and corners).
 MarchEnd march_cells(const Scene& scene, const glm::dvec3& origin, const glm::dvec3& direction, double t_start,
                      double t_end, const MarchLimits& limits) {
   const glm::dvec3 cell = scene.tiling->cell;
@@ -80,9 +82,16 @@ MarchEnd march_cells(const Scene& scene, const glm::dvec3& origin, const glm::dv
   // at the latest, and a wall step (exact) leaves nothing to undo.
   bool relaxing = limits.over_relaxation > 1.0;
   double safe = std::numeric_limits<double>::infinity();
+  const std::optional<BoundingSphere> bounds = cell_bounds(scene);
   for (int i = 0; i < limits.max_steps; ++i) {
     const glm::dvec3 p = entry + s * direction;
     const double d = reference_distance(scene.sdf, p);
+    // The stretch ahead free of the cell's content: the distance, or up to the bounds' sphere.
+    double clear = d;
+    if (bounds) {
+      const std::optional<RaySpan> span = ray_sphere_span(p, direction, *bounds);
+      clear = std::max(d, !span || span->t_exit <= 0.0 ? std::numeric_limits<double>::infinity() : std::max(span->t_enter, 0.0));
+    }
     glm::dvec3 wall_axis(std::numeric_limits<double>::infinity());
     for (int a = 0; a < 3; ++a) {
       if (direction[a] == 0.0) continue;
@@ -99,7 +108,7 @@ MarchEnd march_cells(const Scene& scene, const glm::dvec3& origin, const glm::dv
     } else if (d < hit_threshold(limits, t_entry + s)) {
       end.hit = true;
       break;
-    } else if (wall <= d) {
+    } else if (wall <= clear) {
       ++end.wall_steps;
       const glm::dvec3 at_wall = p + wall * direction;
       for (int a = 0; a < 3; ++a) {
@@ -109,8 +118,8 @@ MarchEnd march_cells(const Scene& scene, const glm::dvec3& origin, const glm::dv
       s = 0.0;
       safe = std::numeric_limits<double>::infinity();
     } else {
-      safe = s + d;
-      s += relaxing ? std::min(limits.over_relaxation * d, wall) : d;
+      safe = s + clear;
+      s += relaxing ? std::min(limits.over_relaxation * clear, wall) : clear;
     }
     if (t_entry + s >= t_end) break;
   }

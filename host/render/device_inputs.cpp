@@ -134,6 +134,10 @@ MarchParams march_params(const Scene& scene, const Dispatch& dispatch) {
     params.live_rows[0] = live.first_row;
     params.live_rows[1] = live.last_row;
   }
+  if (const std::optional<BoundingSphere> bounds = cell_bounds(scene)) {
+    params.cell_bounds = to_cl(bounds->center);
+    params.cell_bounds.s[3] = static_cast<float>(bounds->radius);
+  }
   return params;
 }
 

@@ -35,6 +35,12 @@ BoundingSphere turned_bounds(const BoundingSphere& child, int axis);
 /// Nothing when render.bounds is none, the tree is unbounded, or the scene is tiled.
 std::optional<BoundingSphere> camera_ray_bounds(const Scene& scene);
 
+/// Under the cells tiling, the sphere in the cell's frame holding the cell's content (the tree's
+/// bound, grown as camera_ray_bounds grows it): the march takes the stretch of a cell before the
+/// ray meets it in one step (docs/scene-format.md, render.bounds). Nothing when render.bounds is
+/// none, the tree is unbounded, or the scene has no cells tiling.
+std::optional<BoundingSphere> cell_bounds(const Scene& scene);
+
 /// Whether camera rays start where their block's cone stopped (render.coarse_pass: cone; the
 /// loader refuses it with the cells tiling, whose march keeps to one cell at a time).
 bool uses_cone_pass(const Scene& scene);
