@@ -57,9 +57,10 @@ SDF_INLINE MarchResult march_cells(vec3v origin, vec3v dir, vint live, vfloat t_
     const vfloat reach = limits.cell_bounds.w > 0.0f ? clear_reach(limits.cell_bounds, p, dir) : (vfloat)(0.0f);
     /* When every lane passes its cell's bounding sphere by, each steps to its wall whatever the
      * distance, which is not evaluated then (+inf: outside the sphere it exceeds any hit threshold
-     * and glow radius); a penumbra needs every sample. */
+     * and glow radius). A penumbra needs every sample, and a relaxed step may have crossed the
+     * whole sphere: only the distance tells it to go back. */
     vfloat d = (vfloat)(INFINITY);
-    if (limits.shadow_mode != CLMARCH_SHADOW_HARD || LANE_ANY(active & MASK(reach < wall))) {
+    if (limits.shadow_mode != CLMARCH_SHADOW_HARD || LANE_ANY(active & (MASK(reach < wall) | relaxing))) {
       d = map(limits.values, p);
     }
 #if defined(RECORD_SAMPLES)
@@ -83,7 +84,8 @@ SDF_INLINE MarchResult march_cells(vec3v origin, vec3v dir, vint live, vfloat t_
     m.wall_steps += select((vfloat)(0.0f), (vfloat)(1.0f), to_wall);
     vfloat next = s + clear;
     if (LANE_ANY(relaxing | undo)) {
-      next = select(select(next, s + fmin(clear * limits.over_relaxation, wall), relaxing), safe, undo);
+      /* Only the distance is relaxed: the stretch before the bounds' sphere is clear as it is. */
+      next = select(select(next, s + fmin(fmax(d * limits.over_relaxation, reach), wall), relaxing), safe, undo);
       safe = select(s + clear, (vfloat)(INFINITY), to_wall);
     }
     s = select(s, next, active & ~to_wall);

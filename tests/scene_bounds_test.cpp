@@ -272,6 +272,43 @@ TEST(CameraRayBounds, OpenClRenderEqualsTheUnclippedOne) {
   expect_clipping_keeps_the_image(clipped, render_opencl(scene, options).buffers, scene.render.epsilon);
 }
 
+TEST(SecondaryRayBounds, ShadowsAndMirrorsMatchTheUnclippedOnes) {
+  // Shadow rays (soft, from a point and a directional light) and mirror rays march inside the
+  // scene's bounding sphere as camera rays do; nothing lies outside it, so the picture is the
+  // unclipped one: the same hits, and colors within half a step of 8 bits but where a shadow ray
+  // grazes a surface (its penumbra sampled at other points, or a hit on the other side of an edge).
+  // A sphere clipped about the wrong point would cut shadows short and darken or light whole areas.
+  const char* yaml =
+      "camera: {position: [2.5, 2, 4], look_at: [0, 0.3, 0], fov: 45}\n"
+      "render: {width: 64, height: 48}\n"
+      "sdf:\n  union:\n    children:\n"
+      "      - box: {center: [0, -0.6, 0], half_size: [2, 0.1, 2], reflectivity: 0.5}\n"
+      "      - sphere: {center: [0, 0.3, 0], radius: 0.7, reflectivity: 0.3}\n"
+      "      - torus: {major_radius: 0.5, minor_radius: 0.15, translate: [1.2, -0.35, 0.8]}\n"
+      "lights:\n"
+      "  - point: {position: [3, 4, 2], intensity: 0.8, color: [1, 1, 1]}\n"
+      "  - directional: {direction: [-0.6, 1, 0.3], intensity: 0.6, color: [1, 1, 1]}\n"
+      "shading: {shadows: {mode: soft, k: 8}, reflections: 2, background: [0.2, 0.3, 0.4]}\n";
+  Scene scene = scene_from_yaml(yaml);
+  ASSERT_TRUE(camera_ray_bounds(scene));
+  const FrameBuffers clipped = render_opencl(scene, OpenClOptions{}).buffers;
+  scene.render.bounds = SceneBounds::None;
+  const FrameBuffers full = render_opencl(scene, OpenClOptions{}).buffers;
+  int hits = 0, off = 0;
+  for (int j = 0; j < full.height; ++j) {
+    for (int i = 0; i < full.width; ++i) {
+      ASSERT_EQ(std::isinf(clipped.at(Channel::Depth, i, j)), std::isinf(full.at(Channel::Depth, i, j))) << i << ", " << j;
+      if (std::isinf(full.at(Channel::Depth, i, j))) continue;
+      ++hits;
+      double diff = 0.0;
+      for (Channel c : {Channel::R, Channel::G, Channel::B}) diff = std::max(diff, double(std::abs(clipped.at(c, i, j) - full.at(c, i, j))));
+      off += diff > 0.5 / 255.0;
+    }
+  }
+  EXPECT_GT(hits, full.width * full.height / 3);
+  EXPECT_LE(off, hits / 100) << "pixels whose color moved by more than half a step of 8 bits";
+}
+
 TEST(CameraRayBounds, TilesSkippedWholeByDepthProgramsAreMissesOfTheShadedOnes) {
   // Programs without shading skip a 4x4 tile when one scalar test shows none of its rays meets the
   // bounding sphere, and write its pixels as misses without marching. The shaded program marches

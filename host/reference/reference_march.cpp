@@ -87,10 +87,11 @@ MarchEnd march_cells(const Scene& scene, const glm::dvec3& origin, const glm::dv
     const glm::dvec3 p = entry + s * direction;
     const double d = reference_distance(scene.sdf, p);
     // The stretch ahead free of the cell's content: the distance, or up to the bounds' sphere.
-    double clear = d;
+    double clear = d, reach = 0.0;
     if (bounds) {
       const std::optional<RaySpan> span = ray_sphere_span(p, direction, *bounds);
-      clear = std::max(d, !span || span->t_exit <= 0.0 ? std::numeric_limits<double>::infinity() : std::max(span->t_enter, 0.0));
+      reach = !span || span->t_exit <= 0.0 ? std::numeric_limits<double>::infinity() : std::max(span->t_enter, 0.0);
+      clear = std::max(d, reach);
     }
     glm::dvec3 wall_axis(std::numeric_limits<double>::infinity());
     for (int a = 0; a < 3; ++a) {
@@ -119,7 +120,8 @@ MarchEnd march_cells(const Scene& scene, const glm::dvec3& origin, const glm::dv
       safe = std::numeric_limits<double>::infinity();
     } else {
       safe = s + clear;
-      s += relaxing ? std::min(limits.over_relaxation * clear, wall) : clear;
+      // Only the distance is relaxed: the stretch before the bounds' sphere is clear as it is.
+      s += relaxing ? std::min(std::max(limits.over_relaxation * d, reach), wall) : clear;
     }
     if (t_entry + s >= t_end) break;
   }
