@@ -169,8 +169,8 @@ typedef struct MarchParams {
   float4 right_extent; /* xyz = r * aspect * tan(fov / 2) */
   float4 up_extent;    /* xyz = u * tan(fov / 2) */
   float4 origin_in_cell; /* tiling (cells): xyz = camera offset inside its cell, 0 <= x < cell */
-  float4 bounds;         /* xyz = camera position - centre of the sphere camera rays are clipped to,
-                            w = its radius; w = 0: rays are not clipped */
+  float4 bounds;         /* xyz = camera position - centre of the sphere camera, shadow and mirror
+                            rays are clipped to, w = its radius; w = 0: rays are not clipped */
   float4 tile_reach;     /* x = reach^2: a tile whose centre ray q (unnormalised) has
                             |c x q|^2 > reach^2 |q|^2 misses the bounds (kernels/march.cl); y, z, w = 0 */
   float4 sampling;       /* ANTIALIAS programs: x = 1 on a refining pass, which marches samples 1 ..
@@ -180,6 +180,10 @@ typedef struct MarchParams {
   float4 cell_bounds;    /* tiling (cells): xyz = centre, in the cell's frame, of the sphere holding
                             the cell's content (host/scene/scene_bounds.hpp, cell_bounds), w = its
                             radius; w = 0: none */
+  float4 box_low;        /* xyz = the lowest corner of the box rays are clipped to besides the
+                            sphere (host/scene/scene_box.hpp) less the camera position, w = 1; w = 0:
+                            no box */
+  float4 box_high;       /* xyz = its highest corner less the camera position; w = 0 */
   CLMARCH_INT width;
   CLMARCH_INT height;
   CLMARCH_INT first_row;    /* first image row of this dispatch (images render in chunks of rows) */
@@ -211,8 +215,8 @@ static_assert(offsetof(LightParams, kind) == 3 * 16, "LightParams: the scalars a
 static_assert(sizeof(ShadingParams) == 11 * 16 + 20 * 4, "ShadingParams layout must match OpenCL C");
 static_assert(offsetof(ShadingParams, diffuse) == 11 * 16, "ShadingParams: scalars after the float4s");
 static_assert(sizeof(ShadingParams) % 16 == 0, "ShadingParams keeps the float4 alignment of what follows");
-static_assert(offsetof(MarchParams, shading) == 9 * 16 + 16 * 4, "MarchParams: the shading after the march limits");
-static_assert(sizeof(MarchParams) == 9 * 16 + 16 * 4 + sizeof(ShadingParams) + CLMARCH_CAMERA_DOUBLES * 8,
+static_assert(offsetof(MarchParams, shading) == 11 * 16 + 16 * 4, "MarchParams: the shading after the march limits");
+static_assert(sizeof(MarchParams) == 11 * 16 + 16 * 4 + sizeof(ShadingParams) + CLMARCH_CAMERA_DOUBLES * 8,
               "MarchParams layout must match OpenCL C");
 static_assert(offsetof(MarchParams, camera_double) % 8 == 0, "doubles at 8-byte boundaries, as OpenCL C aligns them");
 #endif

@@ -30,8 +30,8 @@ SDF_INLINE Hit surface_at(SceneValues values, const MarchResult* m, vec3v relati
 SDF_INLINE vec3v add_reflections(SceneValues values, vec3v color, Hit hit, vec3v dir, vint live, const MarchParams* params,
                                  __global const LightParams* lights) {
   const ShadingParams* shading = &params->shading;
-  /* Mirror rays march plainly with the fixed epsilon, inside the scene's bounding sphere: the pixel
-   * cone is the camera's, and their t starts again at the mirror. */
+  /* Mirror rays march plainly with the fixed epsilon, inside the scene's bounds: the pixel cone is
+   * the camera's, and their t starts again at the mirror. */
   MarchLimits limits = {values, params->max_steps, params->epsilon, CLMARCH_SHADOW_HARD, 0.0f, 1.0f, 0.0f, params->cell_bounds};
   vfloat weight = (vfloat)(1.0f);
   vint active = live;
@@ -45,9 +45,7 @@ SDF_INLINE vec3v add_reflections(SceneValues values, vec3v color, Hit hit, vec3v
     const vec3v relative_origin = v3_add(hit.relative, v3_scale(hit.normal, shading->reflection_offset));
     vint marching = active;
     vfloat t_start = (vfloat)(0.0f), t_end = (vfloat)(params->max_distance);
-    if (params->bounds.w > 0.0f) {
-      clip_to_sphere(v3_add(relative_origin, v3_from(params->bounds)), params->bounds.w, dir, &marching, &t_start, &t_end);
-    }
+    clip_to_scene_bounds(params, relative_origin, dir, 1, &marching, &t_start, &t_end);
     const MarchResult r = MARCH(origin, dir, marching, t_start, t_end, limits);
     vec3v seen = miss_color(shading, dir, r.closest);
     const vint reflected_hit = active & r.hit;
@@ -66,14 +64,14 @@ SDF_INLINE vec3v add_reflections(SceneValues values, vec3v color, Hit hit, vec3v
 }
 #endif
 
-/* Camera rays march only inside the scene's bounding sphere (host/scene/scene_bounds.cpp): lanes
- * whose ray misses it do not march at all, the others start where they enter it (or at the camera)
- * and end where they leave it. bounds.xyz = camera - centre. */
-SDF_INLINE void clip_to_bounds(float4 bounds, vec3v dir, vint* marching, vfloat* t_start, vfloat* t_end) {
+/* Camera rays march only inside the scene's bounding sphere and box (host/scene/scene_bounds.cpp,
+ * scene_box.cpp): lanes whose ray misses them do not march at all, the others start where they
+ * enter them (or at the camera) and end where they leave them. */
+SDF_INLINE void clip_to_bounds(const MarchParams* params, vec3v dir, vint* marching, vfloat* t_start, vfloat* t_end) {
   /* A lane whose ray misses the sphere starts (and ends: the status channel) at 0, as in the
    * reference, not at its closest approach, which may lie past max_distance. */
   *t_start = (vfloat)(0.0f);
-  clip_to_sphere(v3_from(bounds), bounds.w, dir, marching, t_start, t_end);
+  clip_to_scene_bounds(params, v3_splat(0.0f), dir, 1, marching, t_start, t_end);
 }
 
 /* Writes one value per lane into a plane: whole tiles as rows of vector stores, tiles cut by the
@@ -172,7 +170,7 @@ SDF_INLINE Packet packet_at(const MarchParams* params, int index, __global const
 #endif
   k.dir = camera_ray(params, k.x0 + LANE_X, y0 + LANE_Y);
   k.marching = MASK(LANE_X < k.columns) & MASK(LANE_Y < k.rows);
-  if (params->bounds.w > 0.0f) clip_to_bounds(params->bounds, k.dir, &k.marching, &k.t_start, &k.t_end);
+  clip_to_bounds(params, k.dir, &k.marching, &k.t_start, &k.t_end);
 #if defined(COARSE_PASS)
   const int blocks_x = CLMARCH_COARSE_BLOCKS(params->width);
   const real cone_start = coarse_starts[(y0 / CLMARCH_COARSE_BLOCK) * blocks_x + k.x0 / CLMARCH_COARSE_BLOCK];
@@ -368,7 +366,7 @@ SDF_INLINE Packet sample_packet(const MarchParams* params, int packet, __global 
   k.t_end = (vfloat)(params->max_distance);
   k.dir = camera_ray_at(params, LOAD_PRIVATE(x), LOAD_PRIVATE(y));
   k.marching = LOAD_PRIVATE(live);
-  if (params->bounds.w > 0.0f) clip_to_bounds(params->bounds, k.dir, &k.marching, &k.t_start, &k.t_end);
+  clip_to_bounds(params, k.dir, &k.marching, &k.t_start, &k.t_end);
   return k;
 }
 

@@ -88,6 +88,41 @@ SDF_INLINE void clip_to_sphere(vec3v offset, float radius, vec3v dir, vint* marc
   *marching &= meets & MASK(*t_end > *t_start);
 }
 
+/* Narrows [near, far] to where the rays are between two planes of a box, low and high along one
+ * axis less the rays' origins, dir their direction along it: a ray parallel to the planes is
+ * between them everywhere or nowhere. */
+SDF_INLINE void clip_to_slab(vfloat low, vfloat high, vfloat dir, vfloat* near, vfloat* far) {
+  const vfloat inverse = 1.0f / dir;
+  const vfloat a = low * inverse, b = high * inverse;
+  const vint parallel = MASK(dir == 0.0f);
+  const vint between = MASK(low <= 0.0f) & MASK(high >= 0.0f);
+  *near = fmax(*near, select(fmin(a, b), select((vfloat)(INFINITY), (vfloat)(-INFINITY), between), parallel));
+  *far = fmin(*far, select(fmax(a, b), select((vfloat)(-INFINITY), (vfloat)(INFINITY), between), parallel));
+}
+
+/* Clips rays from the camera-relative point relative_origin along dir (unit) to what
+ * MarchParams holds of the scene's bounds: the sphere (bounds) and, with_box, the box (box_low,
+ * box_high), as clip_to_sphere does. The CPU reference clips camera rays the same way
+ * (host/reference/reference_renderer.cpp), so their steps agree. */
+SDF_INLINE void clip_to_scene_bounds(const MarchParams* params, vec3v relative_origin, vec3v dir, int with_box, vint* marching,
+                                     vfloat* t_start, vfloat* t_end) {
+  if (params->bounds.w > 0.0f) {
+    clip_to_sphere(v3_add(relative_origin, v3_from(params->bounds)), params->bounds.w, dir, marching, t_start, t_end);
+  }
+  if (with_box && params->box_low.w > 0.0f) {
+    const vec3v low = v3_sub(v3_from(params->box_low), relative_origin), high = v3_sub(v3_from(params->box_high), relative_origin);
+    vfloat near = (vfloat)(-INFINITY), far = (vfloat)(INFINITY);
+    clip_to_slab(low.x, high.x, dir.x, &near, &far);
+    clip_to_slab(low.y, high.y, dir.y, &near, &far);
+    clip_to_slab(low.z, high.z, dir.z, &near, &far);
+    /* Only rays that meet both move their start: a ray that misses keeps it (the status channel). */
+    const vint meets = MASK(near <= far);
+    *t_start = select(*t_start, fmax(*t_start, near), *marching & meets);
+    *t_end = fmin(*t_end, far);
+    *marching &= meets & MASK(*t_end > *t_start);
+  }
+}
+
 /* Lanes that march over-relaxed from the start: all or none (masks are -1, also for LANES 1). */
 SDF_INLINE vint relaxation_mask(const MarchLimits* limits) { return (vint)(limits->over_relaxation > 1.0f ? -1 : 0); }
 

@@ -27,7 +27,8 @@ SDF_INLINE vec3v point_light_direction(vec3v p, float4 position) { return v3_nor
 #if defined(SHADOW_MODE)
 /* Light reaching p (relative: p relative to the camera) from unit direction l over distance t_end:
  * 0 behind an occluder, 1 unlit by none, the penumbra in between for soft shadows. The ray marches
- * inside the scene's bounding sphere only: past it the light is unoccluded. */
+ * inside the scene's bounding sphere only (hard ones inside its box too): past it the light is
+ * unoccluded. */
 SDF_INLINE vfloat shadow_factor(SceneValues values, const MarchParams* params, vec3v p, vec3v relative, vec3v n, vec3v l, vfloat t_end, vint live) {
   const ShadingParams* shading = &params->shading;
   MarchLimits limits = {values, shading->shadow_max_steps, params->epsilon, SHADOW_MODE, shading->shadow_k, 1.0f, 0.0f,
@@ -35,7 +36,9 @@ SDF_INLINE vfloat shadow_factor(SceneValues values, const MarchParams* params, v
   /* Leave the surface along its normal first so the ray does not hit its own start. */
   const vec3v origin = v3_add(p, v3_scale(n, params->epsilon * 4.0f));
   vfloat t_start = (vfloat)(shading->shadow_min_t);
-  if (params->bounds.w > 0.0f) clip_to_sphere(v3_add(relative, v3_from(params->bounds)), params->bounds.w, l, &live, &t_start, &t_end);
+  /* Past the box a soft shadow's ray may still skim the surface (out of a hole of the Menger
+   * sponge's face, along the face), lowering its penumbra: only hard shadows take the box. */
+  clip_to_scene_bounds(params, relative, l, SHADOW_MODE == CLMARCH_SHADOW_HARD, &live, &t_start, &t_end);
   const MarchResult m = MARCH(origin, l, live, t_start, t_end, limits);
   const vfloat lit = SHADOW_MODE == CLMARCH_SHADOW_HARD ? (vfloat)(1.0f) : clamp(m.penumbra, 0.0f, 1.0f);
   return select(lit, (vfloat)(0.0f), m.hit);

@@ -1,6 +1,7 @@
 // The scene's bounding sphere: every point where a node's field falls below a threshold lies inside
 // its bound (sampled against the reference field), spans of rays against closed forms, and renders
 // clipped to the bound equal unclipped ones with fewer distance evaluations.
+#include "check/cross_check.hpp"
 #include "reference/reference_renderer.hpp"
 #include "reference/reference_sdf.hpp"
 #include "render/device_inputs.hpp"
@@ -8,6 +9,7 @@
 #include "render/live_tiles.hpp"
 #include "render/opencl_renderer.hpp"
 #include "scene/scene_bounds.hpp"
+#include "scene/scene_box.hpp"
 #include "support/test_support.hpp"
 
 #include <fmt/format.h>
@@ -60,6 +62,13 @@ const BoundCase kBoundedCases[] = {
     {"rhombus", "  rhombus: {half_width: 1, half_depth: 0.5, half_height: 0.2, corner_radius: 0.1}"},
     {"mandelbulb", "  mandelbulb: {power: 8, iterations: 6, bailout: 2, step_factor: 0.8}"},
     {"menger", "  menger: {half_size: 1, iterations: 3, translate: [0.5, 0, 0]}"},
+    {"menger_turned", "  menger: {half_size: 1, iterations: 2, rotate: [20, 35, 0], scale: 1.5}"},
+    {"smooth_intersection_of_boxes",
+     "  smooth_intersection:\n    k: 0.3\n    children:\n      - box: {half_size: [2, 0.4, 2]}\n"
+     "      - box: {half_size: [0.5, 2, 0.5], rotate: [0, 30, 0]}"},
+    {"smooth_subtraction_of_boxes",
+     "  smooth_subtraction:\n    k: 0.4\n    children:\n      - box: {half_size: [1.5, 0.5, 1], step_factor: 0.5}\n"
+     "      - box: {half_size: [0.5, 2, 0.5]}"},
     {"sierpinski", "  sierpinski: {size: 1.5, iterations: 6, step_factor: 0.8, translate: [0, 0.5, 0]}"},
     {"mandelbox", "  mandelbox: {scale: -1.5, iterations: 8, step_factor: 0.8, translate: [0, 0.5, 0]}"},
     {"julia", "  julia: {c: [-0.2, 0.6, 0.2, 0.1], iterations: 10, step_factor: 0.8}"},
@@ -163,6 +172,26 @@ TEST_P(NodeBounds, HoldEveryPointBelowTheThreshold) {
   EXPECT_GT(below, 50) << "the sample must reach the surface for the test to mean something";
 }
 
+TEST_P(NodeBounds, BoxesHoldEveryPointBelowTheThreshold) {
+  const Node node = tree(GetParam().sdf);
+  const std::optional<BoundingBox> box = node_box(node);
+  ASSERT_TRUE(box.has_value());
+  std::mt19937 random(9);
+  std::uniform_real_distribution<double> coordinate(-5.0, 5.0);
+  int below = 0;
+  for (int i = 0; i < 40000; ++i) {
+    const glm::dvec3 p(coordinate(random), coordinate(random), coordinate(random));
+    for (double tau : {1e-3, 0.1, 0.5}) {
+      if (reference_distance(node, p) >= tau) continue;
+      ++below;
+      const glm::dvec3 margin(box->gain * tau + 1e-9);
+      EXPECT_TRUE(glm::all(glm::greaterThan(p, box->low - margin)) && glm::all(glm::lessThan(p, box->high + margin)))
+          << "tau " << tau << " at (" << p.x << ", " << p.y << ", " << p.z << ")";
+    }
+  }
+  EXPECT_GT(below, 50) << "the sample must reach the surface for the test to mean something";
+}
+
 TEST_P(NodeBounds, AreTightEnoughToHelp) {
   // A bound larger than twice the sampled extent of the shape would clip nothing useful.
   const Node node = tree(GetParam().sdf);
@@ -172,6 +201,64 @@ TEST_P(NodeBounds, AreTightEnoughToHelp) {
 
 INSTANTIATE_TEST_SUITE_P(Kinds, NodeBounds, ::testing::ValuesIn(kBoundedCases),
                          [](const auto& info) { return std::string(info.param.name); });
+
+TEST(NodeBoxes, FollowTheShapesWhereTheyAreBoxy) {
+  // A box turned 90 degrees about y swaps its x and z half sizes; scaled, moved.
+  const BoundingBox turned = *node_box(tree("  box: {half_size: [1, 2, 3], rotate: [0, 90, 0], scale: 2, translate: [1, 0, 0]}"));
+  EXPECT_NEAR(turned.low.x, 1.0 - 6.0, 1e-12);
+  EXPECT_NEAR(turned.high.y, 4.0, 1e-12);
+  EXPECT_NEAR(turned.high.z, 2.0, 1e-12);
+  // The Menger sponge fills its cube; the torus its flat box.
+  const BoundingBox sponge = *node_box(tree("  menger: {center: [0, 1, 0], half_size: 2}"));
+  EXPECT_DOUBLE_EQ(sponge.low.y, -1.0);
+  EXPECT_DOUBLE_EQ(sponge.high.x, 2.0);
+  const BoundingBox ring = *node_box(tree("  torus: {major_radius: 1, minor_radius: 0.25}"));
+  EXPECT_DOUBLE_EQ(ring.high.y, 0.25);
+  EXPECT_DOUBLE_EQ(ring.high.x, 1.25);
+  // Unions span their children; intersections keep what all share; subtractions the first.
+  const BoundingBox both = *node_box(tree("  union:\n    - box: {center: [-2, 0, 0], half_size: [0.5, 0.5, 0.5]}\n"
+                                          "    - box: {center: [2, 0, 0], half_size: [0.5, 0.5, 0.5]}"));
+  EXPECT_DOUBLE_EQ(both.low.x, -2.5);
+  EXPECT_DOUBLE_EQ(both.high.x, 2.5);
+  EXPECT_DOUBLE_EQ(both.high.y, 0.5);
+  const BoundingBox common = *node_box(tree("  intersection:\n    - box: {half_size: [2, 0.5, 2]}\n    - sphere: {radius: 1}"));
+  EXPECT_DOUBLE_EQ(common.high.y, 0.5);
+  EXPECT_DOUBLE_EQ(common.high.x, 1.0);
+  const BoundingBox cut = *node_box(tree("  subtraction:\n    - box: {half_size: [1, 0.5, 1]}\n    - sphere: {radius: 3}"));
+  EXPECT_DOUBLE_EQ(cut.high.y, 0.5);
+  // A kind without a box of its own has its sphere's cube.
+  const BoundingBox ball = *node_box(tree("  sphere: {center: [1, 0, 0], radius: 0.5}"));
+  EXPECT_DOUBLE_EQ(ball.low.x, 0.5);
+  EXPECT_DOUBLE_EQ(ball.high.z, 0.5);
+  EXPECT_FALSE(node_box(tree("  plane: {normal: [0, 1, 0], offset: 0}")));
+}
+
+TEST(NodeBoxes, RayBoxSpanBySlabs) {
+  const BoundingBox unit{glm::dvec3(-1.0), glm::dvec3(1.0)};
+  const RaySpan through = ray_box_span({-3, 0.5, 0}, {1, 0, 0}, unit);
+  EXPECT_DOUBLE_EQ(through.t_enter, 2.0);
+  EXPECT_DOUBLE_EQ(through.t_exit, 4.0);
+  // Parallel to the y and z slabs, outside the y one: never inside.
+  const RaySpan beside = ray_box_span({-3, 1.5, 0}, {1, 0, 0}, unit);
+  EXPECT_GT(beside.t_enter, beside.t_exit);
+  const glm::dvec3 diagonal = glm::normalize(glm::dvec3(1, 1, 1));
+  const RaySpan corner = ray_box_span({-2, -2, -2}, diagonal, unit);
+  EXPECT_NEAR(corner.t_enter, std::sqrt(3.0), 1e-12);
+  EXPECT_NEAR(corner.t_exit, 3.0 * std::sqrt(3.0), 1e-12);
+}
+
+TEST(CameraRayBoxes, BoxByDefaultAndOnlyThen) {
+  const std::string cube = "sdf: {box: {half_size: [1, 1, 1]}}\nrender: {epsilon: 0.01}\n";
+  const BoundingBox grown = *camera_ray_box(scene_from_yaml(cube));
+  EXPECT_GE(grown.high.x, 1.01);
+  EXPECT_LT(grown.high.x, 1.02);
+  Scene sphere_only = scene_from_yaml(cube);
+  sphere_only.render.bounds = RayBounds::Sphere;
+  EXPECT_FALSE(camera_ray_box(sphere_only));
+  EXPECT_TRUE(camera_ray_bounds(sphere_only));
+  EXPECT_FALSE(camera_ray_box(scene_from_yaml(cube + "tiling: {cell: [4, 4, 4]}\n")));
+  EXPECT_FALSE(camera_ray_box(scene_from_yaml(cube + "shading: {step_ao: 300}\n")));
+}
 
 TEST(NodeBounds, TwoSpheresHaveTheirSmallestEnclosingSphere) {
   // Spheres of radius 0.5 at x = -1 and 1 at x = 2: the enclosing sphere spans x in [-1.5, 3].
@@ -225,7 +312,7 @@ TEST(CameraRayBounds, GrowByThresholdAndGlowAndStayOffForTilingAndNone) {
   EXPECT_NEAR(glowing.radius - plain.radius, 0.3, 1e-12);
   EXPECT_FALSE(camera_ray_bounds(scene_from_yaml(sphere + "tiling: {cell: [4, 4, 4]}\n")));
   Scene off = scene_from_yaml(sphere);
-  off.render.bounds = SceneBounds::None;
+  off.render.bounds = RayBounds::None;
   EXPECT_FALSE(camera_ray_bounds(off));
 }
 
@@ -259,7 +346,7 @@ const char* kClippedScene =
 TEST(CameraRayBounds, ReferenceRenderEqualsTheUnclippedOne) {
   Scene scene = scene_from_yaml(kClippedScene);
   const FrameBuffers clipped = render_reference(scene);
-  scene.render.bounds = SceneBounds::None;
+  scene.render.bounds = RayBounds::None;
   expect_clipping_keeps_the_image(clipped, render_reference(scene), scene.render.epsilon);
 }
 
@@ -268,7 +355,7 @@ TEST(CameraRayBounds, OpenClRenderEqualsTheUnclippedOne) {
   OpenClOptions options;
   options.purpose = KernelPurpose::DepthSteps;
   const FrameBuffers clipped = render_opencl(scene, options).buffers;
-  scene.render.bounds = SceneBounds::None;
+  scene.render.bounds = RayBounds::None;
   expect_clipping_keeps_the_image(clipped, render_opencl(scene, options).buffers, scene.render.epsilon);
 }
 
@@ -292,7 +379,7 @@ TEST(SecondaryRayBounds, ShadowsAndMirrorsMatchTheUnclippedOnes) {
   Scene scene = scene_from_yaml(yaml);
   ASSERT_TRUE(camera_ray_bounds(scene));
   const FrameBuffers clipped = render_opencl(scene, OpenClOptions{}).buffers;
-  scene.render.bounds = SceneBounds::None;
+  scene.render.bounds = RayBounds::None;
   const FrameBuffers full = render_opencl(scene, OpenClOptions{}).buffers;
   int hits = 0, off = 0;
   for (int j = 0; j < full.height; ++j) {
@@ -307,6 +394,24 @@ TEST(SecondaryRayBounds, ShadowsAndMirrorsMatchTheUnclippedOnes) {
   }
   EXPECT_GT(hits, full.width * full.height / 3);
   EXPECT_LE(off, hits / 100) << "pixels whose color moved by more than half a step of 8 bits";
+}
+
+// With the box as well as the sphere (the default) camera rays take fewer steps than with the
+// sphere alone around a boxy shape, and find the same surface; the reference clips alike, so
+// `clmarch check` agrees on the steps.
+TEST(CameraRayBoxes, FewerStepsSameImageAndTheReferenceAgrees) {
+  Scene scene = scene_from_yaml(
+      "camera: {position: [3, 2.5, 3.5], look_at: [0, 0, 0], fov: 45}\n"
+      "render: {width: 64, height: 36}\n"
+      "sdf: {menger: {half_size: 1, iterations: 2}}\n");
+  const CheckReport report = cross_check(scene, render_opencl(scene, OpenClOptions{}).buffers, render_reference(scene));
+  EXPECT_TRUE(report.passed()) << report.to_text();
+  EXPECT_LE(report.steps_diff_mean, 0.05);
+  OpenClOptions options;
+  options.purpose = KernelPurpose::DepthSteps;
+  const FrameBuffers boxed = render_opencl(scene, options).buffers;
+  scene.render.bounds = RayBounds::Sphere;
+  expect_clipping_keeps_the_image(boxed, render_opencl(scene, options).buffers, scene.render.epsilon);
 }
 
 TEST(CameraRayBounds, TilesSkippedWholeByDepthProgramsAreMissesOfTheShadedOnes) {

@@ -156,7 +156,7 @@ struct OneRay {
   float wall_steps;
 };
 
-OneRay march_one_ray(const glm::dvec3& position, const glm::dvec3& direction, int lanes, SceneBounds bounds = SceneBounds::Sphere) {
+OneRay march_one_ray(const glm::dvec3& position, const glm::dvec3& direction, int lanes, RayBounds bounds = RayBounds::Sphere) {
   const bool vertical = direction.x == 0.0 && direction.z == 0.0;
   Scene scene = testing::scene_from_yaml(lattice_yaml(position, position + direction, 1, 1, vertical ? "[1, 0, 0]" : "[0, 1, 0]"));
   scene.render.bounds = bounds;
@@ -204,9 +204,9 @@ TEST_P(TilingSpecialRays, TerminateAndMatchTheGridWalk) {
   const glm::dvec3 dir = glm::normalize(r.direction);
   const std::optional<LatticeHit> truth = lattice_first_hit(r.position, dir, 30.0);
   // With the cell content's bounding sphere (the default) and without it (distance steps alone).
-  for (SceneBounds bounds : {SceneBounds::Sphere, SceneBounds::None}) {
+  for (RayBounds bounds : {RayBounds::Sphere, RayBounds::None}) {
     for (int lanes : {1, 16}) {
-      SCOPED_TRACE(fmt::format("lanes {}, bounds {}", lanes, bounds == SceneBounds::Sphere ? "sphere" : "none"));
+      SCOPED_TRACE(fmt::format("lanes {}, bounds {}", lanes, bounds == RayBounds::Sphere ? "sphere" : "none"));
       const OneRay ray = march_one_ray(r.position, dir, lanes, bounds);
       EXPECT_LT(ray.steps, 1000.0f) << "the step budget must not run out on a " << r.name << " ray";
       EXPECT_LE(ray.wall_steps, ray.steps);
@@ -225,7 +225,7 @@ INSTANTIATE_TEST_SUITE_P(Rays, TilingSpecialRays, ::testing::ValuesIn(special_ra
 TEST(TilingCells, StepsCountWallStepsToo) {
   // Straight along x through the gaps between the spheres, without the cells' bounding sphere:
   // only wall steps and distance steps in between, and every one is counted.
-  const OneRay ray = march_one_ray({0.0, 0.05, 0.05}, {1, 0, 0}, 16, SceneBounds::None);
+  const OneRay ray = march_one_ray({0.0, 0.05, 0.05}, {1, 0, 0}, 16, RayBounds::None);
   EXPECT_TRUE(std::isinf(ray.depth));
   EXPECT_GE(ray.wall_steps, 29.0f) << "one wall per cell over max_distance 30";
   EXPECT_GT(ray.steps, ray.wall_steps);

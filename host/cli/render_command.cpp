@@ -21,6 +21,7 @@
 #include "reference/reference_cones.hpp"
 #include "reference/reference_renderer.hpp"
 #include "scene/scene_bounds.hpp"
+#include "scene/scene_box.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -202,7 +203,7 @@ std::string march_summary(const Scene& scene) {
   if (uses_cells_tiling(scene)) {
     where = "through the cells of the tiling";
   } else if (const std::optional<BoundingSphere> bounds = camera_ray_bounds(scene)) {
-    where = fmt::format("inside a bounding sphere of radius {:.4g}", bounds->radius);
+    where = fmt::format("inside a bounding sphere of radius {:.4g}{}", bounds->radius, camera_ray_box(scene) ? " and a bounding box" : "");
   }
   const RenderSettings chosen = resolved_render_settings(scene);
   return fmt::format("march: {}, coarse pass {}{}, over-relaxation {:g}{}", where,

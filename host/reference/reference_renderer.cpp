@@ -11,6 +11,7 @@
 #include "reference/reference_shading.hpp"
 #include "scene/camera_model.hpp"
 #include "scene/scene_bounds.hpp"
+#include "scene/scene_box.hpp"
 #include "scene/tiling_model.hpp"
 
 #include <tbb/blocked_range.h>
@@ -135,24 +136,41 @@ void store_layers(FrameBuffers& fb, int i, int j, const LightTerms& layers) {
   for (int k = 0; k < 9; ++k) fb.at(kLayerChannels[k], i, j) = static_cast<float>(terms[k / 3][k % 3]);
 }
 
-// The trace of a camera ray clipped to bounds (camera_ray_bounds(scene), computed once per image),
-// starting no nearer than t_min (its block's cone start under the coarse pass).
-RayResult trace_within(const Scene& scene, const std::optional<BoundingSphere>& bounds, const glm::dvec3& origin,
-                       const glm::dvec3& direction, double t_min = 0.0) {
+/// What camera rays are clipped to (computed once per image): the scene's bounding sphere and box.
+struct RayClip {
+  std::optional<BoundingSphere> sphere;
+  std::optional<BoundingBox> box;
+};
+
+RayClip ray_clip(const Scene& scene) { return {camera_ray_bounds(scene), camera_ray_box(scene)}; }
+
+// The trace of a camera ray clipped to bounds, starting no nearer than t_min (its block's cone
+// start under the coarse pass).
+RayResult trace_within(const Scene& scene, const RayClip& bounds, const glm::dvec3& origin, const glm::dvec3& direction,
+                       double t_min = 0.0) {
   const MarchLimits limits = camera_march_limits(scene);
   // origin is a world position; the march runs in its own frame.
   const glm::dvec3 frame_origin = march_frame_origin(scene, origin);
-  // Camera rays march only inside the scene's bounding sphere, if it has one (scene_bounds.hpp).
+  // Camera rays march only inside the scene's bounding sphere and box, where it has them
+  // (scene_bounds.hpp, scene_box.hpp), as kernels/march_loop.cl clips them.
   double t_start = 0.0;
   double t_end = scene.render.max_distance;
   bool marching = true;
-  if (bounds) {
-    const std::optional<RaySpan> span = ray_sphere_span(origin, direction, *bounds);
+  if (bounds.sphere) {
+    const std::optional<RaySpan> span = ray_sphere_span(origin, direction, *bounds.sphere);
     if (span) {
       t_start = std::max(span->t_enter, 0.0);
       t_end = std::min(span->t_exit, t_end);
     }
     marching = span && t_end > t_start;
+  }
+  if (bounds.box) {
+    // Only rays that meet both move their start: a ray that misses keeps it (the status channel).
+    const RaySpan span = ray_box_span(origin, direction, *bounds.box);
+    const bool meets = span.t_enter <= span.t_exit;
+    if (marching && meets) t_start = std::max(t_start, span.t_enter);
+    t_end = std::min(t_end, span.t_exit);
+    marching = marching && meets && t_end > t_start;
   }
   t_start = std::max(t_start, t_min);
   marching = marching && t_end > t_start;
@@ -187,7 +205,7 @@ RayResult trace_within(const Scene& scene, const std::optional<BoundingSphere>& 
 }  // namespace
 
 RayResult reference_trace(const Scene& scene, const glm::dvec3& origin, const glm::dvec3& direction) {
-  return trace_within(scene, camera_ray_bounds(scene), origin, direction);
+  return trace_within(scene, ray_clip(scene), origin, direction);
 }
 
 FrameBuffers render_reference(const Scene& scene) {
@@ -198,7 +216,7 @@ FrameBuffers render_reference(const Scene& scene, const std::optional<ConeStarts
   const int width = scene.render.width;
   const int height = scene.render.height;
   const CameraBasis basis = camera_basis(scene.camera, width, height);
-  const std::optional<BoundingSphere> bounds = camera_ray_bounds(scene);
+  const RayClip bounds = ray_clip(scene);
   FrameBuffers fb(width, height);
   fb.has_ids = fb.has_layers = true;
   fb.has_depth_lo = scene.render.precision == Precision::Double;

@@ -7,6 +7,7 @@
 #include "render/live_tiles.hpp"
 #include "scene/camera_model.hpp"
 #include "scene/scene_bounds.hpp"
+#include "scene/scene_box.hpp"
 #include "scene/tiling_model.hpp"
 
 #include <fmt/format.h>
@@ -133,6 +134,11 @@ MarchParams march_params(const Scene& scene, const Dispatch& dispatch) {
     params.live_columns[1] = live.last_column;
     params.live_rows[0] = live.first_row;
     params.live_rows[1] = live.last_row;
+  }
+  if (const std::optional<BoundingBox> box = camera_ray_box(scene)) {
+    params.box_low = to_cl(box->low - scene.camera.position);
+    params.box_low.s[3] = 1.0f;
+    params.box_high = to_cl(box->high - scene.camera.position);
   }
   if (const std::optional<BoundingSphere> bounds = cell_bounds(scene)) {
     params.cell_bounds = to_cl(bounds->center);

@@ -190,10 +190,13 @@ inline constexpr const char* kNormalMethodNames[] = {"central", "tetrahedral", "
 enum class HitThreshold { Fixed, PixelCone };
 inline constexpr const char* kHitThresholdNames[] = {"fixed", "pixel_cone"};
 
-/// Whether camera rays are clipped to the scene's bounding sphere, and whether the generated map()
-/// skips subtrees by their bounding spheres (host/scene/scene_bounds.hpp).
+/// Whether the generated map() skips subtrees by their bounding spheres (host/scene/scene_bounds.hpp).
 enum class SceneBounds { None, Sphere };
 inline constexpr const char* kSceneBoundsNames[] = {"none", "sphere"};
+/// What rays are clipped to (render.bounds): nothing, the scene's bounding sphere, or the sphere and
+/// the scene's bounding box (host/scene/scene_bounds.hpp, scene_box.hpp).
+enum class RayBounds { None, Sphere, Box };
+inline constexpr const char* kRayBoundsNames[] = {"none", "sphere", "box"};
 
 /// A coarse pass before the camera rays' march: none, or a cone per block of pixels
 /// (CLMARCH_COARSE_BLOCK in kernels/device_types.h) that gives the block's rays a safe start;
@@ -233,8 +236,9 @@ struct RenderSettings {
   HitThreshold hit_threshold = HitThreshold::Fixed;
   /// pixel_cone: the threshold is max(epsilon, cone_factor * t * pixel angle).
   double cone_factor = 1.0;
-  /// sphere: camera rays march only inside the bounding sphere of a bounded scene.
-  SceneBounds bounds = SceneBounds::Sphere;
+  /// sphere: camera, shadow and mirror rays march only inside the bounding sphere of a bounded
+  /// scene; box (the default): inside its bounding box too.
+  RayBounds bounds = RayBounds::Box;
   /// sphere: unions and subtractions skip an expensive bounded subtree wherever its bounding sphere
   /// shows it cannot change the result (host/codegen/sdf_codegen.cpp).
   SceneBounds subtree_bounds = SceneBounds::Sphere;

@@ -460,30 +460,33 @@ std::optional<BoundingSphere> node_bounds(const Node& node) {
   return b;
 }
 
-namespace {
-
-// b grown by the largest threshold a ray from origin can hit with, the glow radius (misses near the
-// surface glow) and a margin for float rounding: outside it the field exceeds all of them.
-BoundingSphere grown_for_hits(const Scene& scene, BoundingSphere b, const glm::dvec3& origin) {
+double hit_growth(const Scene& scene) {
   // The largest hit threshold along a camera ray, which ends at max_distance.
   const double threshold = std::max(scene.render.epsilon, hit_cone_slope(scene.render, scene.camera) * scene.render.max_distance);
   const double glow = scene.shading.glow ? scene.shading.glow->radius : 0.0;
+  return threshold + glow;
+}
+
+namespace {
+
+// b grown by hit_growth and a margin for float rounding: outside it the field exceeds all of them.
+BoundingSphere grown_for_hits(const Scene& scene, BoundingSphere b, const glm::dvec3& origin) {
   const double rounding = 1e-4 * (b.radius + glm::length(origin - b.center));
-  b.radius += b.gain * (threshold + glow) + rounding;
+  b.radius += b.gain * hit_growth(scene) + rounding;
   return b;
 }
 
 }  // namespace
 
 std::optional<BoundingSphere> camera_ray_bounds(const Scene& scene) {
-  if (scene.render.bounds == SceneBounds::None || scene.tiling) return std::nullopt;
+  if (scene.render.bounds == RayBounds::None || scene.tiling) return std::nullopt;
   const std::optional<BoundingSphere> b = node_bounds(scene.sdf);
   if (!b) return std::nullopt;
   return grown_for_hits(scene, *b, scene.camera.position);
 }
 
 std::optional<BoundingSphere> cell_bounds(const Scene& scene) {
-  if (scene.render.bounds == SceneBounds::None || !uses_cells_tiling(scene)) return std::nullopt;
+  if (scene.render.bounds == RayBounds::None || !uses_cells_tiling(scene)) return std::nullopt;
   const std::optional<BoundingSphere> b = node_bounds(scene.sdf);
   if (!b) return std::nullopt;
   // The rays march in the cell's frame: the rounding margin is the cell's size, not the camera's distance.

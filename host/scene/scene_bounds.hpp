@@ -30,9 +30,15 @@ double turn_reach(const BoundingSphere& child, int axis);
 /// child's height along it, radius hypot(turn_reach, child radius).
 BoundingSphere turned_bounds(const BoundingSphere& child, int axis);
 
+/// How far past a shape's surface the rays' hits and glow reach: the largest hit threshold along a
+/// camera ray (epsilon, or the pixel cone at max_distance) and the glow radius. Bounds that rays are
+/// clipped to grow by it, times their gain.
+double hit_growth(const Scene& scene);
+
 /// The sphere camera rays are clipped to: the tree's bound grown by the largest threshold a camera
 /// ray can hit with, the glow radius (misses near the surface glow) and a margin for float rounding.
-/// Nothing when render.bounds is none, the tree is unbounded, or the scene is tiled.
+/// Nothing when render.bounds is none, the tree is unbounded, or the scene is tiled. Shadow and
+/// mirror rays march inside it too.
 std::optional<BoundingSphere> camera_ray_bounds(const Scene& scene);
 
 /// Under the cells tiling, the sphere in the cell's frame holding the cell's content (the tree's

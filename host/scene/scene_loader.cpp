@@ -100,7 +100,7 @@ class SceneReader {
     }
     yaml_.optional_number(node, "normal_epsilon", "render.normal_epsilon", render.normal_epsilon, Range::positive());
     read_march_acceleration(node, render);
-    if (node["bounds"]) render.bounds = static_cast<SceneBounds>(yaml_.choice(node["bounds"], "render.bounds", kSceneBoundsNames));
+    if (node["bounds"]) render.bounds = static_cast<RayBounds>(yaml_.choice(node["bounds"], "render.bounds", kRayBoundsNames));
     if (node["subtree_bounds"]) {
       render.subtree_bounds =
           static_cast<SceneBounds>(yaml_.choice(node["subtree_bounds"], "render.subtree_bounds", kSceneBoundsNames));
