@@ -184,6 +184,9 @@ typedef struct MarchParams {
                             sphere (host/scene/scene_box.hpp) less the camera position, w = 1; w = 0:
                             no box */
   float4 box_high;       /* xyz = its highest corner less the camera position; w = 0 */
+  float4 bounds_gain;    /* x = the gain of the sphere (bounds), y = of the box: outside them the
+                            field is at least the distance to them over their gain (soft shadows'
+                            rays, kernels/shading.cl); z, w = 0 */
   CLMARCH_INT width;
   CLMARCH_INT height;
   CLMARCH_INT first_row;    /* first image row of this dispatch (images render in chunks of rows) */
@@ -215,8 +218,8 @@ static_assert(offsetof(LightParams, kind) == 3 * 16, "LightParams: the scalars a
 static_assert(sizeof(ShadingParams) == 11 * 16 + 20 * 4, "ShadingParams layout must match OpenCL C");
 static_assert(offsetof(ShadingParams, diffuse) == 11 * 16, "ShadingParams: scalars after the float4s");
 static_assert(sizeof(ShadingParams) % 16 == 0, "ShadingParams keeps the float4 alignment of what follows");
-static_assert(offsetof(MarchParams, shading) == 11 * 16 + 16 * 4, "MarchParams: the shading after the march limits");
-static_assert(sizeof(MarchParams) == 11 * 16 + 16 * 4 + sizeof(ShadingParams) + CLMARCH_CAMERA_DOUBLES * 8,
+static_assert(offsetof(MarchParams, shading) == 12 * 16 + 16 * 4, "MarchParams: the shading after the march limits");
+static_assert(sizeof(MarchParams) == 12 * 16 + 16 * 4 + sizeof(ShadingParams) + CLMARCH_CAMERA_DOUBLES * 8,
               "MarchParams layout must match OpenCL C");
 static_assert(offsetof(MarchParams, camera_double) % 8 == 0, "doubles at 8-byte boundaries, as OpenCL C aligns them");
 #endif

@@ -25,21 +25,81 @@ typedef struct {
 SDF_INLINE vec3v point_light_direction(vec3v p, float4 position) { return v3_normalize(v3_sub(v3_from(position), p)); }
 
 #if defined(SHADOW_MODE)
+#if SHADOW_MODE == CLMARCH_SHADOW_SOFT && !defined(TILING_CELLS)
+/* How fast a ray from the camera-relative point relative along l moves away from the scene's
+ * bounds once it has left them, per unit of t and in units of the field: outside them the field is
+ * at least the distance to them over their gain (MarchParams.bounds_gain), and that distance grows
+ * at least as fast as the distance to the plane the ray leaves by: the box's face (|l| along its
+ * axis) or the sphere's tangent plane (the cosine of l with the sphere's normal there). */
+SDF_INLINE vfloat exit_slope(const MarchParams* params, vec3v relative, vec3v l) {
+  vfloat slope = (vfloat)(0.0f), sphere_exit = (vfloat)(INFINITY);
+  if (params->bounds.w > 0.0f) {
+    const vec3v offset = v3_add(relative, v3_from(params->bounds));
+    const vfloat b = v3_dot(offset, l);
+    const vec3v closest = v3_sub(offset, v3_scale(l, b));
+    const vfloat root = sqrt(fmax(params->bounds.w * params->bounds.w - v3_dot(closest, closest), 0.0f));
+    sphere_exit = root - b;
+    slope = root / (params->bounds.w * params->bounds_gain.x);
+  }
+  if (params->box_low.w > 0.0f) {
+    const vec3v low = v3_sub(v3_from(params->box_low), relative), high = v3_sub(v3_from(params->box_high), relative);
+    const vfloat far_x = select(fmax(low.x / l.x, high.x / l.x), (vfloat)(INFINITY), MASK(l.x == 0.0f));
+    const vfloat far_y = select(fmax(low.y / l.y, high.y / l.y), (vfloat)(INFINITY), MASK(l.y == 0.0f));
+    const vfloat far_z = select(fmax(low.z / l.z, high.z / l.z), (vfloat)(INFINITY), MASK(l.z == 0.0f));
+    const vfloat box_exit = fmin(far_x, fmin(far_y, far_z));
+    const vfloat across = fmax(select((vfloat)(0.0f), fabs(l.x), MASK(far_x == box_exit)),
+                               fmax(select((vfloat)(0.0f), fabs(l.y), MASK(far_y == box_exit)),
+                                    select((vfloat)(0.0f), fabs(l.z), MASK(far_z == box_exit))));
+    slope = select(slope, across / params->bounds_gain.y, MASK(box_exit <= sphere_exit));
+  }
+  return slope;
+}
+
+/* A soft shadow's ray that the scene's bounds cut at t_exit short of t_end goes on for as long as
+ * its later samples could still lower its penumbra P: past t_exit, k h / t >= k c (t - t_exit) / t
+ * (c: exit_slope), which reaches P at t = t_exit k c / (k c - P). It resumes at m.t, the sample the
+ * cut ray did not take, so its samples, and its penumbra, are the uncut ray's. */
+SDF_INLINE MarchResult march_past_bounds(MarchResult m, vec3v origin, vec3v relative, vec3v l, vint live, vfloat t_exit, vfloat t_end,
+                                         const MarchParams* params, MarchLimits limits) {
+  const vfloat kc = limits.soft_k * exit_slope(params, relative, l);
+  const vfloat t_stop = fmin(select(t_end, t_exit * kc / (kc - m.penumbra), MASK(kc > m.penumbra)), t_end);
+  const float budget = (float)limits.max_steps;
+  const vint going_on = live & ~m.hit & MASK(t_exit < t_end) & MASK(m.t < t_stop) & MASK(m.steps < budget);
+  if (!LANE_ANY(going_on)) return m;
+  PlainMarch s = plain_march_begin(origin, l, going_on, m.t, t_stop, limits);
+  s.m.steps = m.steps;
+  s.m.penumbra = m.penumbra;
+  for (int step = 0; step < limits.max_steps && LANE_ANY(s.active); ++step) {
+    plain_march_step(&s);
+    s.active &= MASK(s.m.steps < budget);
+  }
+  const MarchResult resumed = plain_march_end(&s);
+  m.hit |= going_on & resumed.hit;
+  m.penumbra = select(m.penumbra, resumed.penumbra, going_on);
+  return m;
+}
+#endif
+
 /* Light reaching p (relative: p relative to the camera) from unit direction l over distance t_end:
- * 0 behind an occluder, 1 unlit by none, the penumbra in between for soft shadows. The ray marches
- * inside the scene's bounding sphere only (hard ones inside its box too): past it the light is
- * unoccluded. */
+ * 0 behind an occluder, 1 unlit by none, the penumbra in between for soft shadows. Hard shadows'
+ * rays march inside the scene's bounds only: past them the light is unoccluded. Soft ones go on
+ * past them as far as their penumbra could still fall (march_past_bounds); the improved variant's
+ * estimate has no such floor, and its rays march to t_end. */
 SDF_INLINE vfloat shadow_factor(SceneValues values, const MarchParams* params, vec3v p, vec3v relative, vec3v n, vec3v l, vfloat t_end, vint live) {
   const ShadingParams* shading = &params->shading;
   MarchLimits limits = {values, shading->shadow_max_steps, params->epsilon, SHADOW_MODE, shading->shadow_k, 1.0f, 0.0f,
                         params->cell_bounds};
   /* Leave the surface along its normal first so the ray does not hit its own start. */
   const vec3v origin = v3_add(p, v3_scale(n, params->epsilon * 4.0f));
-  vfloat t_start = (vfloat)(shading->shadow_min_t);
-  /* Past the box a soft shadow's ray may still skim the surface (out of a hole of the Menger
-   * sponge's face, along the face), lowering its penumbra: only hard shadows take the box. */
-  clip_to_scene_bounds(params, relative, l, SHADOW_MODE == CLMARCH_SHADOW_HARD, &live, &t_start, &t_end);
-  const MarchResult m = MARCH(origin, l, live, t_start, t_end, limits);
+  vfloat t_start = (vfloat)(shading->shadow_min_t), t_exit = t_end;
+  vint marching = live;
+#if SHADOW_MODE != CLMARCH_SHADOW_SOFT_IMPROVED
+  clip_to_scene_bounds(params, relative, l, 1, &marching, &t_start, &t_exit);
+#endif
+  MarchResult m = MARCH(origin, l, marching, t_start, t_exit, limits);
+#if SHADOW_MODE == CLMARCH_SHADOW_SOFT && !defined(TILING_CELLS)
+  m = march_past_bounds(m, origin, relative, l, live, t_exit, t_end, params, limits);
+#endif
   const vfloat lit = SHADOW_MODE == CLMARCH_SHADOW_HARD ? (vfloat)(1.0f) : clamp(m.penumbra, 0.0f, 1.0f);
   return select(lit, (vfloat)(0.0f), m.hit);
 }

@@ -120,6 +120,7 @@ MarchParams march_params(const Scene& scene, const Dispatch& dispatch) {
     const glm::dvec3 c = scene.camera.position - bounds->center;
     params.bounds = to_cl(c);
     params.bounds.s[3] = static_cast<float>(bounds->radius);
+    params.bounds_gain.s[0] = static_cast<float>(bounds->gain);
     // The rays of a tile are q / |q| with q = f + sx r + sy u, |q| >= 1, where normalising is
     // 1-Lipschitz: they lie within spread of the centre ray's direction, so each passes the centre
     // no nearer than |c x centre| - |c| spread. Beyond reach = radius + |c| spread no ray of the tile
@@ -139,6 +140,7 @@ MarchParams march_params(const Scene& scene, const Dispatch& dispatch) {
     params.box_low = to_cl(box->low - scene.camera.position);
     params.box_low.s[3] = 1.0f;
     params.box_high = to_cl(box->high - scene.camera.position);
+    params.bounds_gain.s[1] = static_cast<float>(box->gain);
   }
   if (const std::optional<BoundingSphere> bounds = cell_bounds(scene)) {
     params.cell_bounds = to_cl(bounds->center);
