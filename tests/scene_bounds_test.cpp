@@ -152,10 +152,10 @@ const BoundCase kBoundedCases[] = {
 
 class NodeBounds : public ::testing::TestWithParam<BoundCase> {};
 
-TEST_P(NodeBounds, HoldEveryPointBelowTheThreshold) {
-  const Node node = tree(GetParam().sdf);
-  const std::optional<BoundingSphere> bound = node_bounds(node);
-  ASSERT_TRUE(bound.has_value());
+/// Calls promise(p, tau) for every point p of a random sample of [-5, 5]^3 where node's field is
+/// below tau, for thresholds from 10^-3 to 0.5; expects the sample to reach the surface.
+template <typename Promise>
+void for_each_point_below(const Node& node, Promise promise) {
   std::mt19937 random(7);
   std::uniform_real_distribution<double> coordinate(-5.0, 5.0);
   int below = 0;
@@ -164,32 +164,32 @@ TEST_P(NodeBounds, HoldEveryPointBelowTheThreshold) {
     for (double tau : {1e-3, 0.1, 0.5}) {
       if (reference_distance(node, p) >= tau) continue;
       ++below;
-      // The bound's promise, with a relative allowance for double rounding only.
-      EXPECT_LT(glm::length(p - bound->center), bound->radius + bound->gain * tau + 1e-9)
-          << "tau " << tau << " at (" << p.x << ", " << p.y << ", " << p.z << ")";
+      promise(p, tau);
     }
   }
   EXPECT_GT(below, 50) << "the sample must reach the surface for the test to mean something";
+}
+
+TEST_P(NodeBounds, HoldEveryPointBelowTheThreshold) {
+  const Node node = tree(GetParam().sdf);
+  const std::optional<BoundingSphere> bound = node_bounds(node);
+  ASSERT_TRUE(bound.has_value());
+  for_each_point_below(node, [&](const glm::dvec3& p, double tau) {
+    // The bound's promise, with a relative allowance for double rounding only.
+    EXPECT_LT(glm::length(p - bound->center), bound->radius + bound->gain * tau + 1e-9)
+        << "tau " << tau << " at (" << p.x << ", " << p.y << ", " << p.z << ")";
+  });
 }
 
 TEST_P(NodeBounds, BoxesHoldEveryPointBelowTheThreshold) {
   const Node node = tree(GetParam().sdf);
   const std::optional<BoundingBox> box = node_box(node);
   ASSERT_TRUE(box.has_value());
-  std::mt19937 random(9);
-  std::uniform_real_distribution<double> coordinate(-5.0, 5.0);
-  int below = 0;
-  for (int i = 0; i < 40000; ++i) {
-    const glm::dvec3 p(coordinate(random), coordinate(random), coordinate(random));
-    for (double tau : {1e-3, 0.1, 0.5}) {
-      if (reference_distance(node, p) >= tau) continue;
-      ++below;
-      const glm::dvec3 margin(box->gain * tau + 1e-9);
-      EXPECT_TRUE(glm::all(glm::greaterThan(p, box->low - margin)) && glm::all(glm::lessThan(p, box->high + margin)))
-          << "tau " << tau << " at (" << p.x << ", " << p.y << ", " << p.z << ")";
-    }
-  }
-  EXPECT_GT(below, 50) << "the sample must reach the surface for the test to mean something";
+  for_each_point_below(node, [&](const glm::dvec3& p, double tau) {
+    const glm::dvec3 margin(box->gain * tau + 1e-9);
+    EXPECT_TRUE(glm::all(glm::greaterThan(p, box->low - margin)) && glm::all(glm::lessThan(p, box->high + margin)))
+        << "tau " << tau << " at (" << p.x << ", " << p.y << ", " << p.z << ")";
+  });
 }
 
 TEST_P(NodeBounds, AreTightEnoughToHelp) {
