@@ -5,7 +5,8 @@
 # run under mpirun (docs/cli.md#mpi); python3 runs scripts/large-scene.py, whose scenes the tests
 # check. `setup.sh --plots` also installs python3-matplotlib
 # for scripts/sweep-plot.py (run it with /usr/bin/python3); `setup.sh --peers` the GLSL peer's
-# libraries (EGL, OSMesa, libpng, Mesa's llvmpipe) for scripts/speed-vs-peers.sh.
+# libraries (EGL, OSMesa, libpng, Mesa's llvmpipe) for scripts/speed-vs-peers.sh, and numpy and
+# OpenImageIO's Python module for the peers' peer_equivalence.py.
 set -euo pipefail
 
 packages=(
@@ -21,7 +22,7 @@ packages=(
 for arg in "$@"; do
   case "$arg" in
     --plots) packages+=(python3-matplotlib) ;;
-    --peers) packages+=(libegl-dev libosmesa6-dev libpng-dev libgl1-mesa-dri) ;;
+    --peers) packages+=(libegl-dev libosmesa6-dev libpng-dev libgl1-mesa-dri python3-numpy python3-openimageio) ;;
     *) echo "setup.sh: unknown option $arg (expected --plots or --peers)" >&2; exit 2 ;;
   esac
 done
