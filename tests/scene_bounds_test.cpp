@@ -247,6 +247,14 @@ TEST(NodeBoxes, RayBoxSpanBySlabs) {
   EXPECT_NEAR(corner.t_exit, 3.0 * std::sqrt(3.0), 1e-12);
 }
 
+TEST(CameraRayBoxes, TheKeyTakesBoxSphereOrNone) {
+  EXPECT_EQ(scene_from_yaml("sdf: {sphere: {}}\n").render.bounds, RayBounds::Box);
+  EXPECT_EQ(scene_from_yaml("render: {bounds: sphere}\nsdf: {sphere: {}}\n").render.bounds, RayBounds::Sphere);
+  EXPECT_EQ(scene_from_yaml("render: {bounds: none}\nsdf: {sphere: {}}\n").render.bounds, RayBounds::None);
+  EXPECT_EQ(testing::error_of("render: {bounds: cube}\nsdf: {sphere: {}}\n"),
+            "s.yaml:1:18: render.bounds must be one of none, sphere, box (got 'cube')");
+}
+
 TEST(CameraRayBoxes, BoxByDefaultAndOnlyThen) {
   const std::string cube = "sdf: {box: {half_size: [1, 1, 1]}}\nrender: {epsilon: 0.01}\n";
   const BoundingBox grown = *camera_ray_box(scene_from_yaml(cube));
