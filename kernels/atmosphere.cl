@@ -49,7 +49,8 @@ SDF_INLINE vec3v apply_fog(const ShadingParams* shading, vec3v color, vec3v dir,
   const vfloat x = t * dir.y * b;
   const vint descending = MASK(x < 0.0f);
   const vfloat start = exp(select((vfloat)(-camera_y * b), -camera_y * b - x, descending));
-  const vfloat slanted = (a / b) * start * select(-expm1(-x), expm1(x), descending) / select(dir.y, (vfloat)(1.0f), level);
+  const vfloat slanted =
+      (a / b) * start * select(-expm1(-x), expm1(x), descending) / select(dir.y, (vfloat)(1.0f), level);
   const vfloat amount = clamp(select(slanted, a * exp(-camera_y * b) * t, level), 0.0f, 1.0f);
   const float4 sun = shading->height_fog_sun_direction;
   const vfloat sun_amount = fmax(dir.x * sun.x + dir.y * sun.y + dir.z * sun.z, 0.0f);

@@ -47,7 +47,8 @@ __kernel void coarse_cones(const MarchParams params, __global float* starts, __g
    * where the sphere's nearest point is and ends past its farthest. */
   float t_first = 0.0f, t_last = params.max_distance;
   if (params.bounds.w > 0.0f) {
-    const float distance = sqrt(params.bounds.x * params.bounds.x + params.bounds.y * params.bounds.y + params.bounds.z * params.bounds.z);
+    const float distance =
+        sqrt(params.bounds.x * params.bounds.x + params.bounds.y * params.bounds.y + params.bounds.z * params.bounds.z);
     t_first = fmax(distance - params.bounds.w, 0.0f);
     t_last = fmin(distance + params.bounds.w, t_last);
   }
@@ -63,7 +64,8 @@ __kernel void coarse_cones(const MarchParams params, __global float* starts, __g
   for (int step = 0; step < params.max_steps && LANE_ANY(active); ++step) {
     const vfloat d = field(values, v3_add(origin, v3_scale(axis, t)));
     steps += select((vfloat)(0.0f), (vfloat)(1.0f), active);
-    const vfloat s = fmin((d - floor_threshold - k * t) / (1.0f + k), (d - margin - (k + slope) * t) / (1.0f + k + slope));
+    const vfloat s =
+        fmin((d - floor_threshold - k * t) / (1.0f + k), (d - margin - (k + slope) * t) / (1.0f + k + slope));
     active &= MASK(s >= COARSE_STOP_FRACTION * d);
     t = select(t, fmin(t + s, (vfloat)(t_last)), active);
     active &= MASK(t < (vfloat)(t_last));

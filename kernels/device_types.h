@@ -69,17 +69,18 @@ typedef cl_float4 float4;
  * cell c lists the words list[cells[c]] .. list[cells[c + 1] - 1], each the offset of an operand's
  * record: its distance shape, its color shape, the offset of its color literals, the number of its
  * first primitive (the id channel's), then literals. */
-#define CLMARCH_GRID_ORIGIN 0          /* 3 words: the grid's lowest corner, in map()'s frame */
-#define CLMARCH_GRID_INVERSE_CELL 3    /* 1 / the cells' side */
-#define CLMARCH_GRID_DIMS 4            /* 3 words: cells per axis, as floats (at most 2^24 cells) */
-#define CLMARCH_GRID_UPPER 7           /* 3 words: the grid's highest corner */
-#define CLMARCH_GRID_OUTSIDE 10        /* 3 words: outside the grid the field is at least
-                                          (distance to the grid + [0]) * [1] - [2] */
+#define CLMARCH_GRID_ORIGIN 0       /* 3 words: the grid's lowest corner, in map()'s frame */
+#define CLMARCH_GRID_INVERSE_CELL 3 /* 1 / the cells' side */
+#define CLMARCH_GRID_DIMS 4         /* 3 words: cells per axis, as floats (at most 2^24 cells) */
+#define CLMARCH_GRID_UPPER 7        /* 3 words: the grid's highest corner */
+#define CLMARCH_GRID_OUTSIDE                            \
+  10 /* 3 words: outside the grid the field is at least \
+        (distance to the grid + [0]) * [1] - [2] */
 #define CLMARCH_GRID_CELLS_AT 13
 #define CLMARCH_GRID_LIST_AT 14
 #define CLMARCH_GRID_HEADER_WORDS 15
-#define CLMARCH_GRID_RECORD_ID 3       /* the word of a record holding its first primitive's number */
-#define CLMARCH_GRID_RECORD_WORDS 4    /* distance shape, color shape, offset of the color literals, id */
+#define CLMARCH_GRID_RECORD_ID 3    /* the word of a record holding its first primitive's number */
+#define CLMARCH_GRID_RECORD_WORDS 4 /* distance shape, color shape, offset of the color literals, id */
 
 /* Shadow rays (the SHADOW_MODE switch; host/scene/scene.hpp, ShadowMode, in the same order): hard
  * shadows, Inigo Quilez's classic penumbra min(k h / t), or his improved one. */
@@ -96,14 +97,14 @@ typedef cl_float4 float4;
 
 /* One light. Positions are relative to the camera (computed on the host in double). */
 typedef struct LightParams {
-  float4 where;     /* point and spot lights: xyz = position; directional: xyz = unit vector towards the light */
-  float4 radiance;  /* xyz = color * intensity */
-  float4 spot_axis; /* spot lights: xyz = unit vector the light points along */
-  CLMARCH_INT kind;          /* CLMARCH_LIGHT_* */
-  CLMARCH_INT falloff;       /* CLMARCH_FALLOFF_* */
-  CLMARCH_INT casts_shadows; /* 1: shadow rays march towards it (with SHADOW_MODE) */
+  float4 where;        /* point and spot lights: xyz = position; directional: xyz = unit vector towards the light */
+  float4 radiance;     /* xyz = color * intensity */
+  float4 spot_axis;    /* spot lights: xyz = unit vector the light points along */
+  CLMARCH_INT kind;    /* CLMARCH_LIGHT_* */
+  CLMARCH_INT falloff; /* CLMARCH_FALLOFF_* */
+  CLMARCH_INT casts_shadows;    /* 1: shadow rays march towards it (with SHADOW_MODE) */
   CLMARCH_FLOAT inverse_range2; /* 1 / range^2 (the window clamp(1 - (d / range)^4, 0, 1)^2); 0: no range */
-  CLMARCH_FLOAT cos_inner;   /* spot lights: cosines of the cone's inner and outer angles */
+  CLMARCH_FLOAT cos_inner;      /* spot lights: cosines of the cone's inner and outer angles */
   CLMARCH_FLOAT cos_outer;
   CLMARCH_FLOAT padding[2];
 } LightParams;
@@ -119,26 +120,26 @@ typedef struct ShadingParams {
   float4 sky_zenith;
   float4 glow_color;
   float4 planet_glow_color;
-  float4 planet_glow_sun;       /* unit vector towards the sun */
+  float4 planet_glow_sun; /* unit vector towards the sun */
   float4 height_fog_color;
   float4 height_fog_sun_color;
   float4 height_fog_sun_direction;
   CLMARCH_FLOAT diffuse;
-  CLMARCH_FLOAT step_ao;        /* steps^2 / step_ao darkens (STEP_AO) */
+  CLMARCH_FLOAT step_ao; /* steps^2 / step_ao darkens (STEP_AO) */
   CLMARCH_FLOAT fog_density;
-  CLMARCH_FLOAT shadow_k;       /* the soft penumbra's sharpness */
+  CLMARCH_FLOAT shadow_k; /* the soft penumbra's sharpness */
   CLMARCH_FLOAT shadow_min_t;
-  CLMARCH_FLOAT shadow_max_t;   /* directional lights' shadow rays end here */
+  CLMARCH_FLOAT shadow_max_t; /* directional lights' shadow rays end here */
   CLMARCH_FLOAT ao_step;
   CLMARCH_FLOAT ao_power;
   CLMARCH_FLOAT reflection_offset;
-  CLMARCH_FLOAT glow_radius;    /* also the cone pass's margin (kernels/coarse.cl): 0 without glow */
+  CLMARCH_FLOAT glow_radius; /* also the cone pass's margin (kernels/coarse.cl): 0 without glow */
   CLMARCH_FLOAT planet_glow_sharpness;
   CLMARCH_FLOAT height_fog_density;
   CLMARCH_FLOAT height_fog_falloff;
   CLMARCH_FLOAT height_fog_sun_power;
-  CLMARCH_FLOAT gamma;          /* DISPLAY_GAMMA: c^(1 / gamma) */
-  CLMARCH_INT light_count;      /* LightParams in the lights buffer */
+  CLMARCH_FLOAT gamma;     /* DISPLAY_GAMMA: c^(1 / gamma) */
+  CLMARCH_INT light_count; /* LightParams in the lights buffer */
   CLMARCH_INT shadow_max_steps;
   CLMARCH_INT ao_samples;
   CLMARCH_INT reflection_bounces;
@@ -164,10 +165,10 @@ typedef struct ShadingParams {
  * Changing any of these does not rebuild the program; the program's #defines are only feature
  * switches (host/codegen/kernel_source.cpp). */
 typedef struct MarchParams {
-  float4 origin;       /* xyz = camera position relative to map_frame_origin (host/scene/camera_model.hpp) */
-  float4 forward;      /* xyz = f, unit */
-  float4 right_extent; /* xyz = r * aspect * tan(fov / 2) */
-  float4 up_extent;    /* xyz = u * tan(fov / 2) */
+  float4 origin;         /* xyz = camera position relative to map_frame_origin (host/scene/camera_model.hpp) */
+  float4 forward;        /* xyz = f, unit */
+  float4 right_extent;   /* xyz = r * aspect * tan(fov / 2) */
+  float4 up_extent;      /* xyz = u * tan(fov / 2) */
   float4 origin_in_cell; /* tiling (cells): xyz = camera offset inside its cell, 0 <= x < cell */
   float4 bounds;         /* xyz = camera position - centre of the sphere camera, shadow and mirror
                             rays are clipped to, w = its radius; w = 0: rays are not clipped */
@@ -196,7 +197,7 @@ typedef struct MarchParams {
   CLMARCH_FLOAT epsilon;
   CLMARCH_FLOAT max_distance;
   CLMARCH_FLOAT normal_epsilon;
-  CLMARCH_FLOAT camera_height; /* world y of the camera, for height fog */
+  CLMARCH_FLOAT camera_height;   /* world y of the camera, for height fog */
   CLMARCH_FLOAT over_relaxation; /* camera rays' omega in [1, 2); 1 = plain sphere tracing */
   CLMARCH_FLOAT hit_cone_slope;  /* camera rays hit below max(epsilon, hit_cone_slope * t); 0 = fixed */
   /* With bounds: the image's tiles in columns live_columns[0] .. live_columns[1] and rows

@@ -73,8 +73,8 @@ SDF_INLINE vfloat sd_mandelbulb8(vec3v p, float4 center, int iterations, float b
     const vfloat sin_8theta = sin_8x(cos_theta, sin_theta);
     const vfloat r4 = r2 * r2, r8 = r4 * r4;
     const vfloat next_dr = 8.0f * r8 * inv_r * dr + 1.0f;
-    const vec3v next_z = v3_add(v3_scale(v3(sin_8theta * cos_8x(cos_phi, sin_phi), sin_8theta * sin_8x(cos_phi, sin_phi),
-                                            cos_8x(cos_theta, sin_theta)),
+    const vec3v next_z = v3_add(v3_scale(v3(sin_8theta * cos_8x(cos_phi, sin_phi),
+                                            sin_8theta * sin_8x(cos_phi, sin_phi), cos_8x(cos_theta, sin_theta)),
                                          r8),
                                 c);
     z = v3_select(z, next_z, active);
@@ -120,7 +120,8 @@ SDF_INLINE vfloat sd_sierpinski(vec3v p, float4 center, float size, int iteratio
  * sphere of fixed_radius between the radii (the sphere fold), then z = scale z + (p - center); dr
  * follows |dz/dp|. The estimate |z| / dr, never below the distance to the ball round the cube of
  * half side 2 (scale < -1) or 2 (scale + 1) / (scale - 1) that holds the set. */
-SDF_INLINE vfloat sd_mandelbox(vec3v p, float4 center, float scale, int iterations, float min_radius, float fixed_radius) {
+SDF_INLINE vfloat sd_mandelbox(vec3v p, float4 center, float scale, int iterations, float min_radius,
+                               float fixed_radius) {
   const float half_size = scale < 0.0f ? 2.0f : 2.0f * (scale + 1.0f) / (scale - 1.0f);
   const float min_r2 = min_radius * min_radius, fixed_r2 = fixed_radius * fixed_radius;
   const vec3v c = v3_sub(p, v3_from(center));
@@ -181,9 +182,9 @@ SDF_INLINE vfloat sd_julia(vec3v p, float4 center, float4 c, int iterations) {
 SDF_INLINE vfloat menger_mod2(vfloat x) { return x - 2.0f * floor(x * 0.5f); }
 
 /* A bound, 1-Lipschitz: exact where one flat wall is nearest, short of the true distance near the
- * edges of the holes (the median of r stands for a Euclidean length there). The cube [-1, 1]^3 (scaled by half_size) intersected with iterations levels of crosses:
- * in the cell of level i, centred as a in [-1, 1), the cross of half width 1/3 is where at least
- * two of |1 - 3|a|| exceed 1. */
+ * edges of the holes (the median of r stands for a Euclidean length there). The cube [-1, 1]^3 (scaled by half_size)
+ * intersected with iterations levels of crosses: in the cell of level i, centred as a in [-1, 1), the cross of half
+ * width 1/3 is where at least two of |1 - 3|a|| exceed 1. */
 SDF_INLINE vfloat sd_menger(vec3v p, float4 center, float half_size, int iterations) {
   const vec3v q = v3_scale(v3_sub(p, v3_from(center)), (vfloat)(1.0f / half_size));
   const vec3v b = v3_sub(v3_abs(q), v3_splat(1.0f));

@@ -138,15 +138,15 @@ typedef mask16 vint;
 #if LANES == 1
 #define STORE_TILE(v, at, width, ptr) ((ptr)[at] = (float)(v))
 #elif LANES == 4
-#define STORE_TILE(v, at, width, ptr)                                                                  \
+#define STORE_TILE(v, at, width, ptr) \
   (vstore2(convert_float2((v).s01), 0, (ptr) + (at)), vstore2(convert_float2((v).s23), 0, (ptr) + (at) + (width)))
 #elif LANES == 8
-#define STORE_TILE(v, at, width, ptr)                                                                  \
+#define STORE_TILE(v, at, width, ptr) \
   (vstore4(convert_float4((v).lo), 0, (ptr) + (at)), vstore4(convert_float4((v).hi), 0, (ptr) + (at) + (width)))
 #else
-#define STORE_TILE(v, at, width, ptr)                                                                  \
+#define STORE_TILE(v, at, width, ptr)                                                                                  \
   (vstore4(convert_float4((v).s0123), 0, (ptr) + (at)), vstore4(convert_float4((v).s4567), 0, (ptr) + (at) + (width)), \
-   vstore4(convert_float4((v).s89ab), 0, (ptr) + (at) + 2 * (width)),                                 \
+   vstore4(convert_float4((v).s89ab), 0, (ptr) + (at) + 2 * (width)),                                                  \
    vstore4(convert_float4((v).scdef), 0, (ptr) + (at) + 3 * (width)))
 #endif
 
@@ -236,7 +236,9 @@ SDF_INLINE vec3v v3_mul(vec3v a, vec3v b) { return v3(a.x * b.x, a.y * b.y, a.z 
 SDF_INLINE vec3v v3_abs(vec3v a) { return v3(fabs(a.x), fabs(a.y), fabs(a.z)); }
 SDF_INLINE vec3v v3_max0(vec3v a) { return v3(fmax(a.x, 0.0f), fmax(a.y, 0.0f), fmax(a.z, 0.0f)); }
 SDF_INLINE vfloat v3_dot(vec3v a, vec3v b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-SDF_INLINE vec3v v3_cross(vec3v a, vec3v b) { return v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x); }
+SDF_INLINE vec3v v3_cross(vec3v a, vec3v b) {
+  return v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+}
 /* sqrt(dot) rather than length(): PoCL's length() carries overflow-rescaling branches. */
 SDF_INLINE vfloat v3_length(vec3v a) { return vsqrt(v3_dot(a, a)); }
 SDF_INLINE vfloat v3_max_component(vec3v a) { return fmax(a.x, fmax(a.y, a.z)); }
@@ -250,8 +252,7 @@ SDF_INLINE vec3v v3_select(vec3v a, vec3v b, vint m) {
 }
 SDF_INLINE vec3v v3_mix(vec3v a, vec3v b, vfloat h) { return v3(mix(a.x, b.x, h), mix(a.y, b.y, h), mix(a.z, b.z, h)); }
 /* Rows of a 3x3 matrix times a vector. */
-SDF_INLINE vec3v v3_transform(vec3v p, float m00, float m01, float m02, float m10, float m11, float m12,
-                              float m20, float m21, float m22) {
-  return v3(m00 * p.x + m01 * p.y + m02 * p.z, m10 * p.x + m11 * p.y + m12 * p.z,
-            m20 * p.x + m21 * p.y + m22 * p.z);
+SDF_INLINE vec3v v3_transform(vec3v p, float m00, float m01, float m02, float m10, float m11, float m12, float m20,
+                              float m21, float m22) {
+  return v3(m00 * p.x + m01 * p.y + m02 * p.z, m10 * p.x + m11 * p.y + m12 * p.z, m20 * p.x + m21 * p.y + m22 * p.z);
 }

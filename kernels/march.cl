@@ -9,7 +9,8 @@
 #if defined(NEED_SHADING)
 /* The surface met by a ray from the camera-relative point relative_origin, marched in map()'s
  * frame (m), with its normal and material. */
-SDF_INLINE Hit surface_at(SceneValues values, const MarchResult* m, vec3v relative_origin, vec3v dir, float normal_epsilon) {
+SDF_INLINE Hit surface_at(SceneValues values, const MarchResult* m, vec3v relative_origin, vec3v dir,
+                          float normal_epsilon) {
   Hit hit;
   hit.point = m->local_point;
   hit.relative = v3_add(relative_origin, v3_scale(dir, m->t));
@@ -27,12 +28,13 @@ SDF_INLINE Hit surface_at(SceneValues values, const MarchResult* m, vec3v relati
 #if defined(NEED_SHADING) && defined(REFLECTIONS)
 /* Adds the mirror bounces of the PBR course: each bounce's color weighted by the product of the
  * reflectivities met so far; a bounce that misses shows the sky. */
-SDF_INLINE vec3v add_reflections(SceneValues values, vec3v color, Hit hit, vec3v dir, vint live, const MarchParams* params,
-                                 __global const LightParams* lights) {
+SDF_INLINE vec3v add_reflections(SceneValues values, vec3v color, Hit hit, vec3v dir, vint live,
+                                 const MarchParams* params, __global const LightParams* lights) {
   const ShadingParams* shading = &params->shading;
   /* Mirror rays march plainly with the fixed epsilon, inside the scene's bounds: the pixel cone is
    * the camera's, and their t starts again at the mirror. */
-  MarchLimits limits = {values, params->max_steps, params->epsilon, CLMARCH_SHADOW_HARD, 0.0f, 1.0f, 0.0f, params->cell_bounds};
+  MarchLimits limits = {values, params->max_steps,  params->epsilon, CLMARCH_SHADOW_HARD, 0.0f, 1.0f,
+                        0.0f,   params->cell_bounds};
   vfloat weight = (vfloat)(1.0f);
   vint active = live;
   for (int bounce = 0; bounce < shading->reflection_bounces; ++bounce) {
@@ -123,7 +125,7 @@ typedef struct {
   int x0, row0;      /* its first pixel: column, and row within the dispatch's chunk */
   int columns, rows; /* of its PACKET_WIDTH x PACKET_HEIGHT pixels, those inside the image */
   vec3v dir;
-  vint marching;     /* lanes whose ray marches: inside the image and meeting the bounds */
+  vint marching; /* lanes whose ray marches: inside the image and meeting the bounds */
   vfloat t_start, t_end;
 } Packet;
 
@@ -142,7 +144,8 @@ SDF_INLINE int tile_misses_bounds(const MarchParams* params, int x0, int y0) {
   const float4 c = params->bounds; /* xyz = camera - centre; |c x q| is the same for -c */
   const float4 q = camera_plane_point(params, (float)x0 + 0.5f * PACKET_WIDTH, (float)y0 + 0.5f * PACKET_HEIGHT);
   const float cross_x = c.y * q.z - c.z * q.y, cross_y = c.z * q.x - c.x * q.z, cross_z = c.x * q.y - c.y * q.x;
-  return cross_x * cross_x + cross_y * cross_y + cross_z * cross_z > params->tile_reach.x * (q.x * q.x + q.y * q.y + q.z * q.z);
+  return cross_x * cross_x + cross_y * cross_y + cross_z * cross_z >
+         params->tile_reach.x * (q.x * q.x + q.y * q.y + q.z * q.z);
 }
 
 /* Packet number `index` of the chunk, tiles in row-major order; rows <= 0 past the chunk. Without
@@ -183,9 +186,10 @@ SDF_INLINE Packet packet_at(const MarchParams* params, int index, __global const
 }
 
 /* The march limits of camera rays; with RECORD_SAMPLES, where the packet's points go. */
-SDF_INLINE MarchLimits camera_limits(SceneValues values, const MarchParams* params, const Packet* k, const MarchRecord* record) {
-  MarchLimits limits = {values, params->max_steps, params->epsilon, CLMARCH_SHADOW_HARD, 0.0f, params->over_relaxation, params->hit_cone_slope,
-                        params->cell_bounds};
+SDF_INLINE MarchLimits camera_limits(SceneValues values, const MarchParams* params, const Packet* k,
+                                     const MarchRecord* record) {
+  MarchLimits limits = {values, params->max_steps,       params->epsilon,        CLMARCH_SHADOW_HARD,
+                        0.0f,   params->over_relaxation, params->hit_cone_slope, params->cell_bounds};
 #if defined(RECORD_SAMPLES)
   limits.samples = record->samples;
   limits.sample_stride = record->sample_stride;
@@ -202,7 +206,8 @@ SDF_INLINE MarchLimits camera_limits(SceneValues values, const MarchParams* para
 /* A term of a hit's color as it reaches the camera through the fog along dir over t: fog is
  * c -> c f + g, and the term's share of the fogged color is term f = fog(term) - fog(0). */
 SDF_INLINE vec3v fogged_term(const ShadingParams* shading, vec3v term, vec3v dir, vfloat t, float camera_height) {
-  return v3_sub(apply_fog(shading, term, dir, t, camera_height), apply_fog(shading, v3_splat(0.0f), dir, t, camera_height));
+  return v3_sub(apply_fog(shading, term, dir, t, camera_height),
+                apply_fog(shading, v3_splat(0.0f), dir, t, camera_height));
 }
 
 /* The shaded, tone-mapped color of packet k's rays (the sky's where they miss), and the normals at
@@ -241,11 +246,11 @@ SDF_INLINE vec3v packet_color(SceneValues values, const Packet* k, const MarchRe
 
 /* Writes what the march of packet k found: depth, steps (and wall steps), and as the program
  * needs them the normal and the shaded color. */
-SDF_INLINE void finish_packet(SceneValues values, const Packet* k, const MarchResult* m, const MarchParams* params, __global float* out,
-                              __global const LightParams* lights) {
+SDF_INLINE void finish_packet(SceneValues values, const Packet* k, const MarchResult* m, const MarchParams* params,
+                              __global float* out, __global const LightParams* lights) {
   const int stride = params->plane_stride;
   const int at = k->row0 * params->width + k->x0;
-#define STORE_PLANE(channel, v) store_tile((v), at, params->width, k->columns, k->rows, out + (channel) * stride)
+#define STORE_PLANE(channel, v) store_tile((v), at, params->width, k->columns, k->rows, out + (channel)*stride)
   STORE_PLANE(CLMARCH_CHANNEL_DEPTH, select((vfloat)(INFINITY), m->t, m->hit));
 #if defined(WRITE_DEPTH_LO)
   STORE_PLANE(CLMARCH_CHANNEL_DEPTH_LO, select((vfloat)(0.0f), m->t - ROUNDED_TO_FLOAT(m->t), m->hit));
@@ -253,8 +258,10 @@ SDF_INLINE void finish_packet(SceneValues values, const Packet* k, const MarchRe
 #if defined(WRITE_STATUS)
   /* A lane that did not march ends where it starts: 0 where its ray misses the bounding sphere,
    * its entry where that lies past max_distance (clip_to_bounds). */
-  const vfloat past_end = select((vfloat)(CLMARCH_RAY_MISS), (vfloat)(CLMARCH_RAY_OUT_OF_DISTANCE), MASK(m->t >= params->max_distance));
-  const vfloat status = select(select(past_end, (vfloat)(CLMARCH_RAY_OUT_OF_STEPS), m->exhausted), (vfloat)(CLMARCH_RAY_HIT), m->hit);
+  const vfloat past_end =
+      select((vfloat)(CLMARCH_RAY_MISS), (vfloat)(CLMARCH_RAY_OUT_OF_DISTANCE), MASK(m->t >= params->max_distance));
+  const vfloat status =
+      select(select(past_end, (vfloat)(CLMARCH_RAY_OUT_OF_STEPS), m->exhausted), (vfloat)(CLMARCH_RAY_HIT), m->hit);
   STORE_PLANE(CLMARCH_CHANNEL_STATUS, status);
 #endif
   STORE_PLANE(CLMARCH_CHANNEL_STEPS, m->steps);
@@ -425,7 +432,8 @@ SDF_INLINE void store_samples(SceneValues values, const Packet* k, const MarchRe
       to_pixel_end = per_pixel;
     }
     for (int s = 0; s < REFINED_FLOAT4S; ++s) {
-      sum[s] += (float4)(lane_sums[4 * s][lane], lane_sums[4 * s + 1][lane], lane_sums[4 * s + 2][lane], lane_sums[4 * s + 3][lane]);
+      sum[s] += (float4)(lane_sums[4 * s][lane], lane_sums[4 * s + 1][lane], lane_sums[4 * s + 2][lane],
+                         lane_sums[4 * s + 3][lane]);
     }
     --to_pixel_end;
   }
@@ -436,8 +444,9 @@ SDF_INLINE void store_samples(SceneValues values, const Packet* k, const MarchRe
 
 /* A refining pass's work-item: sample packets item and item + 1 (PACKETS_PER_ITEM = 2, marched
  * interleaved, as on the centre pass) or item, their sums into samples (store_samples). */
-SDF_INLINE void refine_item(const MarchParams* params, vec3v origin, __global const LightParams* lights, SceneValues values, int item,
-                            __global const int* pixels, __constant float* sample_points, __global float4* samples) {
+SDF_INLINE void refine_item(const MarchParams* params, vec3v origin, __global const LightParams* lights,
+                            SceneValues values, int item, __global const int* pixels, __constant float* sample_points,
+                            __global float4* samples) {
   const MarchRecord record = {0};
   const int pairs = (int)params->sampling.z * ((int)params->sampling.y - 1);
   if (item * LANES >= pairs) return; /* padding of the dispatch to whole work-groups */
@@ -445,8 +454,10 @@ SDF_INLINE void refine_item(const MarchParams* params, vec3v origin, __global co
 #if PACKETS_PER_ITEM == 2
   /* Past the pairs b has no lane marching, and its loop never runs. */
   const Packet b = sample_packet(params, item + 1, pixels, sample_points);
-  PlainMarch march_a = plain_march_begin(origin, a.dir, a.marching, a.t_start, a.t_end, camera_limits(values, params, &a, &record));
-  PlainMarch march_b = plain_march_begin(origin, b.dir, b.marching, b.t_start, b.t_end, camera_limits(values, params, &b, &record));
+  PlainMarch march_a =
+      plain_march_begin(origin, a.dir, a.marching, a.t_start, a.t_end, camera_limits(values, params, &a, &record));
+  PlainMarch march_b =
+      plain_march_begin(origin, b.dir, b.marching, b.t_start, b.t_end, camera_limits(values, params, &b, &record));
   march_plain_pair(&march_a, &march_b);
   const MarchResult ma = plain_march_end(&march_a);
   store_samples(values, &a, &ma, params, lights, item, samples);
@@ -455,7 +466,8 @@ SDF_INLINE void refine_item(const MarchParams* params, vec3v origin, __global co
     store_samples(values, &b, &mb, params, lights, item + 1, samples);
   }
 #else
-  const MarchResult m = MARCH(origin, a.dir, a.marching, a.t_start, a.t_end, camera_limits(values, params, &a, &record));
+  const MarchResult m =
+      MARCH(origin, a.dir, a.marching, a.t_start, a.t_end, camera_limits(values, params, &a, &record));
   store_samples(values, &a, &m, params, lights, item, samples);
 #endif
 }
@@ -465,15 +477,19 @@ SDF_INLINE void refine_item(const MarchParams* params, vec3v origin, __global co
  * steps interleave (march_plain_pair), one on GPUs and under the cells tiling. values holds the
  * scene's numbers that the program reads instead of spelling them (an animation's; NULL when it
  * spells them all). */
-__kernel void march(const MarchParams params, __global float* out, __global const LightParams* lights, SceneValues values
+__kernel void march(const MarchParams params, __global float* out, __global const LightParams* lights,
+                    SceneValues values
 #if defined(COARSE_PASS)
-                    , __global const float* coarse_starts
+                    ,
+                    __global const float* coarse_starts
 #endif
 #if defined(ANTIALIAS)
-                    , __global const int* refine_pixels, __constant float* sample_points, __global float4* refined_samples
+                    ,
+                    __global const int* refine_pixels, __constant float* sample_points, __global float4* refined_samples
 #endif
 #if defined(RECORD_SAMPLES)
-                    , __global const int* sample_base, __global float* samples, const int sample_stride
+                    ,
+                    __global const int* sample_base, __global float* samples, const int sample_stride
 #endif
 ) {
 #if defined(RECORD_SAMPLES)
@@ -498,9 +514,11 @@ __kernel void march(const MarchParams params, __global float* out, __global cons
 #if PACKETS_PER_ITEM == 2
   Packet b = packet_at(&params, item + 1, coarse_starts);
   const int b_wanted = b.rows > 0;
-  PlainMarch march_a = plain_march_begin(origin, a.dir, a.marching, a.t_start, a.t_end, camera_limits(values, &params, &a, &record));
+  PlainMarch march_a =
+      plain_march_begin(origin, a.dir, a.marching, a.t_start, a.t_end, camera_limits(values, &params, &a, &record));
   /* Past the chunk b has no lane marching, and its loop never runs. */
-  PlainMarch march_b = plain_march_begin(origin, b.dir, b.marching, b.t_start, b.t_end, camera_limits(values, &params, &b, &record));
+  PlainMarch march_b =
+      plain_march_begin(origin, b.dir, b.marching, b.t_start, b.t_end, camera_limits(values, &params, &b, &record));
   march_plain_pair(&march_a, &march_b);
   const MarchResult ma = plain_march_end(&march_a);
   finish_packet(values, &a, &ma, &params, out, lights);
@@ -509,7 +527,8 @@ __kernel void march(const MarchParams params, __global float* out, __global cons
     finish_packet(values, &b, &mb, &params, out, lights);
   }
 #else
-  const MarchResult m = MARCH(origin, a.dir, a.marching, a.t_start, a.t_end, camera_limits(values, &params, &a, &record));
+  const MarchResult m =
+      MARCH(origin, a.dir, a.marching, a.t_start, a.t_end, camera_limits(values, &params, &a, &record));
   finish_packet(values, &a, &m, &params, out, lights);
 #endif
 }

@@ -2,7 +2,8 @@
  * lane goes idle once its ray hits (distance < epsilon), passes its end or the step budget runs
  * out (both misses). The same loop serves camera rays, reflection rays and shadow rays; a shadow
  * ray also tracks Inigo Quilez's penumbra min(k h / t) (CLMARCH_SHADOW_SOFT, or
- * CLMARCH_SHADOW_SOFT_IMPROVED for his improved variant), and every ray the closest approach to the surface (for the glow of misses). */
+ * CLMARCH_SHADOW_SOFT_IMPROVED for his improved variant), and every ray the closest approach to the surface (for the
+ * glow of misses). */
 
 /* What the march of one packet found. */
 typedef struct {
@@ -67,7 +68,8 @@ SDF_INLINE void record_samples(const MarchLimits* limits, vec3v p, vint active, 
  * away, tests/stress_settings_test.cpp). The double reference needs no floor; `clmarch check`
  * allows for it. Do not remove it. */
 SDF_INLINE vfloat hit_threshold(const MarchLimits* limits, vfloat t) {
-  const vfloat base = limits->hit_cone_slope > 0.0f ? fmax(limits->hit_cone_slope * t, limits->epsilon) : (vfloat)(limits->epsilon);
+  const vfloat base =
+      limits->hit_cone_slope > 0.0f ? fmax(limits->hit_cone_slope * t, limits->epsilon) : (vfloat)(limits->epsilon);
   return fmax(base, REAL_EPSILON * t);
 }
 
@@ -104,13 +106,14 @@ SDF_INLINE void clip_to_slab(vfloat low, vfloat high, vfloat dir, vfloat* near, 
  * MarchParams holds of the scene's bounds: the sphere (bounds) and, with_box, the box (box_low,
  * box_high), as clip_to_sphere does. The CPU reference clips camera rays the same way
  * (host/reference/reference_renderer.cpp), so their steps agree. */
-SDF_INLINE void clip_to_scene_bounds(const MarchParams* params, vec3v relative_origin, vec3v dir, int with_box, vint* marching,
-                                     vfloat* t_start, vfloat* t_end) {
+SDF_INLINE void clip_to_scene_bounds(const MarchParams* params, vec3v relative_origin, vec3v dir, int with_box,
+                                     vint* marching, vfloat* t_start, vfloat* t_end) {
   if (params->bounds.w > 0.0f) {
     clip_to_sphere(v3_add(relative_origin, v3_from(params->bounds)), params->bounds.w, dir, marching, t_start, t_end);
   }
   if (with_box && params->box_low.w > 0.0f) {
-    const vec3v low = v3_sub(v3_from(params->box_low), relative_origin), high = v3_sub(v3_from(params->box_high), relative_origin);
+    const vec3v low = v3_sub(v3_from(params->box_low), relative_origin),
+                high = v3_sub(v3_from(params->box_high), relative_origin);
     vfloat near = (vfloat)(-INFINITY), far = (vfloat)(INFINITY);
     clip_to_slab(low.x, high.x, dir.x, &near, &far);
     clip_to_slab(low.y, high.y, dir.y, &near, &far);
@@ -156,14 +159,15 @@ typedef struct {
   MarchResult m;
   vec3v origin, dir;
   vfloat t_end;
-  vint active;    /* lanes still marching */
-  vint relaxing;  /* lanes still stepping over-relaxed */
-  vfloat safe;    /* where plain sphere tracing would be: the fall-back of a relaxed step */
+  vint active;     /* lanes still marching */
+  vint relaxing;   /* lanes still stepping over-relaxed */
+  vfloat safe;     /* where plain sphere tracing would be: the fall-back of a relaxed step */
   vfloat previous; /* the last sample's distance */
   MarchLimits limits;
 } PlainMarch;
 
-SDF_INLINE PlainMarch plain_march_begin(vec3v origin, vec3v dir, vint live, vfloat t_start, vfloat t_end, MarchLimits limits) {
+SDF_INLINE PlainMarch plain_march_begin(vec3v origin, vec3v dir, vint live, vfloat t_start, vfloat t_end,
+                                        MarchLimits limits) {
   PlainMarch s;
   s.m = march_result_init(t_start);
   s.origin = origin;
@@ -225,7 +229,8 @@ SDF_INLINE MarchResult plain_march_end(PlainMarch* s) {
 
 /* Marches one packet: origin + t * dir for t from t_start until every lane hit, passed t_end or
  * used max_steps. */
-SDF_INLINE MarchResult march_plain(vec3v origin, vec3v dir, vint live, vfloat t_start, vfloat t_end, MarchLimits limits) {
+SDF_INLINE MarchResult march_plain(vec3v origin, vec3v dir, vint live, vfloat t_start, vfloat t_end,
+                                   MarchLimits limits) {
   PlainMarch s = plain_march_begin(origin, dir, live, t_start, t_end, limits);
   for (int step = 0; step < limits.max_steps && LANE_ANY(s.active); ++step) plain_march_step(&s);
   return plain_march_end(&s);
@@ -246,5 +251,6 @@ SDF_INLINE void march_plain_pair(PlainMarch* a, PlainMarch* b) {
 
 #if !defined(TILING_CELLS)
 /* One march, whichever tiling the scene has: origin + t * dir, origin in map()'s frame. */
-#define MARCH(origin, dir, live, t_start, t_end, limits) march_plain((origin), (dir), (live), (t_start), (t_end), (limits))
+#define MARCH(origin, dir, live, t_start, t_end, limits) \
+  march_plain((origin), (dir), (live), (t_start), (t_end), (limits))
 #endif

@@ -47,7 +47,8 @@ typedef struct {
  * (Inigo Quilez's noised). The lattice cell of (x, z) is moved by (shift_x, shift_z) cells. */
 SDF_INLINE noise_sample value_noise(vfloat x, vfloat z, uint seed, uint shift_x, uint shift_z) {
   const vfloat cell_x = floor(x), cell_z = floor(z);
-  const vuint ix = NOISE_AS_VUINT(NOISE_LATTICE(cell_x)) + shift_x, iz = NOISE_AS_VUINT(NOISE_LATTICE(cell_z)) + shift_z;
+  const vuint ix = NOISE_AS_VUINT(NOISE_LATTICE(cell_x)) + shift_x,
+              iz = NOISE_AS_VUINT(NOISE_LATTICE(cell_z)) + shift_z;
   const vfloat fx = x - cell_x, fz = z - cell_z;
   const vfloat ux = fx * fx * (3.0f - 2.0f * fx), uz = fz * fz * (3.0f - 2.0f * fz);
   const vfloat dux = 6.0f * fx * (1.0f - fx), duz = 6.0f * fz * (1.0f - fz);
@@ -75,7 +76,8 @@ SDF_INLINE vfloat perlin_corner(vuint ix, vuint iz, uint seed, vfloat fx, vfloat
  * lattice cell of (x, z) is moved by (shift_x, shift_z) cells. */
 SDF_INLINE vfloat perlin_noise(vfloat x, vfloat z, uint seed, uint shift_x, uint shift_z) {
   const vfloat cell_x = floor(x), cell_z = floor(z);
-  const vuint ix = NOISE_AS_VUINT(NOISE_LATTICE(cell_x)) + shift_x, iz = NOISE_AS_VUINT(NOISE_LATTICE(cell_z)) + shift_z;
+  const vuint ix = NOISE_AS_VUINT(NOISE_LATTICE(cell_x)) + shift_x,
+              iz = NOISE_AS_VUINT(NOISE_LATTICE(cell_z)) + shift_z;
   const vfloat fx = x - cell_x, fz = z - cell_z;
   const vfloat ux = fx * fx * fx * (fx * (6.0f * fx - 15.0f) + 10.0f);
   const vfloat uz = fz * fz * fz * (fz * (6.0f * fz - 15.0f) + 10.0f);
@@ -119,8 +121,8 @@ SDF_INLINE NoiseAt noise_at(vfloat x, vfloat z, const float4* phases, int octave
 
 /* Height bound: p.y minus the terrain height (a bound only with a step factor below
  * 1 / sqrt(1 + slope^2)). Fractal sum of value noise: weights 0.5^i, frequencies 2^i. */
-SDF_INLINE vfloat sd_terrain_value_phased(vec3v p, float height, float amplitude, float frequency, int octaves, uint seed,
-                                          const float4* phases) {
+SDF_INLINE vfloat sd_terrain_value_phased(vec3v p, float height, float amplitude, float frequency, int octaves,
+                                          uint seed, const float4* phases) {
   vfloat x = p.x * frequency, z = p.z * frequency;
   vfloat sum = (vfloat)(0.0f);
   float weight = 1.0f;
@@ -134,8 +136,8 @@ SDF_INLINE vfloat sd_terrain_value_phased(vec3v p, float height, float amplitude
 }
 
 /* As sd_terrain_value, with gradient (Perlin) noise. */
-SDF_INLINE vfloat sd_terrain_perlin_phased(vec3v p, float height, float amplitude, float frequency, int octaves, uint seed,
-                                           const float4* phases) {
+SDF_INLINE vfloat sd_terrain_perlin_phased(vec3v p, float height, float amplitude, float frequency, int octaves,
+                                           uint seed, const float4* phases) {
   vfloat x = p.x * frequency, z = p.z * frequency;
   vfloat sum = (vfloat)(0.0f);
   float weight = 1.0f;
@@ -176,6 +178,7 @@ SDF_INLINE vfloat sd_terrain_value(vec3v p, float height, float amplitude, float
 SDF_INLINE vfloat sd_terrain_perlin(vec3v p, float height, float amplitude, float frequency, int octaves, uint seed) {
   return sd_terrain_perlin_phased(p, height, amplitude, frequency, octaves, seed, 0);
 }
-SDF_INLINE vfloat sd_terrain_derivative(vec3v p, float height, float amplitude, float frequency, int octaves, uint seed) {
+SDF_INLINE vfloat sd_terrain_derivative(vec3v p, float height, float amplitude, float frequency, int octaves,
+                                        uint seed) {
   return sd_terrain_derivative_phased(p, height, amplitude, frequency, octaves, seed, 0);
 }

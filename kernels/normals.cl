@@ -37,6 +37,7 @@ SDF_INLINE vec3v estimate_normal(SceneValues values, vec3v p, float h) {
   vfloat dx = field(values, v3(high.x, p.y, p.z)) - field(values, v3(low.x, p.y, p.z));
   vfloat dy = field(values, v3(p.x, high.y, p.z)) - field(values, v3(p.x, low.y, p.z));
   vfloat dz = field(values, v3(p.x, p.y, high.z)) - field(values, v3(p.x, p.y, low.z));
-  return v3_normalize(v3(dx / tap_spacing(high.x, low.x), dy / tap_spacing(high.y, low.y), dz / tap_spacing(high.z, low.z)));
+  return v3_normalize(
+      v3(dx / tap_spacing(high.x, low.x), dy / tap_spacing(high.y, low.y), dz / tap_spacing(high.z, low.z)));
 }
 #endif

@@ -28,7 +28,8 @@ SDF_INLINE vfloat grid_cell_index(SceneValues values, vec3v p) {
   const vfloat x = floor((p.x - GRID_WORD(CLMARCH_GRID_ORIGIN)) * inverse_cell);
   const vfloat y = floor((p.y - GRID_WORD(CLMARCH_GRID_ORIGIN + 1)) * inverse_cell);
   const vfloat z = floor((p.z - GRID_WORD(CLMARCH_GRID_ORIGIN + 2)) * inverse_cell);
-  const float nx = GRID_WORD(CLMARCH_GRID_DIMS), ny = GRID_WORD(CLMARCH_GRID_DIMS + 1), nz = GRID_WORD(CLMARCH_GRID_DIMS + 2);
+  const float nx = GRID_WORD(CLMARCH_GRID_DIMS), ny = GRID_WORD(CLMARCH_GRID_DIMS + 1),
+              nz = GRID_WORD(CLMARCH_GRID_DIMS + 2);
   const vint inside = MASK(x >= 0.0f) & MASK(x < nx) & MASK(y >= 0.0f) & MASK(y < ny) & MASK(z >= 0.0f) & MASK(z < nz);
   return select((vfloat)(-1.0f), x + nx * (y + ny * z), inside);
 }
@@ -41,8 +42,8 @@ SDF_INLINE vfloat grid_outside_bound(SceneValues values, vec3v p) {
                          (vfloat)(GRID_WORD(CLMARCH_GRID_ORIGIN + 2)));
   const vec3v upper = v3((vfloat)(GRID_WORD(CLMARCH_GRID_UPPER)), (vfloat)(GRID_WORD(CLMARCH_GRID_UPPER + 1)),
                          (vfloat)(GRID_WORD(CLMARCH_GRID_UPPER + 2)));
-  const vec3v outside = v3_max0(v3(fmax(lower.x - p.x, p.x - upper.x), fmax(lower.y - p.y, p.y - upper.y),
-                                   fmax(lower.z - p.z, p.z - upper.z)));
+  const vec3v outside = v3_max0(
+      v3(fmax(lower.x - p.x, p.x - upper.x), fmax(lower.y - p.y, p.y - upper.y), fmax(lower.z - p.z, p.z - upper.z)));
   return (v3_length(outside) + GRID_WORD(CLMARCH_GRID_OUTSIDE)) * GRID_WORD(CLMARCH_GRID_OUTSIDE + 1) -
          GRID_WORD(CLMARCH_GRID_OUTSIDE + 2);
 }
@@ -65,7 +66,8 @@ SDF_INLINE vfloat grid_cell_color(SceneValues values, int cell, vec3v p, vec3v* 
   for (int i = first + 1; i < end; ++i) {
     vec3v next_albedo, next_surface, next_emission;
     vfloat next_id;
-    const vfloat next = grid_operand_color(values, GRID_INT(list + i), p, &next_albedo, &next_surface, &next_emission, &next_id);
+    const vfloat next =
+        grid_operand_color(values, GRID_INT(list + i), p, &next_albedo, &next_surface, &next_emission, &next_id);
     *albedo = GRID_BLEND(*albedo, next_albedo, d, next);
     *surface = GRID_BLEND(*surface, next_surface, d, next);
     *emission = GRID_BLEND(*emission, next_emission, d, next);
@@ -91,7 +93,8 @@ GRID_ENTRY vfloat grid_distance(SceneValues values, vec3v p) {
   return d;
 }
 
-GRID_ENTRY vfloat grid_distance_color(SceneValues values, vec3v p, vec3v* albedo, vec3v* surface, vec3v* emission, vfloat* id) {
+GRID_ENTRY vfloat grid_distance_color(SceneValues values, vec3v p, vec3v* albedo, vec3v* surface, vec3v* emission,
+                                      vfloat* id) {
   const vfloat cell = grid_cell_index(values, p);
   vfloat d = grid_outside_bound(values, p);
   *albedo = v3_splat(0.0f);

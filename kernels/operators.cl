@@ -7,9 +7,15 @@ SDF_INLINE vfloat op_intersection(vfloat a, vfloat b) { return fmax(a, b); }
 /* a minus b. */
 SDF_INLINE vfloat op_subtraction(vfloat a, vfloat b) { return fmax(a, -b); }
 
-SDF_INLINE vfloat smooth_union_blend(vfloat a, vfloat b, float k) { return clamp(0.5f + 0.5f * (b - a) / k, 0.0f, 1.0f); }
-SDF_INLINE vfloat smooth_intersection_blend(vfloat a, vfloat b, float k) { return clamp(0.5f - 0.5f * (b - a) / k, 0.0f, 1.0f); }
-SDF_INLINE vfloat smooth_subtraction_blend(vfloat a, vfloat b, float k) { return clamp(0.5f - 0.5f * (a + b) / k, 0.0f, 1.0f); }
+SDF_INLINE vfloat smooth_union_blend(vfloat a, vfloat b, float k) {
+  return clamp(0.5f + 0.5f * (b - a) / k, 0.0f, 1.0f);
+}
+SDF_INLINE vfloat smooth_intersection_blend(vfloat a, vfloat b, float k) {
+  return clamp(0.5f - 0.5f * (b - a) / k, 0.0f, 1.0f);
+}
+SDF_INLINE vfloat smooth_subtraction_blend(vfloat a, vfloat b, float k) {
+  return clamp(0.5f - 0.5f * (a + b) / k, 0.0f, 1.0f);
+}
 
 /* The id channel's number where a smooth operator blends two operands: y's where the weight h
  * of y is at least a half, else x's (numbers are not mixed). */
@@ -46,7 +52,8 @@ SDF_INLINE vfloat op_repeat_axis(vfloat x, float period) { return x - period * f
  * (host/codegen/sdf_codegen.cpp), so that far from the origin the texture keeps the precision of
  * the small p of map()'s frame rather than float's spacing of the absolute point. */
 SDF_INLINE vfloat displacement(vec3v p, float4 phase, float amplitude, float frequency) {
-  return amplitude * vsin(frequency * p.x + phase.x) * vsin(frequency * p.y + phase.y) * vsin(frequency * p.z + phase.z);
+  return amplitude * vsin(frequency * p.x + phase.x) * vsin(frequency * p.y + phase.y) *
+         vsin(frequency * p.z + phase.z);
 }
 
 /* Polar repetition about the y axis (Inigo Quilez's and Mercury's pModPolar): p turned by the

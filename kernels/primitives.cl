@@ -16,8 +16,7 @@ SDF_INLINE vfloat sd_box(vec3v p, float4 center, float4 half_size) {
 
 /* Exact; half_size includes the rounding radius. */
 SDF_INLINE vfloat sd_round_box(vec3v p, float4 center, float4 half_size, float radius) {
-  vec3v q = v3_sub(v3_abs(v3_sub(p, v3_from(center))),
-                   v3_from(half_size - radius));
+  vec3v q = v3_sub(v3_abs(v3_sub(p, v3_from(center))), v3_from(half_size - radius));
   return v3_length(v3_max0(q)) + fmin(v3_max_component(q), 0.0f) - radius;
 }
 
@@ -272,9 +271,7 @@ SDF_INLINE vfloat edge_distance2(vec3v pa, float4 e) {
 
 /* 1 where the point pa (relative to an edge's start) is inside the edge e of a face of normal
  * n, -1 outside, 0 on its line. */
-SDF_INLINE vfloat edge_side(vec3v pa, float4 e, float4 n) {
-  return sign(v3_dot(v3_from(cross(e, n)), pa));
-}
+SDF_INLINE vfloat edge_side(vec3v pa, float4 e, float4 n) { return sign(v3_dot(v3_from(cross(e, n)), pa)); }
 
 /* Exact (Inigo Quilez's udTriangle, thickened): the plane's distance where p projects inside
  * all three edges, else the nearest edge's. */
@@ -304,7 +301,8 @@ SDF_INLINE vfloat sd_quad(vec3v p, float4 a, float4 b, float4 c, float4 d, float
   vec3v pc = v3_sub(p, v3_from(c));
   vec3v pd = v3_sub(p, v3_from(d));
   vfloat sides = edge_side(pa, ba, n) + edge_side(pb, cb, n) + edge_side(pc, dc, n) + edge_side(pd, ad, n);
-  vfloat edges = fmin(fmin(edge_distance2(pa, ba), edge_distance2(pb, cb)), fmin(edge_distance2(pc, dc), edge_distance2(pd, ad)));
+  vfloat edges =
+      fmin(fmin(edge_distance2(pa, ba), edge_distance2(pb, cb)), fmin(edge_distance2(pc, dc), edge_distance2(pd, ad)));
   vfloat plane = v3_dot(v3_from(n), pa);
   return vsqrt(select(plane * plane / dot(n.xyz, n.xyz), edges, MASK(sides < 3.0f))) - thickness;
 }

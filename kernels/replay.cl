@@ -12,7 +12,8 @@ __kernel void replay_samples(__global const float* samples, const int count, con
                              __global float* sums, __global int* evaluations, SceneValues values) {
   const int base = (int)get_global_id(0) * LANES;
   const vint live = MASK(base + LANE_IOTA < count);
-  const vec3v p = v3(LOAD_LANES(base, samples), LOAD_LANES(base, samples + stride), LOAD_LANES(base, samples + 2 * stride));
+  const vec3v p =
+      v3(LOAD_LANES(base, samples), LOAD_LANES(base, samples + stride), LOAD_LANES(base, samples + 2 * stride));
   vfloat sum = (vfloat)(0.0f);
   vint counted = (vint)(0);
   for (int k = 0; k < repeats; ++k) {

@@ -1,12 +1,11 @@
 /* Direct lighting of a surface point: Lambert diffuse with Phong or Blinn-Phong specular, or a
  * PBR material (Cook-Torrance: GGX distribution, Smith-Schlick geometry, Fresnel-Schlick) with
- * metallic and roughness; the point, directional and spot lights of a global buffer (as many as 1024 pass constant memory), with
- * falloff and range (SHAPED_LIGHTS); hard or soft shadows by marching towards each light that
- * casts them (SHADOW_MODE); ambient occlusion by marching along the normal
- * (AMBIENT_OCCLUSION) and from the step count (STEP_AO). The numbers are MarchParams.shading's
- * (kernels/device_types.h). Light positions are relative to the
- * camera, so lighting keeps its precision far from the origin; shadow and occlusion rays run in
- * the frame of map(), like the camera ray. */
+ * metallic and roughness; the point, directional and spot lights of a global buffer (as many as 1024 pass constant
+ * memory), with falloff and range (SHAPED_LIGHTS); hard or soft shadows by marching towards each light that casts them
+ * (SHADOW_MODE); ambient occlusion by marching along the normal (AMBIENT_OCCLUSION) and from the step count (STEP_AO).
+ * The numbers are MarchParams.shading's (kernels/device_types.h). Light positions are relative to the camera, so
+ * lighting keeps its precision far from the origin; shadow and occlusion rays run in the frame of map(), like the
+ * camera ray. */
 
 /* The surface where a ray hit. */
 typedef struct {
@@ -14,11 +13,11 @@ typedef struct {
   vec3v relative; /* relative to the camera, for the lights */
   vec3v normal;
   vec3v albedo;
-  vec3v surface;  /* PBR: x = metallic, y = roughness; the other models: x = specular, y = shininess; z = reflectivity */
+  vec3v surface; /* PBR: x = metallic, y = roughness; the other models: x = specular, y = shininess; z = reflectivity */
   vec3v emission; /* light the surface emits, added unlit (EMISSION) */
   vfloat steps;
 #if defined(WRITE_IDS)
-  vfloat id;      /* the number of the primitive hit */
+  vfloat id; /* the number of the primitive hit */
 #endif
 } Hit;
 
@@ -59,8 +58,8 @@ SDF_INLINE vfloat exit_slope(const MarchParams* params, vec3v relative, vec3v l)
  * its later samples could still lower its penumbra P: past t_exit, k h / t >= k c (t - t_exit) / t
  * (c: exit_slope), which reaches P at t = t_exit k c / (k c - P). It resumes at m.t, the sample the
  * cut ray did not take, so its samples, and its penumbra, are the uncut ray's. */
-SDF_INLINE MarchResult march_past_bounds(MarchResult m, vec3v origin, vec3v relative, vec3v l, vint live, vfloat t_exit, vfloat t_end,
-                                         const MarchParams* params, MarchLimits limits) {
+SDF_INLINE MarchResult march_past_bounds(MarchResult m, vec3v origin, vec3v relative, vec3v l, vint live, vfloat t_exit,
+                                         vfloat t_end, const MarchParams* params, MarchLimits limits) {
   const vfloat kc = limits.soft_k * exit_slope(params, relative, l);
   const vfloat t_stop = fmin(select(t_end, t_exit * kc / (kc - m.penumbra), MASK(kc > m.penumbra)), t_end);
   const float budget = (float)limits.max_steps;
@@ -85,10 +84,11 @@ SDF_INLINE MarchResult march_past_bounds(MarchResult m, vec3v origin, vec3v rela
  * rays march inside the scene's bounds only: past them the light is unoccluded. Soft ones go on
  * past them as far as their penumbra could still fall (march_past_bounds); the improved variant's
  * estimate has no such floor, and its rays march to t_end. */
-SDF_INLINE vfloat shadow_factor(SceneValues values, const MarchParams* params, vec3v p, vec3v relative, vec3v n, vec3v l, vfloat t_end, vint live) {
+SDF_INLINE vfloat shadow_factor(SceneValues values, const MarchParams* params, vec3v p, vec3v relative, vec3v n,
+                                vec3v l, vfloat t_end, vint live) {
   const ShadingParams* shading = &params->shading;
-  MarchLimits limits = {values, shading->shadow_max_steps, params->epsilon, SHADOW_MODE, shading->shadow_k, 1.0f, 0.0f,
-                        params->cell_bounds};
+  MarchLimits limits = {values, shading->shadow_max_steps, params->epsilon, SHADOW_MODE, shading->shadow_k, 1.0f,
+                        0.0f,   params->cell_bounds};
   /* Leave the surface along its normal first so the ray does not hit its own start. */
   const vec3v origin = v3_add(p, v3_scale(n, params->epsilon * 4.0f));
   vfloat t_start = (vfloat)(shading->shadow_min_t), t_exit = t_end;
@@ -180,7 +180,8 @@ SDF_INLINE vfloat specular_term(vfloat shininess, vec3v n, vec3v l, vec3v v) {
 
 /* Lambert, and the specular model where n.l > 0, for one light; the hit's surface holds its
  * specular weight and shininess. */
-SDF_INLINE Reflection classic_light(const ShadingParams* shading, vec3v n, vec3v l, vec3v v, vec3v albedo, vec3v surface) {
+SDF_INLINE Reflection classic_light(const ShadingParams* shading, vec3v n, vec3v l, vec3v v, vec3v albedo,
+                                    vec3v surface) {
   const vfloat n_dot_l = fmax(v3_dot(n, l), 0.0f);
   const vfloat specular = select((vfloat)(0.0f), specular_term(surface.y, n, l, v), MASK(n_dot_l > 0.0f));
   const vfloat white = surface.x * specular;
@@ -256,7 +257,8 @@ SDF_INLINE LightTerms light_terms(SceneValues values, const MarchParams* params,
     const bool positional = lights[k].kind != CLMARCH_LIGHT_DIRECTIONAL;
     const vec3v l = positional ? point_light_direction(hit->relative, where) : v3_from(where);
     /* How far the light is; directional lights' shadow rays end at shadow_max_t. */
-    const vfloat distance = positional ? v3_length(v3_sub(v3_from(where), hit->relative)) : (vfloat)(shading->shadow_max_t);
+    const vfloat distance =
+        positional ? v3_length(v3_sub(v3_from(where), hit->relative)) : (vfloat)(shading->shadow_max_t);
 #if defined(SHADING_MODEL_PBR)
     const Reflection lit = pbr_light(hit->normal, l, view, hit->albedo, hit->surface.x, hit->surface.y);
 #else

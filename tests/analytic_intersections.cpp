@@ -66,8 +66,10 @@ std::vector<double> roots_in(const Poly& c, double lo, double hi) {
   for (std::size_t i = 0; i + 1 < knots.size(); ++i) {
     const double a = knots[i], b = knots[i + 1];
     const double fa = evaluate(c, a), fb = evaluate(c, b);
-    if (fa == 0.0) roots.push_back(a);
-    else if (fb != 0.0 && (fa < 0.0) != (fb < 0.0)) roots.push_back(bisect(c, a, b, fa));
+    if (fa == 0.0)
+      roots.push_back(a);
+    else if (fb != 0.0 && (fa < 0.0) != (fb < 0.0))
+      roots.push_back(bisect(c, a, b, fa));
   }
   if (evaluate(c, hi) == 0.0) roots.push_back(hi);
   roots.erase(std::unique(roots.begin(), roots.end()), roots.end());

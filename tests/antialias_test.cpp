@@ -26,10 +26,12 @@ using testing::scene_from_yaml;
 /// The camera looks down -z from z = 5 at a 32 x 32 image (fov 45).
 std::string high_contrast_scene(const std::string& sdf, int samples, bool adaptive) {
   return "camera: {position: [0, 0, 5], look_at: [0, 0, 0], fov: 45}\n"
-         "render: {width: 32, height: 32, samples: " + std::to_string(samples) +
-         ", adaptive: " + (adaptive ? "true" : "false") + "}\n"
+         "render: {width: 32, height: 32, samples: " +
+         std::to_string(samples) + ", adaptive: " + (adaptive ? "true" : "false") +
+         "}\n"
          "shading: {ambient: 1, background: 0}\n"
-         "sdf: " + sdf + "\n";
+         "sdf: " +
+         sdf + "\n";
 }
 
 /// Image-plane units per pixel of the 32 x 32, fov 45 camera: 2 tan(22.5 deg) / 32.
@@ -42,9 +44,9 @@ double exact_coverage(int i, int j, const std::function<std::pair<double, double
   const int steps = 4000;
   double area = 0.0;
   for (int k = 0; k < steps; ++k) {
-    const double px = i + (k + 0.5) / steps;                       // pixel units, from the left edge
-    const double x = (px - 16.0) * plane_per_pixel();              // image plane, right
-    const auto [low, high] = column(x);                            // image plane, up
+    const double px = i + (k + 0.5) / steps;           // pixel units, from the left edge
+    const double x = (px - 16.0) * plane_per_pixel();  // image plane, right
+    const auto [low, high] = column(x);                // image plane, up
     // Pixel row j spans plane y from (16 - j - 1) to (16 - j) pixels.
     const double top = (16.0 - j) * plane_per_pixel(), bottom = (15.0 - j) * plane_per_pixel();
     area += std::max(0.0, std::min(high, top) - std::max(low, bottom)) / plane_per_pixel();
@@ -224,7 +226,8 @@ TEST(Antialias, SamplesChannelCountsTheRaysAndAdaptiveSpendsThemAtEdges) {
 }
 
 TEST(Antialias, ChunksAndLanesRefineTheSamePixels) {
-  const Scene scene = scene_from_yaml(high_contrast_scene("{box: {half_size: [0.8, 0.8, 0.8], rotate: [0, 0, 30]}}", 16, true));
+  const Scene scene =
+      scene_from_yaml(high_contrast_scene("{box: {half_size: [0.8, 0.8, 0.8], rotate: [0, 0, 30]}}", 16, true));
   const FrameBuffers whole = render_opencl(scene, {}).buffers;
   OpenClOptions chunked;
   chunked.max_chunk_pixels = 32 * 8;  // four centre dispatches of 8 rows; one refining pass over them all
@@ -247,7 +250,8 @@ TEST(Antialias, ChunksAndLanesRefineTheSamePixels) {
 // their pixels as the reference's do, with 16 lanes a packet and with one.
 TEST(Antialias, RefiningInSeveralDispatchesMatchesTheReference) {
   std::string yaml = high_contrast_scene("{box: {half_size: [0.8, 0.8, 0.8], rotate: [0, 0, 30]}}", 16, false);
-  yaml.replace(yaml.find("width: 32, height: 32"), std::string("width: 32, height: 32").size(), "width: 200, height: 180");
+  yaml.replace(yaml.find("width: 32, height: 32"), std::string("width: 32, height: 32").size(),
+               "width: 200, height: 180");
   const Scene scene = scene_from_yaml(yaml);
   const FrameBuffers reference = render_reference(scene);
   for (int lanes : {16, 1}) {
@@ -275,7 +279,8 @@ TEST(Antialias, OneSampleProgramHasNoAntialiasingCode) {
   EXPECT_EQ(generate_kernel_source(scene, options).find("#define ANTIALIAS"), std::string::npos);
   scene.render.samples = 4;
   EXPECT_NE(generate_kernel_source(scene, options).find("#define ANTIALIAS"), std::string::npos);
-  EXPECT_EQ(generate_kernel_source(scene, KernelOptions(KernelPurpose::Ceiling, 16)).find("#define ANTIALIAS"), std::string::npos);
+  EXPECT_EQ(generate_kernel_source(scene, KernelOptions(KernelPurpose::Ceiling, 16)).find("#define ANTIALIAS"),
+            std::string::npos);
 }
 
 TEST(Antialias, BadSamplesAndAdaptiveAreErrorsAtTheirPlace) {
@@ -297,12 +302,13 @@ TEST(Antialias, SamplesOptionOverridesTheSceneAndRejectsBadCounts) {
   testing::TempDir dir;
   const std::string scene = testing::source_path("scenes/torus.yaml").string();
   for (const char* bad : {"0", "-1", "2.5", "1025", "x"}) {
-    const auto result = testing::run_clmarch({"render", scene, "--size", "16x16", "--samples", bad, "-o", (dir / "a.png").string()});
+    const auto result =
+        testing::run_clmarch({"render", scene, "--size", "16x16", "--samples", bad, "-o", (dir / "a.png").string()});
     EXPECT_EQ(result.exit_code, 2) << bad << ": " << result.err;
     EXPECT_NE(result.err.find("--samples"), std::string::npos) << result.err;
   }
-  const auto ok = testing::run_clmarch({"render", scene, "--size", "16x16", "--samples", "4", "-o", (dir / "a.png").string(),
-                                        "--set", "shading.view=samples"});
+  const auto ok = testing::run_clmarch({"render", scene, "--size", "16x16", "--samples", "4", "-o",
+                                        (dir / "a.png").string(), "--set", "shading.view=samples"});
   ASSERT_EQ(ok.exit_code, 0) << ok.err;
 }
 

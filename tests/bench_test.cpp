@@ -50,9 +50,9 @@ TEST(Bench, PinsPoclThreadsUnlessTheEnvironmentChooses) {
 TEST(Bench, LaneUseCountsIdleLanesOfEachTile) {
   // A 5 x 5 image in 4 x 4 tiles (16 lanes): four tiles, 25 pixels inside the image.
   std::vector<float> steps(25, 0.0f);
-  steps[0] = 4.0f;       // tile (0, 0): one ray of 4 steps, 16 lanes x 4 iterations
-  steps[4] = 2.0f;       // tile (1, 0): a 1-wide strip, 16 x 2
-  steps[24] = 1.0f;      // tile (1, 1): the corner pixel, 16 x 1
+  steps[0] = 4.0f;   // tile (0, 0): one ray of 4 steps, 16 lanes x 4 iterations
+  steps[4] = 2.0f;   // tile (1, 0): a 1-wide strip, 16 x 2
+  steps[24] = 1.0f;  // tile (1, 1): the corner pixel, 16 x 1
   EXPECT_DOUBLE_EQ(lane_use(steps, 5, 5, 16), 7.0 / (16.0 * 7.0));
   EXPECT_DOUBLE_EQ(lane_use(steps, 5, 5, 1), 1.0);
   EXPECT_DOUBLE_EQ(lane_use(std::vector<float>(25, 3.0f), 5, 5, 4), 75.0 / (4.0 * 3.0 * 9.0));
@@ -88,7 +88,8 @@ TEST(Bench, CeilingReplaysExactlyTheMarchsPoints) {
     EXPECT_LT(capped.samples(), render.stats.steps);
     std::uint64_t kept = 0;
     const std::vector<float>& steps = render.buffers.plane(Channel::Steps);
-    for (std::size_t pixel = 0; pixel < steps.size(); pixel += capped.pixel_stride()) kept += static_cast<std::uint64_t>(steps[pixel]);
+    for (std::size_t pixel = 0; pixel < steps.size(); pixel += capped.pixel_stride())
+      kept += static_cast<std::uint64_t>(steps[pixel]);
     EXPECT_EQ(capped.samples(), kept);
     capped.run_ms();
     EXPECT_EQ(capped.counted_evaluations(), capped.points());
@@ -97,7 +98,8 @@ TEST(Bench, CeilingReplaysExactlyTheMarchsPoints) {
     const CeilingKernel shared(scene, options, 1, most);
     const double share = static_cast<double>(render.stats.steps) / static_cast<double>(shared.pixel_stride());
     EXPECT_LE(share, static_cast<double>(most)) << "stride " << shared.pixel_stride();
-    EXPECT_GT(static_cast<double>(render.stats.steps) / static_cast<double>(shared.pixel_stride() - 1), static_cast<double>(most));
+    EXPECT_GT(static_cast<double>(render.stats.steps) / static_cast<double>(shared.pixel_stride() - 1),
+              static_cast<double>(most));
   }
 }
 
@@ -128,7 +130,8 @@ TEST(Bench, RecordedPointsAreTheMarchsSamples) {
         if (k == 0) {
           EXPECT_NEAR(glm::distance(points[at], glm::vec3(0.0f, 0.0f, 5.0f)), 0.0, kFloatSteps) << "pixel " << pixel;
         } else {
-          EXPECT_NEAR(glm::distance(points[at], points[at - 1]), points[at - 1].z, kFloatSteps) << "pixel " << pixel << " k " << k;
+          EXPECT_NEAR(glm::distance(points[at], points[at - 1]), points[at - 1].z, kFloatSteps)
+              << "pixel " << pixel << " k " << k;
         }
       }
     }
@@ -150,14 +153,36 @@ TEST(Bench, OutputFloorStoresEveryFloatOfEachRun) {
 }
 
 TEST(Bench, JsonHasEveryFigureAndTheyAreConsistent) {
-  const testing::CommandResult r =
-      run_clmarch({"bench", testing::source_path("scenes/torus.yaml").string(), "--size", "64x36", "--repeat", "2", "--json"});
+  const testing::CommandResult r = run_clmarch(
+      {"bench", testing::source_path("scenes/torus.yaml").string(), "--size", "64x36", "--repeat", "2", "--json"});
   ASSERT_EQ(r.exit_code, kExitOk) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
-  for (const char* key : {"scene", "device", "lanes", "precision", "width", "height", "repeat", "build_ms", "kernel_ms", "depth_kernel_ms",
-                          "rays_per_s", "steps_per_pixel", "evals_per_s", "ceiling_evals_per_s", "ceiling_kernel_ms",
-                          "ceiling_points", "ceiling_samples", "ceiling_pixel_stride", "lane_use", "ceiling_ratio", "depth_to_shaded_ratio", "reference_ms",
-                          "opencl_to_reference_ratio", "output_floor_ms", "output_floor_share", "output_floor_planes"}) {
+  for (const char* key : {"scene",
+                          "device",
+                          "lanes",
+                          "precision",
+                          "width",
+                          "height",
+                          "repeat",
+                          "build_ms",
+                          "kernel_ms",
+                          "depth_kernel_ms",
+                          "rays_per_s",
+                          "steps_per_pixel",
+                          "evals_per_s",
+                          "ceiling_evals_per_s",
+                          "ceiling_kernel_ms",
+                          "ceiling_points",
+                          "ceiling_samples",
+                          "ceiling_pixel_stride",
+                          "lane_use",
+                          "ceiling_ratio",
+                          "depth_to_shaded_ratio",
+                          "reference_ms",
+                          "opencl_to_reference_ratio",
+                          "output_floor_ms",
+                          "output_floor_share",
+                          "output_floor_planes"}) {
     EXPECT_TRUE(j.contains(key)) << key << " missing in " << r.out;
   }
   const double pixels = 64.0 * 36.0;
@@ -176,7 +201,8 @@ TEST(Bench, JsonHasEveryFigureAndTheyAreConsistent) {
   const auto near = [](double a, double b) { return std::abs(a - b) <= kRatioTolerance * std::abs(b); };
   EXPECT_TRUE(near(j["rays_per_s"], pixels / (shaded * 1e-3))) << r.out;
   EXPECT_TRUE(near(j["evals_per_s"], j["steps_per_pixel"].get<double>() * pixels / (depth * 1e-3))) << r.out;
-  EXPECT_TRUE(near(j["ceiling_ratio"], j["evals_per_s"].get<double>() / j["ceiling_evals_per_s"].get<double>())) << r.out;
+  EXPECT_TRUE(near(j["ceiling_ratio"], j["evals_per_s"].get<double>() / j["ceiling_evals_per_s"].get<double>()))
+      << r.out;
   EXPECT_TRUE(near(j["depth_to_shaded_ratio"], depth / shaded)) << r.out;
   EXPECT_TRUE(near(j["opencl_to_reference_ratio"], shaded / reference)) << r.out;
   // The torus's depth-only program stores depth and steps.
@@ -186,8 +212,9 @@ TEST(Bench, JsonHasEveryFigureAndTheyAreConsistent) {
 
   // Steps per pixel are the march's own count, as `render --stats` reports it.
   testing::TempDir dir;
-  const testing::CommandResult stats = run_clmarch({"render", testing::source_path("scenes/torus.yaml").string(), "--size",
-                                                    "64x36", "--stats", "-q", "-o", (dir / "t.png").string()});
+  const testing::CommandResult stats =
+      run_clmarch({"render", testing::source_path("scenes/torus.yaml").string(), "--size", "64x36", "--stats", "-q",
+                   "-o", (dir / "t.png").string()});
   ASSERT_EQ(stats.exit_code, kExitOk) << stats.err;
   const double steps = nlohmann::json::parse(stats.out)["steps"];
   EXPECT_TRUE(near(j["steps_per_pixel"], steps / pixels)) << r.out;
@@ -196,10 +223,11 @@ TEST(Bench, JsonHasEveryFigureAndTheyAreConsistent) {
 // A union evaluated from its operand grid reads the grid from the values buffer: the ceiling's
 // marches and replay got none and crashed the process in grid_distance.
 TEST(Bench, CeilingOfAnOperandGridScene) {
-  std::string yaml = "camera: {position: [0, 0.5, 4], look_at: [0, 0, 0]}\nrender: {width: 40, height: 24}\nsdf:\n  union:\n";
+  std::string yaml =
+      "camera: {position: [0, 0.5, 4], look_at: [0, 0, 0]}\nrender: {width: 40, height: 24}\nsdf:\n  union:\n";
   for (int i = 0; i < 64; ++i) {
-    yaml += fmt::format("    - sphere: {{center: [{}, {}, {}], radius: 0.12}}\n", (i % 4) * 0.5 - 0.75, (i / 4 % 4) * 0.5 - 0.75,
-                        (i / 16) * 0.5 - 0.75);
+    yaml += fmt::format("    - sphere: {{center: [{}, {}, {}], radius: 0.12}}\n", (i % 4) * 0.5 - 0.75,
+                        (i / 4 % 4) * 0.5 - 0.75, (i / 16) * 0.5 - 0.75);
   }
   const Scene scene = testing::scene_from_yaml(yaml);
   ASSERT_EQ(scene.render.pruning, Pruning::Auto);
@@ -213,30 +241,34 @@ TEST(Bench, CeilingOfAnOperandGridScene) {
   EXPECT_EQ(ceiling.counted_evaluations(), ceiling.points());
   testing::TempDir dir;
   std::ofstream(dir / "grid.yaml") << yaml;
-  const testing::CommandResult bench = run_clmarch({"bench", (dir / "grid.yaml").string(), "--repeat", "1", "--json", "--no-reference"});
+  const testing::CommandResult bench =
+      run_clmarch({"bench", (dir / "grid.yaml").string(), "--repeat", "1", "--json", "--no-reference"});
   ASSERT_EQ(bench.exit_code, kExitOk) << bench.err;
   EXPECT_GT(nlohmann::json::parse(bench.out)["ceiling_samples"].get<double>(), 0.0);
 }
 
 TEST(Bench, NoReferenceAndText) {
   const std::string torus = testing::source_path("scenes/torus.yaml").string();
-  const testing::CommandResult json = run_clmarch({"bench", torus, "--size", "32x18", "--repeat", "1", "--json", "--no-reference"});
+  const testing::CommandResult json =
+      run_clmarch({"bench", torus, "--size", "32x18", "--repeat", "1", "--json", "--no-reference"});
   ASSERT_EQ(json.exit_code, kExitOk) << json.err;
   const nlohmann::json j = nlohmann::json::parse(json.out);
   EXPECT_TRUE(j["reference_ms"].is_null());
   EXPECT_TRUE(j["opencl_to_reference_ratio"].is_null());
   const testing::CommandResult text = run_clmarch({"bench", torus, "--size", "32x18", "--repeat", "1"});
   ASSERT_EQ(text.exit_code, kExitOk) << text.err;
-  for (const char* part : {"shaded kernel", "depth-only kernel", "per pixel", "of the ceiling", "output floor", "CPU reference"}) {
+  for (const char* part :
+       {"shaded kernel", "depth-only kernel", "per pixel", "of the ceiling", "output floor", "CPU reference"}) {
     EXPECT_NE(text.out.find(part), std::string::npos) << part << " missing in:\n" << text.out;
   }
 }
 
 TEST(Bench, BadInputIsOneLine) {
   const std::string torus = testing::source_path("scenes/torus.yaml").string();
-  for (const std::vector<std::string>& args :
-       {std::vector<std::string>{"bench", torus, "--repeat", "0"}, {"bench", torus, "--set", "render.over_relaxation=2"},
-        {"bench", torus, "--size", "0x5"}, {"bench", "/no/such/scene.yaml"}}) {
+  for (const std::vector<std::string>& args : {std::vector<std::string>{"bench", torus, "--repeat", "0"},
+                                               {"bench", torus, "--set", "render.over_relaxation=2"},
+                                               {"bench", torus, "--size", "0x5"},
+                                               {"bench", "/no/such/scene.yaml"}}) {
     const testing::CommandResult r = run_clmarch(args);
     EXPECT_EQ(r.exit_code, kExitBadInput) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;

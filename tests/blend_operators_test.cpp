@@ -41,12 +41,13 @@ std::string parameters(NodeKind kind) {
 
 /// Two overlapping spheres, red and blue, and with three a green one: every blend region is near.
 Scene blend_scene(NodeKind kind, int children) {
-  std::string list = "[{sphere: {center: [-0.5, 0, 0], radius: 1, color: [1, 0, 0]}}, "
-                     "{sphere: {center: [0.7, 0.2, 0], radius: 0.8, color: [0, 0, 1]}}";
+  std::string list =
+      "[{sphere: {center: [-0.5, 0, 0], radius: 1, color: [1, 0, 0]}}, "
+      "{sphere: {center: [0.7, 0.2, 0], radius: 0.8, color: [0, 0, 1]}}";
   if (children == 3) list += ", {sphere: {center: [0, 0.9, 0.3], radius: 0.6, color: [0, 1, 0]}}";
   list += "]";
-  return testing::scene_from_yaml(
-      "sdf:\n  " + std::string(node_kind_name(kind)) + ": {" + parameters(kind) + "children: " + list + "}\n");
+  return testing::scene_from_yaml("sdf:\n  " + std::string(node_kind_name(kind)) + ": {" + parameters(kind) +
+                                  "children: " + list + "}\n");
 }
 
 class BlendOperator : public ::testing::TestWithParam<NodeKind> {};
@@ -104,7 +105,8 @@ TEST_P(BlendOperator, KernelTakesTheMaterialAndIdTheReferenceTakes) {
     const PointSamples samples = eval_points_opencl(scene, points, options);
     for (std::size_t i = 0; i < points.size(); ++i) {
       const SdfSample expected = reference_sample(scene.sdf, points[i]);
-      EXPECT_NEAR(samples.distance[i], expected.distance, 2e-5) << node_kind_name(kind) << " lanes " << lanes << " point " << i;
+      EXPECT_NEAR(samples.distance[i], expected.distance, 2e-5)
+          << node_kind_name(kind) << " lanes " << lanes << " point " << i;
       EXPECT_EQ(samples.primitive[i], static_cast<float>(expected.primitive))
           << node_kind_name(kind) << " lanes " << lanes << " point " << i;
       EXPECT_NEAR(samples.albedo[i].x, expected.color.x, 1e-6) << node_kind_name(kind) << " point " << i;
@@ -146,10 +148,11 @@ TEST(BlendBounds, UnionBlendsOfCoincidentSpheresReachTheirGrowth) {
 // a is y <= 0), or for xor two spheres.
 TEST(BlendColors, FollowTheDocumentedRules) {
   const auto color_at = [](const std::string& head, const char* a, const char* b, const glm::dvec3& p) {
-    const Node node = testing::scene_from_yaml(fmt::format("sdf:\n  {}children: [{{plane: {{normal: {}, color: [1, 0, 0]}}}}, "
-                                                           "{{plane: {{normal: {}, color: [0, 0, 1]}}}}]}}\n",
-                                                           head, a, b))
-                          .sdf;
+    const Node node =
+        testing::scene_from_yaml(fmt::format("sdf:\n  {}children: [{{plane: {{normal: {}, color: [1, 0, 0]}}}}, "
+                                             "{{plane: {{normal: {}, color: [0, 0, 1]}}}}]}}\n",
+                                             head, a, b))
+            .sdf;
     return reference_sample(node, p).color;
   };
   const glm::dvec3 red(1, 0, 0), blue(0, 0, 1);
@@ -174,8 +177,9 @@ TEST(BlendColors, FollowTheDocumentedRules) {
   // Pipe: the operand of the smaller |distance|.
   EXPECT_EQ(color_at("pipe: {radius: 0.1, ", x, y, {0.1, -0.5, 0}), red);
   // Xor: inside both red and blue spheres, nearer blue's surface.
-  const Node both = testing::scene_from_yaml("sdf:\n  xor: [{sphere: {radius: 1, color: [1, 0, 0]}}, "
-                                             "{sphere: {center: [1.5, 0, 0], radius: 1, color: [0, 0, 1]}}]\n")
+  const Node both = testing::scene_from_yaml(
+                        "sdf:\n  xor: [{sphere: {radius: 1, color: [1, 0, 0]}}, "
+                        "{sphere: {center: [1.5, 0, 0], radius: 1, color: [0, 0, 1]}}]\n")
                         .sdf;
   EXPECT_EQ(reference_sample(both, {0.7, 0, 0}).color, blue);
   EXPECT_EQ(reference_sample(both, {0.8, 0, 0}).color, red);

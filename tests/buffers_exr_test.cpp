@@ -1,6 +1,6 @@
 // The --buffers EXR: its channel names are a contract (R, G, B, depth, steps, N.x, N.y, N.z, then
-// A, Z, samples, id, the layers ao, diffuse and specular, P.x, P.y, P.z) and its values follow the documented rules (linear color, +inf
-// depth on a miss, unit normals, coverage, the camera in the header).
+// A, Z, samples, id, the layers ao, diffuse and specular, P.x, P.y, P.z) and its values follow the documented rules
+// (linear color, +inf depth on a miss, unit normals, coverage, the camera in the header).
 #include "support/test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -18,8 +18,9 @@ namespace {
 // the pair to the march's epsilon, 1e-14, on both backends.
 TEST(BuffersExr, DoubleRendersAddTheDepthsRemainder) {
   testing::TempDir dir;
-  std::ofstream(dir / "scene.yaml") << "sdf: {sphere: {radius: 1}}\ncamera: {position: [0, 0, 1.0001], look_at: [0, 0, 0], fov: 0.001}\n"
-                                       "render: {width: 8, height: 6, precision: double, epsilon: 1.0e-14, normal_epsilon: 1.0e-9}\n";
+  std::ofstream(dir / "scene.yaml")
+      << "sdf: {sphere: {radius: 1}}\ncamera: {position: [0, 0, 1.0001], look_at: [0, 0, 0], fov: 0.001}\n"
+         "render: {width: 8, height: 6, precision: double, epsilon: 1.0e-14, normal_epsilon: 1.0e-9}\n";
   for (const char* backend : {"opencl", "reference"}) {
     SCOPED_TRACE(backend);
     const auto result = testing::run_clmarch({"render", (dir / "scene.yaml").string(), "--backend", backend, "-o",
@@ -35,9 +36,12 @@ TEST(BuffersExr, DoubleRendersAddTheDepthsRemainder) {
     EXPECT_NEAR(t, 1e-4, 2e-14);
     EXPECT_NE(image.at(4, 3, lo), 0.0f);
   }
-  std::ofstream(dir / "scene.yaml") << "sdf: {sphere: {radius: 1}}\ncamera: {position: [0, 0, 5]}\nrender: {width: 8, height: 6}\n";
+  std::ofstream(dir / "scene.yaml")
+      << "sdf: {sphere: {radius: 1}}\ncamera: {position: [0, 0, 5]}\nrender: {width: 8, height: 6}\n";
   ASSERT_EQ(testing::run_clmarch({"render", (dir / "scene.yaml").string(), "-o", (dir / "c.exr").string(), "--buffers",
-                                  (dir / "b.exr").string()}).exit_code, 0);
+                                  (dir / "b.exr").string()})
+                .exit_code,
+            0);
   auto in = OIIO::ImageInput::open((dir / "b.exr").string());
   ASSERT_TRUE(in);
   EXPECT_LT(in->spec().channelindex("depth.lo"), 0) << "float renders keep their 25 channels";
@@ -45,7 +49,8 @@ TEST(BuffersExr, DoubleRendersAddTheDepthsRemainder) {
 
 TEST(BuffersExr, ChannelsAndValuesFollowTheContract) {
   testing::TempDir dir;
-  std::ofstream(dir / "scene.yaml") << "sdf: {sphere: {radius: 1}}\ncamera: {position: [0, 0, 5]}\nrender: {width: 32, height: 24}\n";
+  std::ofstream(dir / "scene.yaml")
+      << "sdf: {sphere: {radius: 1}}\ncamera: {position: [0, 0, 5]}\nrender: {width: 32, height: 24}\n";
   for (const char* backend : {"opencl", "reference"}) {
     const auto result = testing::run_clmarch({"render", (dir / "scene.yaml").string(), "--backend", backend, "-o",
                                               (dir / "c.exr").string(), "--buffers", (dir / "b.exr").string()});
@@ -56,8 +61,10 @@ TEST(BuffersExr, ChannelsAndValuesFollowTheContract) {
     EXPECT_EQ(spec.format, OIIO::TypeDesc::FLOAT);
     std::vector<std::string> names(spec.channelnames.begin(), spec.channelnames.end());
     std::sort(names.begin(), names.end());
-    EXPECT_EQ(names, (std::vector<std::string>{"A", "B", "G", "N.x", "N.y", "N.z", "P.x", "P.y", "P.z", "R", "Z", "ao.B",
-                                               "ao.G", "ao.R", "depth", "diffuse.B", "diffuse.G", "diffuse.R", "id", "samples",
+    EXPECT_EQ(names, (std::vector<std::string>{"A",          "B",          "G",          "N.x",    "N.y",
+                                               "N.z",        "P.x",        "P.y",        "P.z",    "R",
+                                               "Z",          "ao.B",       "ao.G",       "ao.R",   "depth",
+                                               "diffuse.B",  "diffuse.G",  "diffuse.R",  "id",     "samples",
                                                "specular.B", "specular.G", "specular.R", "status", "steps"}));
     const auto channel = [&](const char* name) { return spec.channelindex(name); };
     const testing::Image image = testing::read_image(dir / "b.exr");
@@ -69,7 +76,8 @@ TEST(BuffersExr, ChannelsAndValuesFollowTheContract) {
     // Pixel centres sit half a pixel off the axis: depth 4 within that offset.
     EXPECT_NEAR(image.at(16, 12, channel("depth")), 4.0, 0.01);
     EXPECT_NEAR(image.at(16, 12, channel("N.z")), 1.0, 1e-2);
-    const float nx = image.at(14, 11, channel("N.x")), ny = image.at(14, 11, channel("N.y")), nz = image.at(14, 11, channel("N.z"));
+    const float nx = image.at(14, 11, channel("N.x")), ny = image.at(14, 11, channel("N.y")),
+                nz = image.at(14, 11, channel("N.z"));
     EXPECT_NEAR(std::sqrt(nx * nx + ny * ny + nz * nz), 1.0, 1e-4) << backend;
     // A is the coverage of the one ray per pixel; Z is depth; P the hit in the world; the camera
     // in the header: worldToCamera takes P to (0, 0, -4)-ish in front of the camera.
@@ -85,7 +93,8 @@ TEST(BuffersExr, ChannelsAndValuesFollowTheContract) {
     EXPECT_EQ(image.at(16, 12, channel("id")), 0.0f);
     EXPECT_EQ(image.at(0, 0, channel("id")), -1.0f);
     // P lies on the unit sphere, depth away from the camera at (0, 0, 5).
-    const double px = image.at(16, 12, channel("P.x")), py = image.at(16, 12, channel("P.y")), pz = image.at(16, 12, channel("P.z"));
+    const double px = image.at(16, 12, channel("P.x")), py = image.at(16, 12, channel("P.y")),
+                 pz = image.at(16, 12, channel("P.z"));
     EXPECT_NEAR(std::sqrt(px * px + py * py + pz * pz), 1.0, 1e-3);
     EXPECT_NEAR(std::sqrt(px * px + py * py + (pz - 5.0) * (pz - 5.0)), image.at(16, 12, channel("depth")), 1e-5);
     EXPECT_EQ(image.at(0, 0, channel("P.y")), 0.0f);

@@ -31,8 +31,10 @@ const ShapeCase kShapes[] = {
     {"link", "link: {half_length: 0.3, major_radius: 0.4, minor_radius: 0.15}", 1.2, true},
     {"cut_sphere", "cut_sphere: {radius: 0.9, cut_height: -0.3}", 1.0, true},
     {"pyramid", "pyramid: {center: [0, -0.5, 0], half_width: 0.6, height: 1.2}", 1.0, true},
-    {"triangle", "triangle: {a: [-0.7, -0.5, 0.1], b: [0.6, -0.3, -0.4], c: [0.1, 0.7, 0.3], thickness: 0.15}", 1.0, true},
-    {"quad", "quad: {a: [-0.6, -0.6, -0.3], b: [0.6, -0.6, 0.3], c: [0.6, 0.6, 0.3], d: [-0.6, 0.6, -0.3], thickness: 0.15}",
+    {"triangle", "triangle: {a: [-0.7, -0.5, 0.1], b: [0.6, -0.3, -0.4], c: [0.1, 0.7, 0.3], thickness: 0.15}", 1.0,
+     true},
+    {"quad",
+     "quad: {a: [-0.6, -0.6, -0.3], b: [0.6, -0.6, 0.3], c: [0.6, 0.6, 0.3], d: [-0.6, 0.6, -0.3], thickness: 0.15}",
      1.0, true},
     {"triangular_prism", "triangular_prism: {radius: 0.8, half_length: 0.6}", 1.0, false},
     {"solid_angle", "solid_angle: {center: [0, -0.2, 0], angle: 55, radius: 0.9}", 1.0, true},
@@ -49,7 +51,9 @@ constexpr int kCells = 48;
 /// Points of the field's zero set: where it changes sign along a grid edge, refined by bisection.
 std::vector<glm::dvec3> zero_set(const Node& node, double extent) {
   const double step = 2.0 * extent / kCells;
-  const auto at = [&](int i, int j, int k) { return glm::dvec3(-extent + i * step, -extent + j * step, -extent + k * step); };
+  const auto at = [&](int i, int j, int k) {
+    return glm::dvec3(-extent + i * step, -extent + j * step, -extent + k * step);
+  };
   std::vector<double> field;
   field.reserve((kCells + 1) * (kCells + 1) * (kCells + 1));
   for (int i = 0; i <= kCells; ++i) {
@@ -57,7 +61,9 @@ std::vector<glm::dvec3> zero_set(const Node& node, double extent) {
       for (int k = 0; k <= kCells; ++k) field.push_back(reference_distance(node, at(i, j, k)));
     }
   }
-  const auto value = [&](int i, int j, int k) { return field[(static_cast<std::size_t>(i) * (kCells + 1) + j) * (kCells + 1) + k]; };
+  const auto value = [&](int i, int j, int k) {
+    return field[(static_cast<std::size_t>(i) * (kCells + 1) + j) * (kCells + 1) + k];
+  };
   std::vector<glm::dvec3> surface;
   for (int i = 0; i <= kCells; ++i) {
     for (int j = 0; j <= kCells; ++j) {

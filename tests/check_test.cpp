@@ -69,8 +69,12 @@ TEST(CheckFeatures, TheSierpinskiTetrahedron) {
     for (const char* precision : {"float", "double"}) {
       const Scene scene = testing::scene_from_yaml(
           std::string("camera: {position: [2.2, 1.6, 2.6], look_at: [0, -0.1, 0], fov: 45}\n"
-                      "render: {width: 96, height: 54, max_steps: 300, precision: ") + precision + "}\n"
-          "sdf: {union: [{sierpinski: {size: 1, iterations: 8, scale: " + scale + ", step_factor: 0.8}},\n"
+                      "render: {width: 96, height: 54, max_steps: 300, precision: ") +
+          precision +
+          "}\n"
+          "sdf: {union: [{sierpinski: {size: 1, iterations: 8, scale: " +
+          scale +
+          ", step_factor: 0.8}},\n"
           "              {plane: {normal: [0, 1, 0], offset: 1.2}}]}\n"
           "lights: [{directional: {direction: [1, 2, 1]}}]\nshading: {ambient: 0.2, shadows: {mode: soft}}\n");
       const CheckReport report = check_against(scene, scene);
@@ -90,12 +94,12 @@ TEST(CheckFeatures, TheMandelboxAndTheJuliaSet) {
   for (int i = 0; i < 3; ++i) {
     for (const char* precision : {"float", "double"}) {
       const std::string floor = fmt::format("{{plane: {{normal: [0, 1, 0], offset: {}}}}}", distances[i] * 0.4);
-      const Scene scene = testing::scene_from_yaml(
-          fmt::format("camera: {{position: [{0}, {1}, {0}], look_at: [0, 0, 0], fov: 45}}\n"
-                      "render: {{width: 96, height: 54, max_steps: 400, max_distance: {2}, precision: {3}}}\n"
-                      "sdf: {{union: [{{{4}}}, {5}]}}\n"
-                      "lights: [{{directional: {{direction: [1, 2, 1]}}}}]\nshading: {{ambient: 0.2, shadows: {{mode: soft}}}}\n",
-                      distances[i] * 0.6, distances[i] * 0.5, distances[i] * 4, precision, fractals[i], floor));
+      const Scene scene = testing::scene_from_yaml(fmt::format(
+          "camera: {{position: [{0}, {1}, {0}], look_at: [0, 0, 0], fov: 45}}\n"
+          "render: {{width: 96, height: 54, max_steps: 400, max_distance: {2}, precision: {3}}}\n"
+          "sdf: {{union: [{{{4}}}, {5}]}}\n"
+          "lights: [{{directional: {{direction: [1, 2, 1]}}}}]\nshading: {{ambient: 0.2, shadows: {{mode: soft}}}}\n",
+          distances[i] * 0.6, distances[i] * 0.5, distances[i] * 4, precision, fractals[i], floor));
       const CheckReport report = check_against(scene, scene);
       EXPECT_TRUE(report.passed()) << fractals[i] << " " << precision << "\n" << report.to_text();
       EXPECT_GT(report.both_hit, 500) << fractals[i];
@@ -137,8 +141,11 @@ Scene metal_cave(const std::string& light, const std::string& shading) {
       "render: {width: 48, height: 27, epsilon: 1.0e-4}\n"
       "sdf: {subtraction: [{box: {half_size: [10, 10, 10]}},"
       " {sphere: {radius: 5, color: [0.9, 0.8, 0.7], metallic: 1, roughness: 0.02}}]}\n"
-      "lights: [{point: {position: [0, 0, 0], " + light + "}}]\n"
-      "shading: " + shading + "\n");
+      "lights: [{point: {position: [0, 0, 0], " +
+      light +
+      "}}]\n"
+      "shading: " +
+      shading + "\n");
 }
 
 TEST(CheckFeatures, ThePeakOfAnAlmostSmoothMetal) {
@@ -158,7 +165,8 @@ Scene fog_seen_from_above(const std::string& falloff) {
       "sdf: {union: [{plane: {normal: [0, 1, 0], offset: 0, color: 0.8}},"
       " {sphere: {center: [0, 1, 0], radius: 1, color: [0.9, 0.3, 0.2]}}]}\n"
       "lights: [{directional: {direction: [-1, 2, 1]}}]\n"
-      "shading: {model: lambert, height_fog: {density: 0.5, falloff: " + falloff + ", color: [0.5, 0.6, 0.7]}}\n");
+      "shading: {model: lambert, height_fog: {density: 0.5, falloff: " +
+      falloff + ", color: [0.5, 0.6, 0.7]}}\n");
 }
 
 // Where float's rounding is amplified, the shading's tolerance follows: a Phong highlight of
@@ -187,10 +195,12 @@ TEST(CheckFeatures, AmplifiedRoundingAndHeightFogAtItsExtremes) {
 // error each iteration (normals 47 degrees off, depth past its tolerance); atan2(rho, z) keeps them.
 TEST(CheckFeatures, TheMandelbulbsPoles) {
   for (const char* y : {"2.5", "-2.5"}) {
-    const Scene scene = small_scene("mandelbulb.yaml", {{"sdf.mandelbulb.power", "5"},
-                                                        {"camera", fmt::format("{{position: [0, {}, 0], look_at: [0, 0, 0], up: [0, 0, 1], fov: 1}}", y)},
-                                                        {"render.epsilon", "1e-4"},
-                                                        {"render.normal_epsilon", "1e-4"}});
+    const Scene scene =
+        small_scene("mandelbulb.yaml",
+                    {{"sdf.mandelbulb.power", "5"},
+                     {"camera", fmt::format("{{position: [0, {}, 0], look_at: [0, 0, 0], up: [0, 0, 1], fov: 1}}", y)},
+                     {"render.epsilon", "1e-4"},
+                     {"render.normal_epsilon", "1e-4"}});
     const CheckReport report = check_against(scene, scene);
     EXPECT_TRUE(report.passed()) << "camera at y = " << y << "\n" << report.to_text();
     EXPECT_GT(report.both_hit, 96 * 54 / 2);
@@ -216,7 +226,8 @@ TEST(CheckTeeth, FailsWhenTheNormalMethodIsSwapped) {
   // At the default step (1e-3) both methods are exact to ~1e-6 rad, below float noise; a coarse
   // step makes their truncation errors differ visibly, and only the swap may fail the check.
   const Scene scene = small_scene("torus.yaml", {{"render.normal_epsilon", "0.05"}});
-  const Scene swapped = small_scene("torus.yaml", {{"render.normal_epsilon", "0.05"}, {"render.normal_method", "tetrahedral"}});
+  const Scene swapped =
+      small_scene("torus.yaml", {{"render.normal_epsilon", "0.05"}, {"render.normal_method", "tetrahedral"}});
   EXPECT_TRUE(check_against(scene, scene).passed());
   const CheckReport report = check_against(scene, swapped);
   EXPECT_FALSE(report.passed()) << report.to_text();
@@ -226,13 +237,15 @@ TEST(CheckTeeth, FailsWhenTheNormalMethodIsSwapped) {
 // each fail the check on the miss criterion alone.
 TEST(CheckTeeth, FailsWhenTheColorOfMissesDiffers) {
   const Scene scene = small_scene("torus.yaml");
-  const CheckReport background = check_against(scene, small_scene("torus.yaml", {{"shading.background", "[0.012, 0, 0]"}}));
+  const CheckReport background =
+      check_against(scene, small_scene("torus.yaml", {{"shading.background", "[0.012, 0, 0]"}}));
   EXPECT_FALSE(background.passed()) << background.to_text();
   ASSERT_EQ(background.failures.size(), 1u) << background.to_text();
   EXPECT_NE(background.failures[0].find("color error of misses"), std::string::npos) << background.to_text();
 
   const Scene bulb = small_scene("mandelbulb.yaml");
-  const CheckReport glow = check_against(bulb, small_scene("mandelbulb.yaml", {{"shading.glow.color", "[0.3325, 0.285, 0.855]"}}));
+  const CheckReport glow =
+      check_against(bulb, small_scene("mandelbulb.yaml", {{"shading.glow.color", "[0.3325, 0.285, 0.855]"}}));
   EXPECT_FALSE(glow.passed()) << glow.to_text();
   ASSERT_EQ(glow.failures.size(), 1u) << glow.to_text();
   EXPECT_NE(glow.failures[0].find("color error of misses"), std::string::npos) << glow.to_text();
@@ -251,7 +264,8 @@ TEST(CheckTeeth, FailsWhenOnlyTheShadingDiffers) {
   EXPECT_NE(lamp_report.failures[0].find("shading error"), std::string::npos) << lamp_report.to_text();
 
   const Scene sphere = small_scene("pbr_sphere.yaml");
-  const CheckReport sphere_report = check_against(sphere, small_scene("pbr_sphere.yaml", {{"sdf.sphere.roughness", "0.33"}}));
+  const CheckReport sphere_report =
+      check_against(sphere, small_scene("pbr_sphere.yaml", {{"sdf.sphere.roughness", "0.33"}}));
   ASSERT_EQ(sphere_report.failures.size(), 1u) << sphere_report.to_text();
   EXPECT_NE(sphere_report.failures[0].find("shading error"), std::string::npos) << sphere_report.to_text();
 }
@@ -263,7 +277,8 @@ TEST(CheckTeeth, FailsWhenOnlyTheShadingDiffers) {
 // bits at p99; shaded from the same depth and normal, the colors agree to float rounding.
 TEST(CheckShading, ComparesTheSameHitsNotTheReferences) {
   const Scene scene =
-      small_scene("two_spheres.yaml", {{"render.epsilon", "1e-7"}, {"render.max_steps", "1000"}, {"render.normal_epsilon", "3e-5"}});
+      small_scene("two_spheres.yaml",
+                  {{"render.epsilon", "1e-7"}, {"render.max_steps", "1000"}, {"render.normal_epsilon", "3e-5"}});
   const CheckReport report = check_against(scene, scene);
   EXPECT_TRUE(report.passed()) << report.to_text();
   EXPECT_GT(report.color_p99_abs, 0.5 / 255.0) << report.to_text();
@@ -271,11 +286,13 @@ TEST(CheckShading, ComparesTheSameHitsNotTheReferences) {
 }
 
 TEST(CheckCli, ReportsAndExitsZeroWhenWithinTolerance) {
-  const auto result = testing::run_clmarch({"check", source_path("scenes/torus.yaml").string(), "--size", "64x36", "--json"});
+  const auto result =
+      testing::run_clmarch({"check", source_path("scenes/torus.yaml").string(), "--size", "64x36", "--json"});
   ASSERT_EQ(result.exit_code, 0) << result.err << result.out;
   const nlohmann::json report = nlohmann::json::parse(result.out);
   EXPECT_TRUE(report["passed"].get<bool>());
-  for (const char* key : {"mask_mismatch", "depth_abs", "depth_rel", "depth_in_epsilons", "steps_diff", "normal_angle_deg_p99", "color", "shading"}) {
+  for (const char* key : {"mask_mismatch", "depth_abs", "depth_rel", "depth_in_epsilons", "steps_diff",
+                          "normal_angle_deg_p99", "color", "shading"}) {
     EXPECT_TRUE(report.contains(key)) << key;
   }
   EXPECT_GT(report["shading"]["compared"].get<int>(), 0) << "the device's hits are shaded by the reference too";
@@ -297,7 +314,8 @@ TEST(CheckCli, AFailingCheckExitsOneAndWritesBothRendersAndTheirDifference) {
   const auto result = testing::run_clmarch({"check", scene.string(), "--out-dir", dir.path().string()});
   ASSERT_EQ(result.exit_code, 1) << result.err << result.out;
   EXPECT_NE(result.out.find("check FAILED:\n  normal angle error p99 is"), std::string::npos) << result.out;
-  EXPECT_EQ(dir.files(), (std::vector<std::string>{"chaotic_bulb.yaml", "difference.exr", "opencl.png", "reference.png"}));
+  EXPECT_EQ(dir.files(),
+            (std::vector<std::string>{"chaotic_bulb.yaml", "difference.exr", "opencl.png", "reference.png"}));
   const testing::Image opencl = testing::read_image(dir / "opencl.png");
   const testing::Image reference = testing::read_image(dir / "reference.png");
   const testing::Image difference = testing::read_image(dir / "difference.exr");
@@ -327,8 +345,8 @@ TEST(CheckCli, AFailingCheckExitsOneAndWritesBothRendersAndTheirDifference) {
 
   // Passing, nothing is written.
   TempDir quiet;
-  const auto pass = testing::run_clmarch({"check", source_path("scenes/torus.yaml").string(), "--size", "48x32",
-                                          "--out-dir", quiet.path().string()});
+  const auto pass = testing::run_clmarch(
+      {"check", source_path("scenes/torus.yaml").string(), "--size", "48x32", "--out-dir", quiet.path().string()});
   ASSERT_EQ(pass.exit_code, 0) << pass.err << pass.out;
   EXPECT_TRUE(quiet.files().empty());
 }
@@ -351,7 +369,8 @@ class CheckThresholds : public ::testing::Test {
     for (int dj = -1; dj <= 1; ++dj) {
       for (int di = -1; di <= 1; ++di) {
         const int ni = i + di, nj = j + dj;
-        if (ni < 0 || nj < 0 || ni >= reference_.width || nj >= reference_.height || hit(ni, nj) != hit(i, j)) return false;
+        if (ni < 0 || nj < 0 || ni >= reference_.width || nj >= reference_.height || hit(ni, nj) != hit(i, j))
+          return false;
       }
     }
     return true;
@@ -394,7 +413,8 @@ TEST_F(CheckThresholds, DepthAtItsTolerancePerPixel) {
     return perturbed([&](FrameBuffers& b, int i, int j) {
       if (!hit(i, j)) return;
       const double t = reference_.at(Channel::Depth, i, j);
-      const glm::dvec3 n(reference_.at(Channel::NX, i, j), reference_.at(Channel::NY, i, j), reference_.at(Channel::NZ, i, j));
+      const glm::dvec3 n(reference_.at(Channel::NX, i, j), reference_.at(Channel::NY, i, j),
+                         reference_.at(Channel::NZ, i, j));
       const double cosine = std::max(std::abs(glm::dot(pixel_ray_direction(basis_, i, j), n)), 0.1);
       b.at(Channel::Depth, i, j) = static_cast<float>(t - multiple * (scene_.render.epsilon / cosine + rounding(t)));
     });
@@ -410,8 +430,10 @@ TEST_F(CheckThresholds, NormalsAtTheirToleranceForEqualDepths) {
       if (!hit(i, j)) return;
       const double t = reference_.at(Channel::Depth, i, j);
       const double angle = multiple * std::sqrt(3.0) * rounding(t) / scene_.render.normal_epsilon;
-      const glm::dvec3 n(reference_.at(Channel::NX, i, j), reference_.at(Channel::NY, i, j), reference_.at(Channel::NZ, i, j));
-      const glm::dvec3 across = glm::normalize(glm::cross(n, std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
+      const glm::dvec3 n(reference_.at(Channel::NX, i, j), reference_.at(Channel::NY, i, j),
+                         reference_.at(Channel::NZ, i, j));
+      const glm::dvec3 across =
+          glm::normalize(glm::cross(n, std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
       const glm::dvec3 turned = std::cos(angle) * n + std::sin(angle) * across;
       b.at(Channel::NX, i, j) = static_cast<float>(turned.x);
       b.at(Channel::NY, i, j) = static_cast<float>(turned.y);
@@ -437,7 +459,8 @@ TEST_F(CheckThresholds, ColorOfHitsAtTheShadingSlopeTimesTheNormalTolerance) {
   // Half a step of 8 bits plus the color's largest change per radian of normal (the lights'
   // radiance times the diffuse and specular slopes) times the normal tolerance, here dt = 0.
   double radiance = 0.0;
-  for (const Light& light : scene_.lights) radiance += light.intensity * std::max({light.color.r, light.color.g, light.color.b});
+  for (const Light& light : scene_.lights)
+    radiance += light.intensity * std::max({light.color.r, light.color.g, light.color.b});
   const Shading& shading = scene_.shading;
   ASSERT_GT(radiance, 0.0);
   const double specular = shading.model == ShadingModel::Lambert ? 0.0 : shading.specular * shading.shininess;
@@ -445,7 +468,8 @@ TEST_F(CheckThresholds, ColorOfHitsAtTheShadingSlopeTimesTheNormalTolerance) {
   const auto brighten_by = [&](double multiple) {
     return perturbed([&](FrameBuffers& b, int i, int j) {
       if (!hit(i, j)) return;
-      const double normal_tolerance = std::sqrt(3.0) * rounding(reference_.at(Channel::Depth, i, j)) / scene_.render.normal_epsilon;
+      const double normal_tolerance =
+          std::sqrt(3.0) * rounding(reference_.at(Channel::Depth, i, j)) / scene_.render.normal_epsilon;
       b.at(Channel::G, i, j) += static_cast<float>(multiple * (per_radian * normal_tolerance + 0.5 / 255.0));
     });
   };
@@ -471,8 +495,10 @@ TEST_F(CheckThresholds, ShadingAtHalfAnEightBitStep) {
   }
   FrameBuffers without_layers = reference_;
   without_layers.has_layers = false;
-  EXPECT_EQ(cross_check(scene_, reference_, reference_, reshade_hits(scene_, reference_)).shading_compared, single_ray_hits);
-  EXPECT_EQ(cross_check(scene_, without_layers, reference_, reshade_hits(scene_, without_layers)).shading_compared, single_ray_hits);
+  EXPECT_EQ(cross_check(scene_, reference_, reference_, reshade_hits(scene_, reference_)).shading_compared,
+            single_ray_hits);
+  EXPECT_EQ(cross_check(scene_, without_layers, reference_, reshade_hits(scene_, without_layers)).shading_compared,
+            single_ray_hits);
   // Each layer is held to the same tolerance as the color.
   for (Channel layer : {Channel::AoB, Channel::DiffuseR, Channel::SpecularG}) {
     const auto layer_off_by = [&](double multiple) {
@@ -501,16 +527,18 @@ TEST_F(CheckThresholds, ANanOrAnInfinityFails) {
   ASSERT_GE(hit_i, 0);
   const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
   // A +inf depth is a miss, not a bad value.
-  const std::vector<std::pair<Channel, float>> bad_values = {{Channel::R, nan}, {Channel::R, inf}, {Channel::NX, nan},
-                                                             {Channel::NX, inf}, {Channel::Depth, nan}};
+  const std::vector<std::pair<Channel, float>> bad_values = {
+      {Channel::R, nan}, {Channel::R, inf}, {Channel::NX, nan}, {Channel::NX, inf}, {Channel::Depth, nan}};
   for (const auto& [channel, bad] : bad_values) {
     SCOPED_TRACE(fmt::format("{} = {}", kChannelNames[static_cast<int>(channel)], bad));
     FrameBuffers copy = reference_;
     copy.at(channel, hit_i, hit_j) = bad;
     const CheckReport on_opencl = cross_check(scene_, copy, reference_);
-    EXPECT_TRUE(failed_on(on_opencl, "1 OpenCL and 0 reference pixels hold a NaN or an infinity")) << on_opencl.to_text();
+    EXPECT_TRUE(failed_on(on_opencl, "1 OpenCL and 0 reference pixels hold a NaN or an infinity"))
+        << on_opencl.to_text();
     const CheckReport on_reference = cross_check(scene_, reference_, copy);
-    EXPECT_TRUE(failed_on(on_reference, "0 OpenCL and 1 reference pixels hold a NaN or an infinity")) << on_reference.to_text();
+    EXPECT_TRUE(failed_on(on_reference, "0 OpenCL and 1 reference pixels hold a NaN or an infinity"))
+        << on_reference.to_text();
     if (channel == Channel::R) {
       EXPECT_TRUE(std::isinf(on_opencl.color_max_abs)) << "a NaN must not drop out of the max";
     }
@@ -567,7 +595,8 @@ TEST_F(CheckThresholds, InteriorHitMaskFlipsAtOneInAThousand) {
         }
         if (!all_hits) continue;
         for (int dj = -1; dj <= 1; ++dj) {
-          for (int di = -1; di <= 1; ++di) copy.at(Channel::Depth, i + di, j + dj) = std::numeric_limits<float>::infinity();
+          for (int di = -1; di <= 1; ++di)
+            copy.at(Channel::Depth, i + di, j + dj) = std::numeric_limits<float>::infinity();
         }
         ++made;
       }
@@ -617,7 +646,8 @@ TEST_F(CheckThresholds, IdMismatchesAwayFromIdEdgesAtOneInAThousand) {
     if (std::isfinite(b.at(Channel::Depth, i, j))) b.at(Channel::Id, i, j) = 3.0f;
   });
   EXPECT_TRUE(failed_on(everywhere, "away from id edges")) << everywhere.to_text();
-  EXPECT_EQ(reference_.at(Channel::Id, reference_.width / 2, reference_.height / 2) >= 0.0f, hit(reference_.width / 2, reference_.height / 2));
+  EXPECT_EQ(reference_.at(Channel::Id, reference_.width / 2, reference_.height / 2) >= 0.0f,
+            hit(reference_.width / 2, reference_.height / 2));
 }
 
 }  // namespace

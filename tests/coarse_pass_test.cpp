@@ -54,7 +54,8 @@ std::vector<float> kernel_cone_starts(const Scene& scene) {
   std::optional<ConePass> cones = make_cone_pass(program, scene, std::nullopt);
   EXPECT_TRUE(cones.has_value());
   if (!cones) return {};
-  const Dispatch dispatch = plan_tile_dispatch(program, scene.render.width, scene.render.height, chunk_pixels_for(program.program.device));
+  const Dispatch dispatch =
+      plan_tile_dispatch(program, scene.render.width, scene.render.height, chunk_pixels_for(program.program.device));
   enqueue_cone_pass(program.program.queue, *cones, march_params(scene, dispatch));
   return read_cone_plane(program.program.queue, *cones, cones->starts);
 }
@@ -76,10 +77,13 @@ double total_steps(const FrameBuffers& b) {
 // start could have hit), from a far camera, the scene's and one inside the bounding sphere; and
 // the cones must have moved, or the test would hold trivially.
 TEST(ConePass, StartsStayBeforeEveryRaysFirstSurface) {
-  const std::vector<std::pair<std::string, std::string>> cameras = {{"[-2, 4, 4]", "50"}, {"[0.2, 0.9, 2.4]", "70"}, {"[12, 3, -30]", "6"}};
+  const std::vector<std::pair<std::string, std::string>> cameras = {
+      {"[-2, 4, 4]", "50"}, {"[0.2, 0.9, 2.4]", "70"}, {"[12, 3, -30]", "6"}};
   for (const auto& [position, fov] : cameras) {
-    const Scene scene = with_cones(scene_from_yaml("camera: {position: " + position + ", look_at: [0.3, 0, 0.1], fov: " + fov + "}\n"
-                                                   "render: {width: 83, height: 47, epsilon: 1e-3}\nsdf: {torus: {}}\n"));
+    const Scene scene =
+        with_cones(scene_from_yaml("camera: {position: " + position + ", look_at: [0.3, 0, 0.1], fov: " + fov +
+                                   "}\n"
+                                   "render: {width: 83, height: 47, epsilon: 1e-3}\nsdf: {torus: {}}\n"));
     const Torus& torus = std::get<Torus>(scene.sdf.params);
     const CameraBasis basis = camera_basis(scene.camera, scene.render.width, scene.render.height);
     const ConeStarts reference = reference_cone_starts(scene);
@@ -94,14 +98,16 @@ TEST(ConePass, StartsStayBeforeEveryRaysFirstSurface) {
         const std::optional<double> exact = intersect_torus(basis.origin, pixel_ray_direction(basis, i, j), torus);
         if (!exact) continue;
         ++hits;
-        const std::size_t block = static_cast<std::size_t>(j / CLMARCH_COARSE_BLOCK) * reference.blocks_x + i / CLMARCH_COARSE_BLOCK;
+        const std::size_t block =
+            static_cast<std::size_t>(j / CLMARCH_COARSE_BLOCK) * reference.blocks_x + i / CLMARCH_COARSE_BLOCK;
         EXPECT_LE(reference.at_pixel(i, j), *exact - scene.render.epsilon) << position << " pixel " << i << "," << j;
         EXPECT_LE(kernel[block], *exact - scene.render.epsilon + kFloatRelative * (1.0 + *exact))
             << position << " pixel " << i << "," << j;
       }
     }
     EXPECT_GT(hits, 150) << position;
-    const auto moved = std::count_if(reference.start.begin(), reference.start.end(), [&](double t) { return t > t_first + 1e-3; });
+    const auto moved =
+        std::count_if(reference.start.begin(), reference.start.end(), [&](double t) { return t > t_first + 1e-3; });
     EXPECT_GT(moved, static_cast<long>(reference.start.size() / 4)) << position;
   }
 }
@@ -148,7 +154,8 @@ TEST(ConePass, SameImageFewerSteps) {
     const FrameBuffers a = render_normals(c.scene);
     const FrameBuffers b = render_normals(with_cones(c.scene));
     const std::string name = c.scene.source_name;
-    EXPECT_LT(total_steps(b), c.most_steps * total_steps(a)) << name << ": " << total_steps(a) << " -> " << total_steps(b);
+    EXPECT_LT(total_steps(b), c.most_steps * total_steps(a))
+        << name << ": " << total_steps(a) << " -> " << total_steps(b);
     const CheckReport report = cross_check(c.scene, b, a);
     EXPECT_EQ(report.mask_mismatch_interior, 0) << name;
     EXPECT_LE(report.mask_mismatch_silhouette, report.tolerances.mask_mismatch_silhouette) << name;
@@ -208,7 +215,8 @@ TEST(ConePass, AutoRunsItWhereNoBoundingSphereStartsTheRays) {
   EXPECT_TRUE(uses("sdf: {sphere: {}}\nrender: {bounds: none}\n")) << "bounded, but no sphere clips the rays";
   EXPECT_FALSE(uses("sdf: {union: [{sphere: {}}, {plane: {}}]}\nshading: {step_ao: 3000}\n")) << "step-count occlusion";
   EXPECT_TRUE(uses("tiling: {method: mod}\nsdf: {sphere: {center: [0.5, 0.5, 0.5], radius: 0.3}}\n")) << "mod tiling";
-  EXPECT_FALSE(uses("tiling: {method: cells}\nsdf: {sphere: {center: [0.5, 0.5, 0.5], radius: 0.3}}\n")) << "cells tiling";
+  EXPECT_FALSE(uses("tiling: {method: cells}\nsdf: {sphere: {center: [0.5, 0.5, 0.5], radius: 0.3}}\n"))
+      << "cells tiling";
   EXPECT_FALSE(uses("sdf: {union: [{sphere: {}}, {plane: {}}]}\nrender: {coarse_pass: none}\n"));
   EXPECT_TRUE(uses("sdf: {sphere: {}}\nrender: {coarse_pass: cone}\n"));
   // The terrain renders with the pass by default, and with its steps.
@@ -236,11 +244,13 @@ TEST(ConePass, BadValuesAreOneLineErrors) {
   EXPECT_NE(r.err.find("none, cone"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("(--set)"), std::string::npos) << r.err;
 
-  std::ofstream(scene) << "sdf: {sphere: {}}\nrender: {width: 8, height: 8, coarse_pass: cone}\ntiling: {cell: [2, 2, 2]}\n";
+  std::ofstream(scene)
+      << "sdf: {sphere: {}}\nrender: {width: 8, height: 8, coarse_pass: cone}\ntiling: {cell: [2, 2, 2]}\n";
   r = testing::run_clmarch({"render", scene, "-o", image});
   EXPECT_EQ(r.exit_code, kExitBadInput);
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-  EXPECT_NE(r.err.find("scene.yaml:2:44: render.coarse_pass: cone does not combine with tiling.method: cells"), std::string::npos)
+  EXPECT_NE(r.err.find("scene.yaml:2:44: render.coarse_pass: cone does not combine with tiling.method: cells"),
+            std::string::npos)
       << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "out.png"));
 }

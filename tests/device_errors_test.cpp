@@ -26,9 +26,8 @@ constexpr const char* kFillKernel = "kernel void fill(global float* x) { x[get_g
 
 TEST(DeviceErrors, BuildFailureNamesDeviceAndCallThenTheLog) {
   const DeviceEntry device = select_device(std::nullopt);
-  const std::string message = device_error_of([&] {
-    build_device_program(device, "kernel void broken(global float* x) { x[0] = no_such_name; }\n");
-  });
+  const std::string message = device_error_of(
+      [&] { build_device_program(device, "kernel void broken(global float* x) { x[0] = no_such_name; }\n"); });
   EXPECT_EQ(first_line(message),
             "OpenCL error on " + device.label() + ": clBuildProgram failed with CL_BUILD_PROGRAM_FAILURE");
   EXPECT_NE(message.find("\nbuild log of " + device.name + ":\n"), std::string::npos) << message;
@@ -63,17 +62,19 @@ TEST(DeviceErrors, LaunchFailureNamesDeviceAndCall) {
       program.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(10), cl::NDRange(3));
     });
   });
-  EXPECT_EQ(message, "OpenCL error on " + device.label() +
-                         ": clEnqueueNDRangeKernel failed with CL_INVALID_WORK_GROUP_SIZE");
+  EXPECT_EQ(message,
+            "OpenCL error on " + device.label() + ": clEnqueueNDRangeKernel failed with CL_INVALID_WORK_GROUP_SIZE");
 }
 
 TEST(DeviceErrors, OutOfMemoryIsSaidInWords) {
   DeviceEntry device;
   device.name = "Some GPU";
   device.platform_name = "Some Platform";
-  const std::string message = device_error_message(device, cl::Error(CL_MEM_OBJECT_ALLOCATION_FAILURE, "clEnqueueReadBuffer"));
-  EXPECT_EQ(message, "OpenCL error on Some GPU (Some Platform): clEnqueueReadBuffer failed with "
-                     "CL_MEM_OBJECT_ALLOCATION_FAILURE (the device ran out of memory)");
+  const std::string message =
+      device_error_message(device, cl::Error(CL_MEM_OBJECT_ALLOCATION_FAILURE, "clEnqueueReadBuffer"));
+  EXPECT_EQ(message,
+            "OpenCL error on Some GPU (Some Platform): clEnqueueReadBuffer failed with "
+            "CL_MEM_OBJECT_ALLOCATION_FAILURE (the device ran out of memory)");
 }
 
 TEST(DeviceErrors, StatusNames) {

@@ -55,7 +55,9 @@ std::vector<NodeKind> exact_primitives() {
   return kinds;
 }
 
-std::string kind_name(const ::testing::TestParamInfo<NodeKind>& info) { return std::string(node_kind_name(info.param)); }
+std::string kind_name(const ::testing::TestParamInfo<NodeKind>& info) {
+  return std::string(node_kind_name(info.param));
+}
 
 /// Where to sample: the node's bounding sphere grown by 1, or the cube of half side 3 about the
 /// origin for unbounded fields.
@@ -133,7 +135,8 @@ TEST_P(BoundKind, NeverExceedsTheDistanceToSurfacePoints) {
   std::mt19937 rng(4);
   for (int i = 0; i < 300; ++i) {
     const glm::dvec3 p = random_point(region, rng);
-    EXPECT_LE(std::abs(reference_distance(node, p)), nearest(surface, p) + 1e-9) << "at (" << p.x << ", " << p.y << ", " << p.z << ")";
+    EXPECT_LE(std::abs(reference_distance(node, p)), nearest(surface, p) + 1e-9)
+        << "at (" << p.x << ", " << p.y << ", " << p.z << ")";
   }
 }
 
@@ -170,20 +173,23 @@ TEST_P(ExactPrimitive, IsTheDistanceOutside) {
     const double d = reference_distance(node, p);
     if (d < 0.05) continue;
     ++outside;
-    const glm::dvec3 gradient(reference_distance(node, p + glm::dvec3(h, 0, 0)) - reference_distance(node, p - glm::dvec3(h, 0, 0)),
-                              reference_distance(node, p + glm::dvec3(0, h, 0)) - reference_distance(node, p - glm::dvec3(0, h, 0)),
-                              reference_distance(node, p + glm::dvec3(0, 0, h)) - reference_distance(node, p - glm::dvec3(0, 0, h)));
+    const glm::dvec3 gradient(
+        reference_distance(node, p + glm::dvec3(h, 0, 0)) - reference_distance(node, p - glm::dvec3(h, 0, 0)),
+        reference_distance(node, p + glm::dvec3(0, h, 0)) - reference_distance(node, p - glm::dvec3(0, h, 0)),
+        reference_distance(node, p + glm::dvec3(0, 0, h)) - reference_distance(node, p - glm::dvec3(0, 0, h)));
     const double length = glm::length(gradient) / (2.0 * h);
     EXPECT_LE(length, 1.0 + 1e-4);
     if (std::abs(length - 1.0) <= 1e-4) ++unit_gradient;
     const double to_samples = nearest(surface, p);
     EXPECT_LE(d, to_samples + 1e-9);
-    EXPECT_GE(d, to_samples - 4.0 * spacing) << "at (" << p.x << ", " << p.y << ", " << p.z << "), sample spacing " << spacing;
+    EXPECT_GE(d, to_samples - 4.0 * spacing)
+        << "at (" << p.x << ", " << p.y << ", " << p.z << "), sample spacing " << spacing;
   }
   EXPECT_GE(unit_gradient, 0.9 * outside);
 }
 
-INSTANTIATE_TEST_SUITE_P(Kinds, LipschitzKind, ::testing::ValuesIn(kinds_promising(std::numeric_limits<double>::infinity())), kind_name);
+INSTANTIATE_TEST_SUITE_P(Kinds, LipschitzKind,
+                         ::testing::ValuesIn(kinds_promising(std::numeric_limits<double>::infinity())), kind_name);
 INSTANTIATE_TEST_SUITE_P(Kinds, BoundKind, ::testing::ValuesIn(kinds_promising(1.0)), kind_name);
 INSTANTIATE_TEST_SUITE_P(Kinds, ExactPrimitive, ::testing::ValuesIn(exact_primitives()), kind_name);
 

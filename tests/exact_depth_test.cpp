@@ -137,8 +137,8 @@ const std::vector<Sphere>& union_spheres() {
 std::string sphere_union_yaml() {
   std::string yaml = "camera: {position: [0.3, 0.6, 2.2], look_at: [0, 0, 0]}\nsdf:\n  union:\n";
   for (const Sphere& s : union_spheres()) {
-    yaml += fmt::format("    - sphere: {{center: [{:.17g}, {:.17g}, {:.17g}], radius: {:.17g}}}\n", s.center.x, s.center.y,
-                        s.center.z, s.radius);
+    yaml += fmt::format("    - sphere: {{center: [{:.17g}, {:.17g}, {:.17g}], radius: {:.17g}}}\n", s.center.x,
+                        s.center.y, s.center.z, s.radius);
   }
   return yaml;
 }
@@ -158,7 +158,8 @@ int nearest_sphere(const glm::dvec3& p) {
   const auto gap = [&](const Sphere& s) { return std::abs(glm::length(p - s.center) - s.radius); };
   int nearest = 0;
   for (std::size_t i = 1; i < union_spheres().size(); ++i) {
-    if (gap(union_spheres()[i]) < gap(union_spheres()[static_cast<std::size_t>(nearest)])) nearest = static_cast<int>(i);
+    if (gap(union_spheres()[i]) < gap(union_spheres()[static_cast<std::size_t>(nearest)]))
+      nearest = static_cast<int>(i);
   }
   return nearest;
 }
@@ -171,12 +172,17 @@ const std::vector<DepthCase>& depth_cases() {
        [](const glm::dvec3& p) { return nearest_sphere(p); }},
       {"sphere",
        "camera: {position: [0.3, 0.5, 4], look_at: [0, 0, 0]}\nsdf: {sphere: {center: [0, 0, 0], radius: 1}}\n",
-       [](const glm::dvec3& o, const glm::dvec3& d) { return intersect_sphere(o, d, Sphere{{0, 0, 0}, 1.0}); },
+       [](const glm::dvec3& o, const glm::dvec3& d) {
+         return intersect_sphere(o, d, Sphere{{0, 0, 0}, 1.0});
+       },
        [](const glm::dvec3& p) { return glm::normalize(p); },
        {}},
       {"box",
-       "camera: {position: [-2, 3, 4], look_at: [0, 0, 0]}\nsdf: {box: {center: [0.2, 0, 0], half_size: [1, 0.5, 0.75]}}\n",
-       [](const glm::dvec3& o, const glm::dvec3& d) { return intersect_box(o, d, Box{{0.2, 0, 0}, {1, 0.5, 0.75}}); },
+       "camera: {position: [-2, 3, 4], look_at: [0, 0, 0]}\nsdf: {box: {center: [0.2, 0, 0], half_size: [1, 0.5, "
+       "0.75]}}\n",
+       [](const glm::dvec3& o, const glm::dvec3& d) {
+         return intersect_box(o, d, Box{{0.2, 0, 0}, {1, 0.5, 0.75}});
+       },
        [](const glm::dvec3& p) {
          const glm::dvec3 q = (p - glm::dvec3(0.2, 0, 0)) / glm::dvec3(1, 0.5, 0.75);
          const glm::dvec3 a = glm::abs(q);
@@ -187,7 +193,9 @@ const std::vector<DepthCase>& depth_cases() {
        {}},
       {"plane",
        "camera: {position: [-2, 4, 4], look_at: [0, 0, 0]}\nsdf: {plane: {normal: [0, 1, 0], offset: 1}}\n",
-       [](const glm::dvec3& o, const glm::dvec3& d) { return intersect_plane(o, d, Plane{{0, 1, 0}, 1.0}); },
+       [](const glm::dvec3& o, const glm::dvec3& d) {
+         return intersect_plane(o, d, Plane{{0, 1, 0}, 1.0});
+       },
        [](const glm::dvec3&) { return glm::dvec3(0, 1, 0); },
        {}},
   };
@@ -257,7 +265,8 @@ std::vector<SphereNormalError> sphere_normal_errors(const Scene& scene, int lane
       const double depth = buffers.at(Channel::Depth, i, j);
       if (!std::isfinite(depth)) continue;
       const glm::dvec3 p = basis.origin + depth * pixel_ray_direction(basis, i, j);
-      const glm::dvec3 normal(buffers.at(Channel::NX, i, j), buffers.at(Channel::NY, i, j), buffers.at(Channel::NZ, i, j));
+      const glm::dvec3 normal(buffers.at(Channel::NX, i, j), buffers.at(Channel::NY, i, j),
+                              buffers.at(Channel::NZ, i, j));
       hits.push_back({i, j, depth, glm::length(normal - glm::normalize(p - centre))});
     }
   }
@@ -270,11 +279,11 @@ std::vector<SphereNormalError> sphere_normal_errors(const Scene& scene, int lane
 // kappa = 1 here; twice that, plus the float rounding of the taps' difference over h.
 TEST(KernelNormals, MatchTheSphereClosedFormForEachMethod) {
   for (const char* method : {"central", "tetrahedral", "forward"}) {
-    Scene scene = scene_from_yaml(fmt::format(
-        "camera: {{position: [0.3, 0.5, 4], look_at: [0, 0, 0]}}\n"
-        "render: {{width: 64, height: 48, normal_method: {}, normal_epsilon: 1.0e-3}}\n"
-        "sdf: {{sphere: {{radius: 1}}}}\n",
-        method));
+    Scene scene =
+        scene_from_yaml(fmt::format("camera: {{position: [0.3, 0.5, 4], look_at: [0, 0, 0]}}\n"
+                                    "render: {{width: 64, height: 48, normal_method: {}, normal_epsilon: 1.0e-3}}\n"
+                                    "sdf: {{sphere: {{radius: 1}}}}\n",
+                                    method));
     const double camera_distance = glm::length(scene.camera.position);
     const double h = scene.render.normal_epsilon;
     const double stencil = std::string(method) == "central" ? 2.0 * h * h : 2.0 * h;
@@ -300,11 +309,11 @@ TEST(KernelNormals, MatchTheSphereClosedFormForEachMethod) {
 // stencil's 2 h^2 is nothing.
 TEST(KernelNormals, HoldFarFromTheFrameOrigin) {
   const double r = 1.0, h = 1e-4;
-  Scene scene = scene_from_yaml(fmt::format(
-      "camera: {{position: [0, 0, 0], look_at: [58, 0, 0.5], fov: 3}}\n"
-      "render: {{width: 48, height: 48, normal_epsilon: {}, max_distance: 100}}\n"
-      "sdf: {{sphere: {{center: [58, 0, 0.5], radius: {}}}}}\n",
-      h, r));
+  Scene scene =
+      scene_from_yaml(fmt::format("camera: {{position: [0, 0, 0], look_at: [58, 0, 0.5], fov: 3}}\n"
+                                  "render: {{width: 48, height: 48, normal_epsilon: {}, max_distance: 100}}\n"
+                                  "sdf: {{sphere: {{center: [58, 0, 0.5], radius: {}}}}}\n",
+                                  h, r));
   ASSERT_EQ(map_frame_origin(scene), glm::dvec3(0.0));
   const double u = 0x1p-24;  // float's unit roundoff
   const double tolerance = 2.0 * h * h + 2.0 * std::sqrt(3.0) * u * r / h;

@@ -69,14 +69,16 @@ TEST(ExitCodes, InternalErrorStaysOneLine) {
 }
 
 TEST(ExitCodes, DeviceFaultsHintAtTheReferenceOnTheirFirstLine) {
-  const Reported plain = report([]() -> int { throw DeviceError("OpenCL error on D (P): clFinish failed with CL_OUT_OF_RESOURCES"); });
+  const Reported plain =
+      report([]() -> int { throw DeviceError("OpenCL error on D (P): clFinish failed with CL_OUT_OF_RESOURCES"); });
   EXPECT_EQ(plain.code, kExitDeviceFault);
   EXPECT_EQ(plain.err,
             "OpenCL error on D (P): clFinish failed with CL_OUT_OF_RESOURCES (the CPU renderer needs no OpenCL: "
             "clmarch render --backend reference)\n");
   // A build log stays after the first line, untouched.
   const Reported build = report([]() -> int {
-    throw DeviceError("OpenCL error on D (P): clBuildProgram failed with CL_BUILD_PROGRAM_FAILURE\nbuild log of D:\nx.cl:1:1: error");
+    throw DeviceError(
+        "OpenCL error on D (P): clBuildProgram failed with CL_BUILD_PROGRAM_FAILURE\nbuild log of D:\nx.cl:1:1: error");
   });
   EXPECT_EQ(build.code, kExitDeviceFault);
   EXPECT_EQ(build.err.substr(0, build.err.find('\n')),
@@ -110,16 +112,16 @@ TEST(ExitCodes, NoOpenClPlatform) {
   }
   EXPECT_TRUE(out.files().empty());
   // The CPU reference needs no platform.
-  const auto reference = run_clmarch(
-      {"render", source_path("scenes/torus.yaml").string(), "--size", "16x9", "--backend", "reference", "-o",
-       (out / "t.png").string()},
-      no_opencl_environment(empty));
+  const auto reference = run_clmarch({"render", source_path("scenes/torus.yaml").string(), "--size", "16x9",
+                                      "--backend", "reference", "-o", (out / "t.png").string()},
+                                     no_opencl_environment(empty));
   EXPECT_EQ(reference.exit_code, kExitOk) << reference.err;
   EXPECT_EQ(out.files(), std::vector<std::string>{"t.png"});
 }
 
 TEST(ExitCodes, ParseErrorsAreBadInput) {
-  for (const std::vector<std::string>& args : {std::vector<std::string>{}, {"render"}, {"frobnicate"}, {"render", "x.yaml", "--size"}}) {
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{}, {"render"}, {"frobnicate"}, {"render", "x.yaml", "--size"}}) {
     const auto result = run_clmarch(args);
     EXPECT_EQ(result.exit_code, kExitBadInput) << result.err;
     EXPECT_EQ(lines(result.err), 1) << result.err;

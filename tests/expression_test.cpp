@@ -67,7 +67,8 @@ TEST(Expression, ErrorsNameWhatExists) {
 
 // In a scene: a quoted expression with commas, and GLSL's functions at the scene's time.
 TEST(Expression, ScenesUseThemAtTheirTime) {
-  const Scene scene = load_scene_text("sdf: {sphere: {radius: \"max(0.1, fract(t))\", center: [\"mod(t, 2)\", 0, 0]}}\n", "s.yaml", {}, 2.75);
+  const Scene scene = load_scene_text(
+      "sdf: {sphere: {radius: \"max(0.1, fract(t))\", center: [\"mod(t, 2)\", 0, 0]}}\n", "s.yaml", {}, 2.75);
   const Sphere& sphere = std::get<Sphere>(scene.sdf.params);
   EXPECT_DOUBLE_EQ(sphere.radius, 0.75);
   EXPECT_DOUBLE_EQ(sphere.center.x, 0.75);

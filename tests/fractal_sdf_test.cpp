@@ -137,9 +137,9 @@ TEST(Mandelbulb, EstimateStaysBelowTheDistanceToSurfacePoints) {
 
 TEST(Menger, OneLevelIsTheCubeWithACrossCut) {
   const Menger one{{0.0, 0.0, 0.0}, 1.0, 1};
-  EXPECT_NEAR(sd_menger({0.9, 0.9, 0.9}, one), -0.1, kExact);      // corner cube, 0.1 below three faces
+  EXPECT_NEAR(sd_menger({0.9, 0.9, 0.9}, one), -0.1, kExact);        // corner cube, 0.1 below three faces
   EXPECT_NEAR(sd_menger({0.5, 0.5, 0.5}, one), -1.0 / 6.0, kExact);  // a bound: the tunnels' edge is sqrt(2)/6 away
-  EXPECT_NEAR(sd_menger({0.5, 0.5, 2.0}, one), 1.0, kExact);       // above solid face
+  EXPECT_NEAR(sd_menger({0.5, 0.5, 2.0}, one), 1.0, kExact);         // above solid face
   EXPECT_NEAR(sd_menger({0.3, 0.0, 0.5}, one), 1.0 / 30.0, kExact);  // in the z tunnel, 1/30 from its wall
   EXPECT_NEAR(sd_menger({0.0, 0.0, 0.0}, one), 1.0 / 3.0, kExact);   // a bound: the true distance is sqrt(2)/3
   EXPECT_NEAR(sd_menger({2.0, 0.0, 0.0}, one), 1.0, kExact);         // a bound: sqrt(1 + 2/9) over the tunnel
@@ -194,7 +194,8 @@ TEST(Menger, IsOneLipschitz) {
 
 // Kernel against reference: points within the fractals' reach, plus some far away; the tolerance
 // is per unit of |p| (float rounds coordinates relative to their size).
-void expect_kernel_matches_reference_at(const std::string& sdf_yaml, const std::vector<glm::dvec3>& points, double tolerance) {
+void expect_kernel_matches_reference_at(const std::string& sdf_yaml, const std::vector<glm::dvec3>& points,
+                                        double tolerance) {
   const Scene scene = scene_from_yaml("sdf:\n  " + sdf_yaml + "\n");
   for (int lanes : {1, 16}) {
     OpenClOptions options;
@@ -234,7 +235,8 @@ TEST(MandelbulbKernel, PowerEightFormMatchesOnTheAxesAndNearTheSet) {
   // the shell where the march samples it. Tolerance as in MatchesTheReference.
   constexpr double kMandelbulbTolerance = 1e-4;
   const Scene scene = scene_from_yaml("sdf:\n  mandelbulb: {}\n");
-  ASSERT_NE(generate_kernel_source(scene, {KernelPurpose::EvalPoints, 16}).find("sd_mandelbulb8(p,"), std::string::npos);
+  ASSERT_NE(generate_kernel_source(scene, {KernelPurpose::EvalPoints, 16}).find("sd_mandelbulb8(p,"),
+            std::string::npos);
   std::vector<glm::dvec3> points;
   for (int i = -60; i <= 60; ++i) {
     const double s = i / 40.0;
@@ -275,8 +277,8 @@ TEST(Mandelbox, OrbitsOutsideItsCubeEscape) {
       for (int i = 0; i < 2000; ++i) {
         glm::dvec3 p(unit(rng), unit(rng), unit(rng));
         p *= half_size * beyond(rng) / std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
-        ASSERT_GT(sd_mandelbox(p, box), 1e-4) << "scale " << scale << " radii " << min_radius << ", " << fixed_radius << " at ("
-                                              << p.x << ", " << p.y << ", " << p.z << ")";
+        ASSERT_GT(sd_mandelbox(p, box), 1e-4) << "scale " << scale << " radii " << min_radius << ", " << fixed_radius
+                                              << " at (" << p.x << ", " << p.y << ", " << p.z << ")";
       }
     }
   }
@@ -314,7 +316,8 @@ TEST(FractalKeys, DefaultsAndRanges) {
   EXPECT_EQ(std::get<Menger>(sponge.sdf.params).half_size, 2.0);
   EXPECT_EQ(std::get<Menger>(sponge.sdf.params).iterations, 4);
 
-  EXPECT_EQ(error_of("sdf: {mandelbulb: {power: 1.5}}\n"), "s.yaml:1:27: sdf.mandelbulb.power must be in [2, 16] (got 1.5)");
+  EXPECT_EQ(error_of("sdf: {mandelbulb: {power: 1.5}}\n"),
+            "s.yaml:1:27: sdf.mandelbulb.power must be in [2, 16] (got 1.5)");
   EXPECT_EQ(error_of("sdf: {mandelbulb: {iterations: 0}}\n"),
             "s.yaml:1:32: sdf.mandelbulb.iterations must be in [1, 64] (got 0)");
   EXPECT_EQ(error_of("sdf: {mandelbulb: {iterations: 8.5}}\n"),
@@ -323,7 +326,8 @@ TEST(FractalKeys, DefaultsAndRanges) {
   EXPECT_EQ(error_of("sdf: {mandelbulb: {power: 16, bailout: 20}}\n"),
             "s.yaml:1:40: sdf.mandelbulb.bailout must be at most 10^(18/power) = 13.3 for power 16 so that |z|^2 "
             "stays finite in float (got 20)");
-  EXPECT_EQ(error_of("sdf: {menger: {iterations: 9}}\n"), "s.yaml:1:28: sdf.menger.iterations must be in [1, 8] (got 9)");
+  EXPECT_EQ(error_of("sdf: {menger: {iterations: 9}}\n"),
+            "s.yaml:1:28: sdf.menger.iterations must be in [1, 8] (got 9)");
   EXPECT_EQ(error_of("sdf: {menger: {half_size: 0}}\n"), "s.yaml:1:27: sdf.menger.half_size must be > 0 (got 0)");
   EXPECT_NE(error_of("sdf: {menger: {size: 1}}\n").find("unknown key 'size' in sdf.menger"), std::string::npos);
 }
@@ -332,8 +336,10 @@ TEST(FractalKeys, StepFactorOnEveryNode) {
   const Scene scene = scene_from_yaml("sdf: {union: {step_factor: 0.5, children: [{sphere: {step_factor: 0.25}}]}}\n");
   EXPECT_EQ(scene.sdf.step_factor, 0.5);
   EXPECT_EQ(scene.sdf.children[0].step_factor, 0.25);
-  EXPECT_EQ(error_of("sdf: {sphere: {step_factor: 0}}\n"), "s.yaml:1:29: sdf.sphere.step_factor must be in (0, 1] (got 0)");
-  EXPECT_EQ(error_of("sdf: {box: {step_factor: 1.5}}\n"), "s.yaml:1:26: sdf.box.step_factor must be in (0, 1] (got 1.5)");
+  EXPECT_EQ(error_of("sdf: {sphere: {step_factor: 0}}\n"),
+            "s.yaml:1:29: sdf.sphere.step_factor must be in (0, 1] (got 0)");
+  EXPECT_EQ(error_of("sdf: {box: {step_factor: 1.5}}\n"),
+            "s.yaml:1:26: sdf.box.step_factor must be in (0, 1] (got 1.5)");
 }
 
 TEST(FractalKernelSource, FractalsAreCompiledInOnlyWhenUsed) {
@@ -342,8 +348,9 @@ TEST(FractalKernelSource, FractalsAreCompiledInOnlyWhenUsed) {
   };
   const std::string marker = "#line 1 \"kernels/fractals.cl\"";
   EXPECT_EQ(source_of("sphere: {}").find(marker), std::string::npos);
-  EXPECT_NE(source_of("union: [{sphere: {}}, {smooth_union: {k: 1, children: [{box: {}}, {menger: {}}]}}]").find(marker),
-            std::string::npos);
+  EXPECT_NE(
+      source_of("union: [{sphere: {}}, {smooth_union: {k: 1, children: [{box: {}}, {menger: {}}]}}]").find(marker),
+      std::string::npos);
   const std::string bulb = source_of("mandelbulb: {power: 6, iterations: 5, bailout: 3}");
   EXPECT_NE(bulb.find(marker), std::string::npos);
   EXPECT_NE(bulb.find("sd_mandelbulb(p, (float4)(0.0f, 0.0f, 0.0f, 0.0f), 6.0f, 5, 3.0f)"), std::string::npos);

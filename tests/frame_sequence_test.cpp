@@ -80,15 +80,18 @@ TEST(FrameSequence, FramesOfAMovingCameraReuseTheProgram) {
   const std::string scene = (dir / "orbit.yaml").string();
   std::ofstream(scene) << "camera: {position: [\"4 * cos(t)\", 1.5, \"4 * sin(t)\"], look_at: [0, 0, 0]}\n"
                           "render: {width: 40, height: 24}\n"
-                          "sdf: {union: [{torus: {}}, {sphere: {center: [1.6, 0, 0], radius: 0.4}}, {plane: {normal: [0, 1, 0], offset: 0.6}}]}\n"
+                          "sdf: {union: [{torus: {}}, {sphere: {center: [1.6, 0, 0], radius: 0.4}}, {plane: {normal: "
+                          "[0, 1, 0], offset: 0.6}}]}\n"
                           "lights: [{point: {position: [\"3 * cos(t)\", 3, \"3 * sin(t)\"]}}]\n"
                           "shading: {shadows: {mode: soft}}\n";
-  const auto sequence = run_clmarch({"render", scene, "--frames", "0:2", "--fps", "2", "--stats", "-o", (dir / "o_#.png").string(),
-                                     "--buffers", (dir / "b_#.exr").string(), "--dump-kernel", (dir / "k_#.cl").string()});
+  const auto sequence =
+      run_clmarch({"render", scene, "--frames", "0:2", "--fps", "2", "--stats", "-o", (dir / "o_#.png").string(),
+                   "--buffers", (dir / "b_#.exr").string(), "--dump-kernel", (dir / "k_#.cl").string()});
   ASSERT_EQ(sequence.exit_code, 0) << sequence.err;
   std::istringstream lines(sequence.out);
   std::vector<double> build_ms;
-  for (std::string line; std::getline(lines, line);) build_ms.push_back(nlohmann::json::parse(line)["build_ms"].get<double>());
+  for (std::string line; std::getline(lines, line);)
+    build_ms.push_back(nlohmann::json::parse(line)["build_ms"].get<double>());
   ASSERT_EQ(build_ms.size(), 3u);
   EXPECT_GT(build_ms[0], 0.0);
   EXPECT_EQ(build_ms[1], 0.0);
@@ -97,17 +100,18 @@ TEST(FrameSequence, FramesOfAMovingCameraReuseTheProgram) {
     const std::string n = std::to_string(frame);
     EXPECT_TRUE(std::filesystem::exists(dir / ("k_" + n + ".cl"))) << frame;
     const std::string time = std::to_string(frame / 2.0);
-    const auto one = run_clmarch({"render", scene, "--time", time, "-o", (dir / ("s_" + n + ".png")).string(), "--buffers",
-                                  (dir / ("sb_" + n + ".exr")).string()});
+    const auto one = run_clmarch({"render", scene, "--time", time, "-o", (dir / ("s_" + n + ".png")).string(),
+                                  "--buffers", (dir / ("sb_" + n + ".exr")).string()});
     ASSERT_EQ(one.exit_code, 0) << one.err;
     EXPECT_EQ(read_image(dir / ("o_" + n + ".png")).pixels, read_image(dir / ("s_" + n + ".png")).pixels) << frame;
     EXPECT_EQ(read_image(dir / ("b_" + n + ".exr")).pixels, read_image(dir / ("sb_" + n + ".exr")).pixels) << frame;
   }
-  EXPECT_NE(read_image(dir / "o_0.png").pixels, read_image(dir / "o_1.png").pixels) << "the camera moves around the sphere";
+  EXPECT_NE(read_image(dir / "o_0.png").pixels, read_image(dir / "o_1.png").pixels)
+      << "the camera moves around the sphere";
 
-  const auto moving_shapes = run_clmarch({"render", testing::source_path("scenes/moving_shapes.yaml").string(), "--size",
-                                          "32x18", "--frames", "0:3", "--stats", "-o", (dir / "m_#.png").string(),
-                                          "--dump-kernel", (dir / "m_#.cl").string()});
+  const auto moving_shapes =
+      run_clmarch({"render", testing::source_path("scenes/moving_shapes.yaml").string(), "--size", "32x18", "--frames",
+                   "0:3", "--stats", "-o", (dir / "m_#.png").string(), "--dump-kernel", (dir / "m_#.cl").string()});
   ASSERT_EQ(moving_shapes.exit_code, 0) << moving_shapes.err;
   std::istringstream moving_lines(moving_shapes.out);
   std::vector<double> moving_build_ms;
@@ -143,11 +147,11 @@ TEST(FrameSequence, BadOptionsWriteNothing) {
     std::vector<std::string> args;
     std::string message;
   };
-  for (const Case& c : {Case{{"--frames", "4:2"}, "--frames 4:2: the last frame must not come before the first"},
-                        Case{{"--frames", "0-4"}, "--frames 0-4: expected FIRST:LAST"},
-                        Case{{"--fps", "30"}, "--fps requires --frames"},
-                        Case{{"--frames", "0:1", "--fps", "0"}, "--fps"},
-                        Case{{"--frames", "0:1", "--time", "2"}, "--time and --frames both set the time"}}) {
+  for (const Case& c :
+       {Case{{"--frames", "4:2"}, "--frames 4:2: the last frame must not come before the first"},
+        Case{{"--frames", "0-4"}, "--frames 0-4: expected FIRST:LAST"},
+        Case{{"--fps", "30"}, "--fps requires --frames"}, Case{{"--frames", "0:1", "--fps", "0"}, "--fps"},
+        Case{{"--frames", "0:1", "--time", "2"}, "--time and --frames both set the time"}}) {
     std::vector<std::string> args = {"render", scene, "--size", "16x9", "-o", out};
     args.insert(args.end(), c.args.begin(), c.args.end());
     const auto result = run_clmarch(args);

@@ -58,7 +58,8 @@ TEST_P(GoldenImage, MatchesAtItsPacketWidths) {
     for (int j = 0; j < image.height; ++j) {
       for (int i = 0; i < image.width; ++i) {
         bool differs = false;
-        for (int c = 0; c < 3; ++c) differs = differs || std::abs(image.at(i, j, c) - golden.at(i, j, c)) > kInteriorTolerance;
+        for (int c = 0; c < 3; ++c)
+          differs = differs || std::abs(image.at(i, j, c) - golden.at(i, j, c)) > kInteriorTolerance;
         differing += differs;
       }
     }

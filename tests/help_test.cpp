@@ -45,8 +45,9 @@ void expect_every_option_in_an_example(const std::vector<std::string>& command, 
   EXPECT_GE(help.options.size(), at_least) << result.out;
   for (const std::vector<std::string>& spellings : help.options) {
     bool used = false;
-    for (const std::string& s : spellings) used = used || help.examples.find(" " + s + " ") != std::string::npos ||
-                                                   help.examples.find(" " + s + "\n") != std::string::npos;
+    for (const std::string& s : spellings)
+      used = used || help.examples.find(" " + s + " ") != std::string::npos ||
+             help.examples.find(" " + s + "\n") != std::string::npos;
     EXPECT_TRUE(used) << spellings.back() << " has no example in:\n" << help.examples;
   }
 }

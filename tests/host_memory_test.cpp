@@ -48,12 +48,14 @@ TEST(DeviceMemory, ValuesBufferBeyondTheDeviceNamesTheLimit) {
   const DeviceMemoryLimits limits{"cpu (Portable Computing Language)", 1000000, 65536};
   EXPECT_EQ(values_buffer_shortfall(1000000, true, limits), "");
   EXPECT_EQ(values_buffer_shortfall(65536, false, limits), "");
-  EXPECT_EQ(values_buffer_shortfall(1000004, true, limits),
-            "the scene's values buffer (its changing literals and its operand grid) needs 1000004 bytes (0.0 GiB), but the "
-            "device cpu (Portable Computing Language) allows at most 1000000 bytes (CL_DEVICE_MAX_MEM_ALLOC_SIZE)");
-  EXPECT_EQ(values_buffer_shortfall(65540, false, limits),
-            "the scene's values buffer (its changing literals, in __constant memory) needs 65540 bytes (0.0 GiB), but the "
-            "device cpu (Portable Computing Language) allows at most 65536 bytes (CL_DEVICE_MAX_CONSTANT_BUFFER_SIZE)");
+  EXPECT_EQ(
+      values_buffer_shortfall(1000004, true, limits),
+      "the scene's values buffer (its changing literals and its operand grid) needs 1000004 bytes (0.0 GiB), but the "
+      "device cpu (Portable Computing Language) allows at most 1000000 bytes (CL_DEVICE_MAX_MEM_ALLOC_SIZE)");
+  EXPECT_EQ(
+      values_buffer_shortfall(65540, false, limits),
+      "the scene's values buffer (its changing literals, in __constant memory) needs 65540 bytes (0.0 GiB), but the "
+      "device cpu (Portable Computing Language) allows at most 65536 bytes (CL_DEVICE_MAX_CONSTANT_BUFFER_SIZE)");
   // The figures the check reads from a real device are at least OpenCL's minimums for them.
   const DeviceMemoryLimits device = device_memory_limits(select_device(std::nullopt));
   EXPECT_GE(device.max_alloc, std::uint64_t{128} << 20);
@@ -69,9 +71,9 @@ TEST(HostMemory, AvailableMemoryIsReadOnLinux) {
 }
 
 /// Skips the test on a machine that could hold a kHugeSide^2 render (it would then really run).
-#define SKIP_UNLESS_HUGE_RENDER_EXCEEDS_MEMORY()                                                         \
-  do {                                                                                                  \
-    const std::optional<AvailableMemory> m = available_host_memory();                                   \
+#define SKIP_UNLESS_HUGE_RENDER_EXCEEDS_MEMORY()                                                      \
+  do {                                                                                                \
+    const std::optional<AvailableMemory> m = available_host_memory();                                 \
     if (!m || m->bytes >= render_host_bytes(kHugeSide, kHugeSide)) GTEST_SKIP() << "too much memory"; \
   } while (false)
 
@@ -86,8 +88,7 @@ TEST(HostMemory, CliRefusesSizeOptionBeyondMemory) {
     if (std::string(command) == "render") args.insert(args.end(), {"-o", (dir / "out.png").string()});
     const auto result = run_clmarch(args);
     EXPECT_EQ(result.exit_code, kExitBadInput) << command << ": " << result.err;
-    EXPECT_EQ(result.err.find("--size " + size + ": " + pixels + " pixels need "), 0u)
-        << command << ": " << result.err;
+    EXPECT_EQ(result.err.find("--size " + size + ": " + pixels + " pixels need "), 0u) << command << ": " << result.err;
     EXPECT_NE(result.err.find(") of host memory"), std::string::npos) << result.err;
     EXPECT_NE(result.err.find("are available"), std::string::npos) << result.err;
     EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
@@ -98,15 +99,18 @@ TEST(HostMemory, CliRefusesSizeOptionBeyondMemory) {
 TEST(HostMemory, CliRefusesSceneSizeBeyondMemoryAtItsLine) {
   SKIP_UNLESS_HUGE_RENDER_EXCEEDS_MEMORY();
   TempDir dir;
-  std::ofstream(dir / "scene.yaml") << "sdf: {sphere: {}}\nrender: {width: " << kHugeSide << ", height: " << kHugeSide << "}\n";
+  std::ofstream(dir / "scene.yaml") << "sdf: {sphere: {}}\nrender: {width: " << kHugeSide << ", height: " << kHugeSide
+                                    << "}\n";
   const auto result = run_clmarch({"render", (dir / "scene.yaml").string(), "-o", (dir / "out.png").string()});
   EXPECT_EQ(result.exit_code, kExitBadInput) << result.err;
-  EXPECT_EQ(result.err.find((dir / "scene.yaml").string() + ":2:17: render.width x render.height: 46340 x 46340 pixels need "),
+  EXPECT_EQ(result.err.find((dir / "scene.yaml").string() +
+                            ":2:17: render.width x render.height: 46340 x 46340 pixels need "),
             0u)
       << result.err;
   EXPECT_EQ(dir.files(), std::vector<std::string>{"scene.yaml"});
   // --size wins over the file's size, so a small --size renders the same file.
-  const auto small = run_clmarch({"render", (dir / "scene.yaml").string(), "--size", "8x8", "-o", (dir / "out.png").string()});
+  const auto small =
+      run_clmarch({"render", (dir / "scene.yaml").string(), "--size", "8x8", "-o", (dir / "out.png").string()});
   EXPECT_EQ(small.exit_code, 0) << small.err;
 }
 
@@ -126,9 +130,10 @@ TEST(HostMemory, CliHonoursTheAddressSpaceLimit) {
   TempDir dir;
   std::ofstream(dir / "scene.yaml") << "sdf: {sphere: {}}\n";
   const auto result = run_clmarch_in_shell("ulimit -v 8000000; ", {"render", (dir / "scene.yaml").string(), "--size",
-                                                                  "20000x20000", "-o", (dir / "out.png").string()});
+                                                                   "20000x20000", "-o", (dir / "out.png").string()});
   EXPECT_EQ(result.exit_code, kExitBadInput) << result.err;
-  EXPECT_EQ(result.err.find("--size 20000x20000: 20000 x 20000 pixels need " + std::to_string(render_host_bytes(20000, 20000)) + " bytes"),
+  EXPECT_EQ(result.err.find("--size 20000x20000: 20000 x 20000 pixels need " +
+                            std::to_string(render_host_bytes(20000, 20000)) + " bytes"),
             0u)
       << result.err;
   EXPECT_NE(result.err.find("ulimit -v"), std::string::npos) << result.err;
@@ -140,7 +145,8 @@ TEST(HostMemory, CliHonoursTheAddressSpaceLimit) {
   // 0.7 GB of the render's bytes, within the limit without the driver's 512 MiB, past it with them.
   const int side = static_cast<int>(std::sqrt(0.7e9 / static_cast<double>(host_bytes_per_pixel())));
   const std::string past_the_driver = std::to_string(side) + "x" + std::to_string(side);
-  for (const auto& [size, exit_code] : {std::pair{past_the_driver.c_str(), kExitBadInput}, std::pair{"64x64", kExitOk}}) {
+  for (const auto& [size, exit_code] :
+       {std::pair{past_the_driver.c_str(), kExitBadInput}, std::pair{"64x64", kExitOk}}) {
     const auto limited = run_clmarch_in_shell("ulimit -v 1000000; ", {"render", (dir / "scene.yaml").string(), "--size",
                                                                       size, "-o", (dir / "out.png").string()});
     EXPECT_EQ(limited.exit_code, exit_code) << size << ": " << limited.err;

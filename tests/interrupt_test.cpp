@@ -82,7 +82,8 @@ std::string slow_to_build_scene() {
       "camera: {{position: [200, 0, 300], look_at: [200, 0, -5]}}\nsdf:\n  union:\n"
       "    - {{sphere: {{center: [0, -{}, 0], radius: 1}}}}\n",
       depth);
-  for (int i = 0; i < 400; ++i) yaml += fmt::format("    - {{sphere: {{center: [{}, 0, -5], radius: {}}}}}\n", i, radius);
+  for (int i = 0; i < 400; ++i)
+    yaml += fmt::format("    - {{sphere: {{center: [{}, 0, -5], radius: {}}}}}\n", i, radius);
   return yaml;
 }
 
@@ -115,7 +116,8 @@ TEST(Interrupt, FirstSignalWhileTheFirstDispatchCompilesExitsAtOnce) {
 bool in_signal_mask(pid_t pid, const std::string& field, int signal) {
   std::ifstream status(fmt::format("/proc/{}/status", pid));
   for (std::string line; std::getline(status, line);) {
-    if (line.starts_with(field + ":")) return (std::stoull(line.substr(field.size() + 1), nullptr, 16) >> (signal - 1)) & 1U;
+    if (line.starts_with(field + ":"))
+      return (std::stoull(line.substr(field.size() + 1), nullptr, 16) >> (signal - 1)) & 1U;
   }
   return false;
 }
@@ -157,10 +159,10 @@ TEST(Interrupt, OpenClRenderStopsAtTheNextChunkAndWritesNothing) {
   std::ofstream(dir / "scene.yaml") << kGrazingScene;
   // 4096x6144 pixels are 6 chunks of 4 M pixels (the renderer's most per dispatch), ~0.5 s each on
   // PoCL with 2 cores: an uninterrupted render runs 3 s more after the build, plus its writes.
-  const Interrupted r = interrupt({"--verbose", "render", (dir / "scene.yaml").string(), "--size", "4096x6144", "--set",
-                                   "render.max_steps=300", "-o", (dir / "out.png").string(), "--buffers",
-                                   (dir / "buffers.exr").string()},
-                                  "clmarch: build ", SIGINT);
+  const Interrupted r =
+      interrupt({"--verbose", "render", (dir / "scene.yaml").string(), "--size", "4096x6144", "--set",
+                 "render.max_steps=300", "-o", (dir / "out.png").string(), "--buffers", (dir / "buffers.exr").string()},
+                "clmarch: build ", SIGINT);
   EXPECT_EQ(r.exit_code, kExitInterrupted) << r.err;
   EXPECT_TRUE(r.err.ends_with("\nclmarch: interrupted\n")) << r.err;
   EXPECT_EQ(r.err.find("wrote"), std::string::npos) << r.err;
@@ -194,9 +196,11 @@ TEST(Interrupt, ReferenceRenderStopsWithinARow) {
   // where a fixed bound of 3 s failed), so it is measured: a render of two rows, one a core, whole
   // process. Stopping may take the row each core is in, then the process's exit: at most twice
   // that render, plus a second for the machine's noise, against 128 rows for the whole image.
-  const std::vector<std::string> row_args = {"render", (dir / "scene.yaml").string(), "--backend", "reference", "--size",
-                                             "32x2", "--set", "render.max_steps=100000", "-o",
-                                             (dir / "row.png").string()};
+  const std::vector<std::string> row_args = {"render",    (dir / "scene.yaml").string(),
+                                             "--backend", "reference",
+                                             "--size",    "32x2",
+                                             "--set",     "render.max_steps=100000",
+                                             "-o",        (dir / "row.png").string()};
   const auto started = std::chrono::steady_clock::now();
   const testing::CommandResult row = testing::run_clmarch(row_args);
   const double row_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
@@ -204,8 +208,16 @@ TEST(Interrupt, ReferenceRenderStopsWithinARow) {
   std::filesystem::remove(dir / "row.png");
   const double bound = 2.0 * row_seconds + 1.0;
   ASSERT_LT(bound, 0.25 * 128 * row_seconds) << "the whole image must take far longer than stopping may";
-  const std::vector<std::string> args = {"--verbose", "render", (dir / "scene.yaml").string(), "--backend", "reference",
-                                         "--size", "32x256", "--set", "render.max_steps=100000", "-o",
+  const std::vector<std::string> args = {"--verbose",
+                                         "render",
+                                         (dir / "scene.yaml").string(),
+                                         "--backend",
+                                         "reference",
+                                         "--size",
+                                         "32x256",
+                                         "--set",
+                                         "render.max_steps=100000",
+                                         "-o",
                                          (dir / "out.png").string()};
   const Interrupted r = interrupt(args, "rendering on the CPU reference", SIGINT);
   EXPECT_EQ(r.exit_code, 130) << r.err;

@@ -52,8 +52,9 @@ TEST(KernelVariant, SourceAndBuildOptionsSayWhatTheyAre) {
   options.variant = {Precision::Double, true, false};
   EXPECT_THROW(generate_kernel_source(scene, options), std::invalid_argument);
   // One double lane: the builtins that kernels call with float literals take double arguments.
-  EXPECT_NE(generate_kernel_source(scene, {KernelPurpose::Shaded, 1, {Precision::Double, false, false}}).find("lane_fmax"),
-            std::string::npos);
+  EXPECT_NE(
+      generate_kernel_source(scene, {KernelPurpose::Shaded, 1, {Precision::Double, false, false}}).find("lane_fmax"),
+      std::string::npos);
   EXPECT_EQ(kernel_build_options({}), "-cl-std=CL1.2");
   EXPECT_EQ(kernel_build_options({Precision::Float, false, true}), "-cl-std=CL1.2 -cl-fast-relaxed-math");
 }
@@ -96,29 +97,30 @@ TEST_P(KernelVariantCheck, PassesTheCheck) {
   scene.render.width = 64;
   scene.render.height = 36;
   const RenderResult render = render_opencl(scene, variant_options(v.lanes, v.precision, v.native_math, v.fast_math));
-  const CheckReport report = cross_check(scene, render.buffers, render_reference(scene), reshade_hits(scene, render.buffers));
+  const CheckReport report =
+      cross_check(scene, render.buffers, render_reference(scene), reshade_hits(scene, render.buffers));
   EXPECT_TRUE(report.passed()) << report.to_text();
   EXPECT_GT(report.both_hit, 100);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Variants, KernelVariantCheck,
-    ::testing::Values(VariantCase{"torus.yaml", 16, Precision::Double, false, false},
-                      VariantCase{"torus.yaml", 4, Precision::Double, false, false},
-                      VariantCase{"torus.yaml", 16, Precision::Float, true, false},
-                      VariantCase{"torus.yaml", 16, Precision::Float, false, true},
-                      VariantCase{"torus.yaml", 8, Precision::Double, false, true},
-                      VariantCase{"menger.yaml", 16, Precision::Double, false, false},
-                      VariantCase{"terrain_fbm.yaml", 16, Precision::Double, false, false},
-                      VariantCase{"tiled_spheres.yaml", 16, Precision::Double, false, false}),
-    [](const auto& info) {
-      const VariantCase& v = info.param;
-      std::string name = std::string(v.scene).substr(0, std::string(v.scene).find('.'));
-      name += "_lanes" + std::to_string(v.lanes) + "_" + kPrecisionNames[static_cast<int>(v.precision)];
-      if (v.native_math) name += "_native";
-      if (v.fast_math) name += "_fast";
-      return name;
-    });
+INSTANTIATE_TEST_SUITE_P(Variants, KernelVariantCheck,
+                         ::testing::Values(VariantCase{"torus.yaml", 16, Precision::Double, false, false},
+                                           VariantCase{"torus.yaml", 4, Precision::Double, false, false},
+                                           VariantCase{"torus.yaml", 16, Precision::Float, true, false},
+                                           VariantCase{"torus.yaml", 16, Precision::Float, false, true},
+                                           VariantCase{"torus.yaml", 8, Precision::Double, false, true},
+                                           VariantCase{"menger.yaml", 16, Precision::Double, false, false},
+                                           VariantCase{"terrain_fbm.yaml", 16, Precision::Double, false, false},
+                                           VariantCase{"tiled_spheres.yaml", 16, Precision::Double, false, false}),
+                         [](const auto& info) {
+                           const VariantCase& v = info.param;
+                           std::string name = std::string(v.scene).substr(0, std::string(v.scene).find('.'));
+                           name += "_lanes" + std::to_string(v.lanes) + "_" +
+                                   kPrecisionNames[static_cast<int>(v.precision)];
+                           if (v.native_math) name += "_native";
+                           if (v.fast_math) name += "_fast";
+                           return name;
+                         });
 
 // With a threshold below float's resolution at the torus's distance (t ~ 6: float spacing 4.8e-7),
 // float rays stop at the march's floor of FLT_EPSILON * t (march_loop.cl), double rays at epsilon:
@@ -130,11 +132,14 @@ TEST(KernelVariant, DoubleIsAtLeastAsCloseAsFloat) {
   SweepSettings exact;
   exact.reference_epsilon_scale = 1e-10;
   const FrameBuffers reference = render_reference(high_accuracy_scene(scene, exact));
-  const CheckReport single = cross_check(scene, render_opencl(scene, variant_options(16, Precision::Float, false, false)).buffers, reference);
-  const CheckReport dual = cross_check(scene, render_opencl(scene, variant_options(16, Precision::Double, false, false)).buffers, reference);
+  const CheckReport single =
+      cross_check(scene, render_opencl(scene, variant_options(16, Precision::Float, false, false)).buffers, reference);
+  const CheckReport dual =
+      cross_check(scene, render_opencl(scene, variant_options(16, Precision::Double, false, false)).buffers, reference);
   const std::string both = "double:\n" + dual.to_text() + "float:\n" + single.to_text();
   EXPECT_LE(dual.mask_mismatch_interior + dual.mask_mismatch_silhouette,
-            single.mask_mismatch_interior + single.mask_mismatch_silhouette) << both;
+            single.mask_mismatch_interior + single.mask_mismatch_silhouette)
+      << both;
   EXPECT_LE(dual.depth_abs.rms, single.depth_abs.rms) << both;
   EXPECT_LT(dual.normal_angle_p99, 0.5 * single.normal_angle_p99) << both;
 }

@@ -35,9 +35,11 @@ TEST(KindDocs, EveryKindHasARowNamingItsParameters) {
     const std::string row = docs_row(page, node_kind_name(kind));
     ASSERT_FALSE(row.empty()) << "docs/scene-format.md has no table row | `" << node_kind_name(kind) << "` |";
     for (const ParamSpec& spec : param_table(kind)) {
-      EXPECT_NE(row.find(fmt::format("`{}`", spec.key)), std::string::npos) << "its row does not name `" << spec.key << "`";
+      EXPECT_NE(row.find(fmt::format("`{}`", spec.key)), std::string::npos)
+          << "its row does not name `" << spec.key << "`";
       for (const char* choice : spec.choices) {
-        EXPECT_NE(row.find(fmt::format("`{}`", choice)), std::string::npos) << "its row does not name the choice `" << choice << "`";
+        EXPECT_NE(row.find(fmt::format("`{}`", choice)), std::string::npos)
+            << "its row does not name the choice `" << choice << "`";
       }
     }
   }

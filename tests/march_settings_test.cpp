@@ -56,7 +56,8 @@ TEST(MarchSettings, DefaultsAreAutomaticOverRelaxationWithTheFixedEpsilon) {
   // tiling; a number given always wins.
   EXPECT_EQ(camera_over_relaxation(scene_from_yaml("sdf: {sphere: {}}\nshading: {step_ao: 3000}\n")), 1.0);
   EXPECT_EQ(camera_over_relaxation(scene_from_yaml("sdf: {sphere: {}}\ntiling: {cell: [4, 4, 4]}\n")), 1.0);
-  EXPECT_EQ(camera_over_relaxation(scene_from_yaml("sdf: {sphere: {}}\ntiling: {cell: [4, 4, 4], method: mod}\n")), 1.2);
+  EXPECT_EQ(camera_over_relaxation(scene_from_yaml("sdf: {sphere: {}}\ntiling: {cell: [4, 4, 4], method: mod}\n")),
+            1.2);
   EXPECT_EQ(camera_over_relaxation(scene_from_yaml("sdf: {sphere: {}}\nrender: {over_relaxation: 1}\n")), 1.0);
   EXPECT_EQ(camera_over_relaxation(
                 scene_from_yaml("sdf: {sphere: {}}\nrender: {over_relaxation: 1.5}\nshading: {step_ao: 3000}\n")),
@@ -84,7 +85,8 @@ TEST(OverRelaxation, StepIntoTheSolidFallsBackInTheReference) {
   Scene scene = scene_from_yaml(kHeadOnPlane);
   for (const auto& [omega, steps] : {std::pair{1.0, 2}, std::pair{1.5, 3}}) {
     scene.render.over_relaxation = omega;
-    const MarchEnd end = reference_march(scene, scene.camera.position, {0.0, 0.0, -1.0}, 0.0, 100.0, camera_march_limits(scene));
+    const MarchEnd end =
+        reference_march(scene, scene.camera.position, {0.0, 0.0, -1.0}, 0.0, 100.0, camera_march_limits(scene));
     EXPECT_TRUE(end.hit) << "omega " << omega;
     EXPECT_EQ(end.depth, 5.0) << "omega " << omega;
     EXPECT_EQ(end.steps, steps) << "omega " << omega;
@@ -115,7 +117,8 @@ TEST(OverRelaxation, ReferenceHitsNeverPassTheSurface) {
   for (int j = 0; j < scene.render.height; ++j) {
     for (int i = 0; i < scene.render.width; ++i) {
       const glm::dvec3 dir = pixel_ray_direction(basis, i, j);
-      const MarchEnd end = reference_march(scene, basis.origin, dir, 0.0, scene.render.max_distance, camera_march_limits(scene));
+      const MarchEnd end =
+          reference_march(scene, basis.origin, dir, 0.0, scene.render.max_distance, camera_march_limits(scene));
       if (!end.hit) continue;
       ++hits;
       const std::optional<double> exact = intersect_torus(basis.origin, dir, torus);
@@ -153,8 +156,8 @@ TEST(OverRelaxation, FewerStepsOnTheTorusSameImage) {
 }
 
 // A floor receding to the horizon: with the pixel cone every ray follows the same t sequence as with
-// the fixed epsilon (both from the camera: no coarse pass) and stops no later, so per pixel it takes no more steps and hits wherever the
-// fixed march hits, at most threshold / cos in front of the exact plane; near the camera, where the
+// the fixed epsilon (both from the camera: no coarse pass) and stops no later, so per pixel it takes no more steps and
+// hits wherever the fixed march hits, at most threshold / cos in front of the exact plane; near the camera, where the
 // cone is narrower than epsilon (0.02 here, so that such pixels exist), nothing changes; far away
 // most steps are saved.
 TEST(PixelCone, FewerStepsAtDistanceOnAFloor) {
@@ -237,7 +240,8 @@ TEST(MarchSettings, BadValuesAreOneLineErrors) {
       {"render.cone_factor=2", "render.cone_factor applies only with render.hit_threshold: pixel_cone"},
   };
   for (const auto& [set, message] : cases) {
-    const testing::CommandResult r = testing::run_clmarch({"render", scene, "--set", set, "-o", (dir / "out.png").string()});
+    const testing::CommandResult r =
+        testing::run_clmarch({"render", scene, "--set", set, "-o", (dir / "out.png").string()});
     EXPECT_EQ(r.exit_code, kExitBadInput) << set;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << set << ":\n" << r.err;
     EXPECT_NE(r.err.find(message), std::string::npos) << set << ":\n" << r.err;
@@ -245,7 +249,8 @@ TEST(MarchSettings, BadValuesAreOneLineErrors) {
   }
   std::ofstream(scene) << "sdf: {sphere: {}}\nrender: {over_relaxation: 3}\n";
   const testing::CommandResult r = testing::run_clmarch({"render", scene, "-o", (dir / "out.png").string()});
-  EXPECT_NE(r.err.find("scene.yaml:2:27: render.over_relaxation must be in [1, 2) (got 3)"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("scene.yaml:2:27: render.over_relaxation must be in [1, 2) (got 3)"), std::string::npos)
+      << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "out.png"));
 }
 

@@ -89,7 +89,7 @@ TEST(MpiTiles, RowsAreWholeBandsAboutEightTilesARank) {
   EXPECT_EQ(tile_rows_for(720, 3), 24);
 }
 
-#define SKIP_WITHOUT_MPI()                                                        \
+#define SKIP_WITHOUT_MPI() \
   if (std::string(kMpiexec).empty()) GTEST_SKIP() << "clmarch was built without MPI"
 
 TEST(MpiRender, FramesEqualOneProcesssFrames) {
@@ -97,8 +97,11 @@ TEST(MpiRender, FramesEqualOneProcesssFrames) {
   TempDir one, many;
   const std::string scene = testing::source_path("scenes/moving_shapes.yaml").string();
   const auto args = [&](const TempDir& dir) {
-    return std::vector<std::string>{"render", scene, "--size", "160x90", "--frames", "0:7", "-o",
-                                    (dir / "f_####.png").string(), "--buffers", (dir / "b_####.exr").string(),
+    return std::vector<std::string>{"render",    scene,
+                                    "--size",    "160x90",
+                                    "--frames",  "0:7",
+                                    "-o",        (dir / "f_####.png").string(),
+                                    "--buffers", (dir / "b_####.exr").string(),
                                     "--stats"};
   };
   const CommandResult single = testing::run_clmarch(args(one));
@@ -124,8 +127,11 @@ TEST(MpiRender, TilesOfOneImageEqualOneProcesssImage) {
   TempDir one, many;
   const std::string scene = testing::source_path("scenes/moving_shapes.yaml").string();
   const auto args = [&](const TempDir& dir) {
-    return std::vector<std::string>{"render", scene, "--size", "1280x720", "--time", "0.7", "-o",
-                                    (dir / "image.png").string(), "--buffers", (dir / "buffers.exr").string()};
+    return std::vector<std::string>{"render",    scene,
+                                    "--size",    "1280x720",
+                                    "--time",    "0.7",
+                                    "-o",        (dir / "image.png").string(),
+                                    "--buffers", (dir / "buffers.exr").string()};
   };
   const CommandResult single = testing::run_clmarch(args(one));
   ASSERT_EQ(single.exit_code, 0) << single.err;
@@ -143,7 +149,8 @@ TEST(MpiRender, StatsOfAnImageHaveALinePerRank) {
   SKIP_WITHOUT_MPI();
   TempDir dir;
   const std::string scene = testing::source_path("scenes/torus.yaml").string();
-  const std::vector<std::string> args = {"render", scene, "--size", "160x120", "-o", (dir / "t.png").string(), "--stats"};
+  const std::vector<std::string> args = {"render", scene, "--size", "160x120", "-o", (dir / "t.png").string(),
+                                         "--stats"};
   const CommandResult single = testing::run_clmarch(args);
   ASSERT_EQ(single.exit_code, 0) << single.err;
   const CommandResult distributed = run_under_mpirun(2, args);
@@ -169,12 +176,13 @@ TEST(MpiRender, AFailingRankEndsTheRunWithItsMessage) {
   SKIP_WITHOUT_MPI();
   TempDir dir, no_drivers;
   const std::string scene = testing::source_path("scenes/moving_shapes.yaml").string();
-  const std::vector<std::string> args = {"render", scene, "--size", "96x54", "--frames", "0:7", "-o",
-                                         (dir / "f_####.png").string()};
+  const std::vector<std::string> args = {"render",   scene, "--size", "96x54",
+                                         "--frames", "0:7", "-o",     (dir / "f_####.png").string()};
   // Rank 1 is another program context of mpirun: clmarch run by env with an empty driver folder.
   std::vector<std::string> command = {kMpiexec, "--oversubscribe", "-n", "1", CLMARCH_BINARY};
   command.insert(command.end(), args.begin(), args.end());
-  command.insert(command.end(), {":", "-n", "1", "/usr/bin/env", "OCL_ICD_VENDORS=" + no_drivers.path().string(), CLMARCH_BINARY});
+  command.insert(command.end(),
+                 {":", "-n", "1", "/usr/bin/env", "OCL_ICD_VENDORS=" + no_drivers.path().string(), CLMARCH_BINARY});
   command.insert(command.end(), args.begin(), args.end());
   command.insert(command.end(), {":", "-n", "1"});
   // The last context's program is the one ClmarchProcess appends.
@@ -199,8 +207,8 @@ TEST(MpiRender, AnInterruptedRunLeavesOnlyCompleteFiles) {
   SKIP_WITHOUT_MPI();
   TempDir dir;
   const std::string scene = testing::source_path("scenes/moving_shapes.yaml").string();
-  ClmarchProcess process({"render", scene, "--size", "320x180", "--frames", "0:199", "-o", (dir / "f_####.png").string(),
-                          "--buffers", (dir / "b_####.exr").string()},
+  ClmarchProcess process({"render", scene, "--size", "320x180", "--frames", "0:199", "-o",
+                          (dir / "f_####.png").string(), "--buffers", (dir / "b_####.exr").string()},
                          kMpirunEnvironment, false, mpirun(3));
   const auto deadline = std::chrono::steady_clock::now() + 120s;
   while (dir.files().size() < 4 && std::chrono::steady_clock::now() < deadline) std::this_thread::sleep_for(20ms);

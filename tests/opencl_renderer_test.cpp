@@ -55,7 +55,8 @@ TEST(OpenClRenderer, BandsOfRowsEqualTheWholeImage) {
             const auto from = whole.buffers.planes[c].begin() + first * scene.render.width;
             const std::vector<float> expected(from, from + rows * scene.render.width);
             EXPECT_EQ(band.buffers.planes[c], expected)
-                << kChannelNames[c] << " rows " << first << " + " << rows << ", lanes " << lanes << "\n" << yaml;
+                << kChannelNames[c] << " rows " << first << " + " << rows << ", lanes " << lanes << "\n"
+                << yaml;
           }
         }
       }
@@ -75,7 +76,8 @@ TEST(OpenClRenderer, BandsStartOnlyAtTheAlignment) {
 // and occlusion, so that every use of the normal shows in the color.
 TEST(OpenClRenderer, ColorProgramEqualsTheShadedOneWithoutNormalPlanes) {
   const Scene scene = testing::scene_from_yaml(
-      "sdf:\n  union:\n    - torus: {color: [0.9, 0.3, 0.2], reflectivity: 0.5}\n    - plane: {normal: [0, 1, 0], offset: -0.5}\n"
+      "sdf:\n  union:\n    - torus: {color: [0.9, 0.3, 0.2], reflectivity: 0.5}\n    - plane: {normal: [0, 1, 0], "
+      "offset: -0.5}\n"
       "render: {width: 61, height: 37}\nlights:\n  - point: {position: [2, 3, 1]}\n"
       "shading: {model: blinn_phong, step_ao: 200, reflections: 1, ambient_occlusion: {}, shadows: {mode: soft}}\n");
   OpenClOptions shaded, color;
@@ -92,7 +94,8 @@ TEST(OpenClRenderer, ColorProgramEqualsTheShadedOneWithoutNormalPlanes) {
   for (Channel c : {Channel::NX, Channel::NY, Channel::NZ}) EXPECT_TRUE(zero(b.plane(c)));
   EXPECT_FALSE(zero(a.plane(Channel::NY)));
   EXPECT_EQ(generate_kernel_source(scene, {KernelPurpose::Color, 16}).find("#define WRITE_NORMALS"), std::string::npos);
-  EXPECT_NE(generate_kernel_source(scene, {KernelPurpose::Shaded, 16}).find("#define WRITE_NORMALS"), std::string::npos);
+  EXPECT_NE(generate_kernel_source(scene, {KernelPurpose::Shaded, 16}).find("#define WRITE_NORMALS"),
+            std::string::npos);
   // The id and the layers are the --buffers program's alone: the shaded kernel that bench times
   // writes no more planes than it did before them.
   for (const char* define : {"#define WRITE_IDS", "#define WRITE_LAYERS"}) {
@@ -103,13 +106,16 @@ TEST(OpenClRenderer, ColorProgramEqualsTheShadedOneWithoutNormalPlanes) {
 
 TEST(OpenClRenderer, CpuWorkItemsMarchPairsOfPacketsExceptUnderTheCellsTiling) {
   const Scene plain = testing::scene_from_yaml("sdf: {torus: {}}\n");
-  const Scene cells = testing::scene_from_yaml("tiling: {cell: [1, 1, 1], method: cells}\nsdf: {sphere: {radius: 0.3}}\n");
+  const Scene cells =
+      testing::scene_from_yaml("tiling: {cell: [1, 1, 1], method: cells}\nsdf: {sphere: {radius: 0.3}}\n");
   EXPECT_EQ(packets_per_item(plain, 16), 2);
   EXPECT_EQ(packets_per_item(plain, 4), 2);
   EXPECT_EQ(packets_per_item(plain, 1), 1);
   EXPECT_EQ(packets_per_item(cells, 16), 1);
-  EXPECT_NE(generate_kernel_source(plain, {KernelPurpose::Shaded, 16}).find("#define PACKETS_PER_ITEM 2\n"), std::string::npos);
-  EXPECT_NE(generate_kernel_source(cells, {KernelPurpose::Shaded, 16}).find("#define PACKETS_PER_ITEM 1\n"), std::string::npos);
+  EXPECT_NE(generate_kernel_source(plain, {KernelPurpose::Shaded, 16}).find("#define PACKETS_PER_ITEM 2\n"),
+            std::string::npos);
+  EXPECT_NE(generate_kernel_source(cells, {KernelPurpose::Shaded, 16}).find("#define PACKETS_PER_ITEM 1\n"),
+            std::string::npos);
 }
 
 TEST(OpenClRenderer, AnOddPacketAtTheEndOfARowOfWorkItemsIsMarchedAlone) {
@@ -117,7 +123,8 @@ TEST(OpenClRenderer, AnOddPacketAtTheEndOfARowOfWorkItemsIsMarchedAlone) {
   // so the pairs straddle rows and the last work-item holds one packet. Every pixel must match
   // one pixel per work-item (lanes 1), which marches the same rays alone.
   const Scene scene = testing::scene_from_yaml(
-      "camera: {position: [0, 2, 2.5], look_at: [0, 0, 0]}\nsdf: {torus: {minor_radius: 0.5}}\nrender: {width: 20, height: 7}\n");
+      "camera: {position: [0, 2, 2.5], look_at: [0, 0, 0]}\nsdf: {torus: {minor_radius: 0.5}}\nrender: {width: 20, "
+      "height: 7}\n");
   OpenClOptions single, packets;
   single.lanes = 1;
   packets.lanes = 16;

@@ -37,10 +37,17 @@ std::string random_operand(std::mt19937& rng) {
   const auto primitive = [&](int kind) {
     const glm::dvec3 c = point();
     switch (kind) {
-      case 0: return fmt::format("sphere: {{center: {}, radius: {:.6g}}}", vec(c), size(rng));
-      case 1: return fmt::format("box: {{center: {}, half_size: {}}}", vec(c), vec(glm::dvec3(size(rng), size(rng), size(rng))));
-      case 2: return fmt::format("capsule: {{a: {}, b: {}, radius: {:.6g}}}", vec(c), vec(c + 0.2 * point()), 0.5 * size(rng));
-      case 3: return fmt::format("torus: {{center: {}, major_radius: {:.6g}, minor_radius: {:.6g}}}", vec(c), size(rng), 0.3 * size(rng));
+      case 0:
+        return fmt::format("sphere: {{center: {}, radius: {:.6g}}}", vec(c), size(rng));
+      case 1:
+        return fmt::format("box: {{center: {}, half_size: {}}}", vec(c),
+                           vec(glm::dvec3(size(rng), size(rng), size(rng))));
+      case 2:
+        return fmt::format("capsule: {{a: {}, b: {}, radius: {:.6g}}}", vec(c), vec(c + 0.2 * point()),
+                           0.5 * size(rng));
+      case 3:
+        return fmt::format("torus: {{center: {}, major_radius: {:.6g}, minor_radius: {:.6g}}}", vec(c), size(rng),
+                           0.3 * size(rng));
       default:
         return fmt::format("round_box: {{center: {}, half_size: [0.1, 0.15, 0.2], radius: 0.03}}", vec(c));
     }
@@ -49,14 +56,16 @@ std::string random_operand(std::mt19937& rng) {
   const int k = kind(rng);
   std::string extra;
   if (k % 3 == 0) extra += fmt::format(", color: {}", vec(0.5 * point() + 0.5));
-  if (k % 4 == 1) extra += fmt::format(", translate: {}, rotate: {}, scale: 0.8", vec(0.1 * point()), vec(90.0 * point()));
+  if (k % 4 == 1)
+    extra += fmt::format(", translate: {}, rotate: {}, scale: 0.8", vec(0.1 * point()), vec(90.0 * point()));
   const std::string a = primitive(k % 5), b = primitive((k + 2) % 5);
   if (k < 5) return fmt::format("{{{}{}}}}}", a.substr(0, a.size() - 1), extra);
   if (k == 5) return fmt::format("{{subtraction: [{{{}}}, {{{}}}]}}", a, b);
   if (k == 6) return fmt::format("{{intersection: [{{{}}}, {{sphere: {{radius: 2}}}}]}}", a);
   if (k == 7) return fmt::format("{{smooth_union: {{k: 0.1, children: [{{{}}}, {{{}}}]{}}}}}", a, b, extra);
   if (k == 8) return fmt::format("{{smooth_subtraction: {{k: 0.05, children: [{{{}}}, {{{}}}]}}}}", a, b);
-  if (k == 9) return fmt::format("{{smooth_intersection: {{k: 0.05, children: [{{{}}}, {{sphere: {{radius: 2}}}}]}}}}", a);
+  if (k == 9)
+    return fmt::format("{{smooth_intersection: {{k: 0.05, children: [{{{}}}, {{sphere: {{radius: 2}}}}]}}}}", a);
   // The modifiers of issue 25: 1-Lipschitz maps of one child, and a polar repetition, which is not.
   if (k == 10) return fmt::format("{{elongate: {{h: [0.1, 0, 0.05], children: [{{{}}}]}}}}", a);
   if (k == 11) return fmt::format("{{onion: {{thickness: 0.02, children: [{{{}}}]{}}}}}", a, extra);
@@ -92,7 +101,8 @@ std::vector<glm::dvec3> sample_points(unsigned seed, const OperandGrid& grid, in
   std::vector<glm::dvec3> points;
   for (int i = 0; i < count; ++i) {
     glm::dvec3 p;
-    for (int a = 0; a < 3; ++a) p[a] = std::uniform_real_distribution<double>(grid.lower[a] - 0.5, grid.upper[a] + 0.5)(rng);
+    for (int a = 0; a < 3; ++a)
+      p[a] = std::uniform_real_distribution<double>(grid.lower[a] - 0.5, grid.upper[a] + 0.5)(rng);
     points.push_back(p);
   }
   return points;
@@ -126,7 +136,8 @@ TEST_P(OperandGridEquality, EqualsTheUnprunedUnionInsideAndBoundsItOutside) {
     const PointSamples b = eval_points_opencl(full, points, options);
     int compared = 0;
     for (std::size_t i = 0; i < points.size(); ++i) {
-      const std::string where = fmt::format("lanes {} point ({}, {}, {})", lanes, points[i].x, points[i].y, points[i].z);
+      const std::string where =
+          fmt::format("lanes {} point ({}, {}, {})", lanes, points[i].x, points[i].y, points[i].z);
       if (!inside(grid, points[i])) {
         EXPECT_LE(a.distance[i], b.distance[i] + tolerance) << "outside the grid the bound must stay below: " << where;
         EXPECT_GT(a.distance[i], 0.0f) << "no surface lies outside the grid: " << where;
@@ -153,21 +164,25 @@ TEST_P(OperandGridEquality, AgreesWithTheUnprunedReference) {
   // Float against double over a fold of up to every operand: an ulp of the values met at each step.
   const double tolerance = 4.0 * FLT_EPSILON * (glm::length(grid.upper - grid.lower) + 1.0) * (c.operands + 8);
   for (std::size_t i = 0; i < points.size(); ++i) {
-    EXPECT_NEAR(a.distance[i], reference_distance(pruned.sdf, points[i]), tolerance) << points[i].x << "," << points[i].y;
+    EXPECT_NEAR(a.distance[i], reference_distance(pruned.sdf, points[i]), tolerance)
+        << points[i].x << "," << points[i].y;
   }
 }
 
 INSTANTIATE_TEST_SUITE_P(RandomTrees, OperandGridEquality,
                          ::testing::Values(UnionCase{1, 64, 0.0}, UnionCase{2, 64, 0.02}, UnionCase{3, 48, 0.3},
                                            UnionCase{4, 40, 2.0}),
-                         [](const auto& info) { return fmt::format("seed{}_k{}", info.param.seed, static_cast<int>(info.param.k * 100)); });
+                         [](const auto& info) {
+                           return fmt::format("seed{}_k{}", info.param.seed, static_cast<int>(info.param.k * 100));
+                         });
 
 // Spheres along x, far to near, each within k of the last: every step of the fold blends, so the
 // first operand still shapes the value at the near end, although its own distance is far above
 // the nearest's (it is left out by the nearest's bound alone). The grid must keep it where it counts.
 TEST(OperandGrid, AChainOfBlendsCarriesTheFirstOperandToTheEnd) {
   std::string chain;
-  for (int i = 0; i < 12; ++i) chain += fmt::format("      - sphere: {{center: [{}, 0, 0], radius: 0.1}}\n", 3.0 - 0.25 * i);
+  for (int i = 0; i < 12; ++i)
+    chain += fmt::format("      - sphere: {{center: [{}, 0, 0], radius: 0.1}}\n", 3.0 - 0.25 * i);
   const std::string body = "  smooth_union:\n    k: 1\n    children:\n" + chain;
   const Scene pruned = scene_from_yaml("render: {pruning: grid}\nsdf:\n" + body);
   const Scene full = scene_from_yaml("render: {pruning: none}\nsdf:\n" + body);
@@ -185,7 +200,8 @@ TEST(OperandGrid, AChainOfBlendsCarriesTheFirstOperandToTheEnd) {
   without_first.sdf.children.erase(without_first.sdf.children.begin());
   const PointSamples c = eval_points_opencl(without_first, points, options);
   double moved = 0.0;
-  for (std::size_t i = 0; i < points.size(); ++i) moved = std::max(moved, std::abs(static_cast<double>(c.distance[i]) - b.distance[i]));
+  for (std::size_t i = 0; i < points.size(); ++i)
+    moved = std::max(moved, std::abs(static_cast<double>(c.distance[i]) - b.distance[i]));
   EXPECT_GT(moved, 5 * tolerance);
 }
 
@@ -196,16 +212,19 @@ TEST(OperandGrid, AChainOfBlendsCarriesTheFirstOperandToTheEnd) {
 TEST(OperandGrid, KeepsBlendsSteeperThanOne) {
   std::string body = "  union:\n";
   for (int i = 0; i < 48; ++i) {
-    body += fmt::format("    - sphere: {{center: [{}, {}, {}], radius: 0.15}}\n", -3.0 + 0.5 * (i % 12), -0.5 + (i / 12) % 2, (i / 24) * 2.0);
+    body += fmt::format("    - sphere: {{center: [{}, {}, {}], radius: 0.15}}\n", -3.0 + 0.5 * (i % 12),
+                        -0.5 + (i / 12) % 2, (i / 24) * 2.0);
   }
   // Each blob in a ring of small spheres, so that cells between them hold both.
   for (double x : {-2.0, 0.0, 2.0}) {
-    body += fmt::format("    - union_chamfer: {{radius: 0.4, translate: [{}, 1.2, 1], children: [{{sphere: {{radius: 0.3}}}}, "
-                        "{{sphere: {{radius: 0.25}}}}]}}\n",
-                        x);
+    body += fmt::format(
+        "    - union_chamfer: {{radius: 0.4, translate: [{}, 1.2, 1], children: [{{sphere: {{radius: 0.3}}}}, "
+        "{{sphere: {{radius: 0.25}}}}]}}\n",
+        x);
     for (int j = 0; j < 8; ++j) {
       const double angle = 0.785398 * j;
-      body += fmt::format("    - sphere: {{center: [{}, {}, 1], radius: 0.1}}\n", x + 0.9 * std::cos(angle), 1.2 + 0.9 * std::sin(angle));
+      body += fmt::format("    - sphere: {{center: [{}, {}, 1], radius: 0.1}}\n", x + 0.9 * std::cos(angle),
+                          1.2 + 0.9 * std::sin(angle));
     }
   }
   const Scene pruned = scene_from_yaml("render: {pruning: grid}\nsdf:\n" + body);
@@ -248,7 +267,8 @@ TEST(OperandGrid, RefusesAGridBeyondTheMemoryGiven) {
   const std::uint64_t cells = static_cast<std::uint64_t>(grid.cell_count());
   const std::uint64_t first_estimate = grid_host_bytes(grid.cell_count(), cells);
   const std::uint64_t whole = grid_host_bytes(grid.cell_count(), grid.operands.size());
-  ASSERT_GT(grid.operands.size(), 2 * cells) << "the lists must outgrow the first estimate for the second check to be seen";
+  ASSERT_GT(grid.operands.size(), 2 * cells)
+      << "the lists must outgrow the first estimate for the second check to be seen";
   const auto refusal = [&](std::uint64_t bytes) {
     try {
       build_operand_grid(scene.sdf, glm::dvec3(0.0), AvailableMemory{bytes, "a test's budget"});
@@ -258,9 +278,10 @@ TEST(OperandGrid, RefusesAGridBeyondTheMemoryGiven) {
     return std::string();
   };
   const std::string early = refusal(first_estimate - 1);
-  EXPECT_NE(early.find(fmt::format("the smooth_union of 400 operands needs an operand grid (render.pruning) of {} x {} x {} cells "
-                                   "listing at least {} operands: {} bytes",
-                                   grid.dims.x, grid.dims.y, grid.dims.z, cells, first_estimate)),
+  EXPECT_NE(early.find(fmt::format(
+                "the smooth_union of 400 operands needs an operand grid (render.pruning) of {} x {} x {} cells "
+                "listing at least {} operands: {} bytes",
+                grid.dims.x, grid.dims.y, grid.dims.z, cells, first_estimate)),
             std::string::npos)
       << early;
   EXPECT_NE(early.find(fmt::format("but only {} bytes", first_estimate - 1)), std::string::npos) << early;
@@ -317,8 +338,9 @@ TEST(OperandGrid, ScriptScenesPassTheCheck) {
     for (int n : {60, 300}) {
       SCOPED_TRACE(fmt::format("{} {}", kind, n));
       const std::filesystem::path file = folder / fmt::format("{}-{}.yaml", kind, n);
-      const std::string command = fmt::format("python3 {} {} {} > {}", testing::shell_quote(testing::source_path("scripts/large-scene.py").string()),
-                                              kind, n, testing::shell_quote(file.string()));
+      const std::string command = fmt::format(
+          "python3 {} {} {} > {}", testing::shell_quote(testing::source_path("scripts/large-scene.py").string()), kind,
+          n, testing::shell_quote(file.string()));
       ASSERT_EQ(std::system(command.c_str()), 0) << command;
       Scene scene = load_scene_file(file.string());
       scene.render.width = 64;
@@ -341,9 +363,10 @@ TEST(OperandGrid, AutoPrunesOnlyLargeUnionsAndNoneNever) {
   const Scene scene = scene_from_yaml(large);
   EXPECT_EQ(grid_union(scene), &scene.sdf);
   // The largest union is chosen, wherever it is in the tree.
-  const Scene nested = scene_from_yaml("sdf:\n  union:\n    - plane: {normal: [0, 1, 0], offset: 1}\n"
-                                       "    - smooth_union:\n        k: 0.1\n        children:\n" +
-                                       random_operands(3, 60, "          "));
+  const Scene nested = scene_from_yaml(
+      "sdf:\n  union:\n    - plane: {normal: [0, 1, 0], offset: 1}\n"
+      "    - smooth_union:\n        k: 0.1\n        children:\n" +
+      random_operands(3, 60, "          "));
   ASSERT_EQ(nested.sdf.children.size(), 2u);
   EXPECT_EQ(grid_union(nested), &nested.sdf.children[1]);
 }
@@ -357,7 +380,8 @@ TEST(OperandGrid, TheProgramDoesNotGrowWithTheScene) {
 }
 
 TEST(OperandGrid, RenderPruningIsASettingWithNamedValues) {
-  EXPECT_NE(testing::error_of("render: {pruning: octree}\nsdf: {sphere: {}}\n").find("render.pruning"), std::string::npos);
+  EXPECT_NE(testing::error_of("render: {pruning: octree}\nsdf: {sphere: {}}\n").find("render.pruning"),
+            std::string::npos);
 }
 
 }  // namespace

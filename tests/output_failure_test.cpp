@@ -18,8 +18,8 @@ using testing::source_path;
 using testing::TempDir;
 
 TEST(OutputFailure, FolderThatTakesNoFilesIsRefusedBeforeRendering) {
-  const auto result = run_clmarch({"render", source_path("scenes/torus.yaml").string(), "--size", "16x9", "-o",
-                                   "/proc/clmarch-test.png"});
+  const auto result = run_clmarch(
+      {"render", source_path("scenes/torus.yaml").string(), "--size", "16x9", "-o", "/proc/clmarch-test.png"});
   EXPECT_EQ(result.exit_code, kExitBadInput) << result.err;
   EXPECT_EQ(result.err.find("--output /proc/clmarch-test.png: "), 0u) << result.err;
   EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
@@ -29,9 +29,9 @@ TEST(OutputFailure, WriteFailingHalfwayLeavesNoPartialFile) {
   TempDir dir;
   // 8 blocks of 512 bytes: the shaded 256x256 float EXR (768 KB before compression) fails well
   // into its pixel data. SIGXFSZ is ignored so that the write returns EFBIG instead of killing.
-  const auto result = run_clmarch_in_shell("trap '' XFSZ; ulimit -f 8; ",
-                                           {"render", source_path("scenes/torus.yaml").string(), "--backend", "reference",
-                                            "--size", "256x256", "-o", (dir / "out.exr").string()});
+  const auto result = run_clmarch_in_shell(
+      "trap '' XFSZ; ulimit -f 8; ", {"render", source_path("scenes/torus.yaml").string(), "--backend", "reference",
+                                      "--size", "256x256", "-o", (dir / "out.exr").string()});
   EXPECT_EQ(result.exit_code, kExitOutputFailed) << result.err;
   EXPECT_EQ(result.err.find((dir / "out.exr").string() + ": cannot write: "), 0u) << result.err;
   EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
@@ -45,8 +45,9 @@ TEST(OutputFailure, WriteFailingHalfwayLeavesNoPartialFile) {
 TEST(OutputFailure, LimitInTheLastBufferFailsTooWithOrWithoutTheSignalIgnored) {
   for (const char* shell_prefix : {"trap '' XFSZ; ulimit -f 1; ", "ulimit -f 1; "}) {
     TempDir dir;
-    const auto result = run_clmarch_in_shell(shell_prefix, {"render", source_path("scenes/torus.yaml").string(), "--backend",
-                                                            "reference", "--size", "128x72", "-o", (dir / "out.png").string()});
+    const auto result =
+        run_clmarch_in_shell(shell_prefix, {"render", source_path("scenes/torus.yaml").string(), "--backend",
+                                            "reference", "--size", "128x72", "-o", (dir / "out.png").string()});
     EXPECT_EQ(result.exit_code, kExitOutputFailed) << shell_prefix << result.err;
     EXPECT_EQ(result.err, (dir / "out.png").string() + ": cannot write: File too large\n") << shell_prefix;
     EXPECT_EQ(dir.files(), std::vector<std::string>{}) << shell_prefix << "no partial file, no temporary file";
@@ -59,9 +60,9 @@ TEST(OutputFailure, LimitInTheLastBufferFailsTooWithOrWithoutTheSignalIgnored) {
 TEST(OutputFailure, BuffersThatFailLeaveTheOldImageAsItWas) {
   TempDir dir;
   std::ofstream(dir / "out.png") << "the previous image";
-  const auto result = run_clmarch_in_shell("ulimit -f 40; ", {"render", source_path("scenes/torus.yaml").string(), "--backend",
-                                                              "reference", "--size", "128x72", "-o", (dir / "out.png").string(),
-                                                              "--buffers", (dir / "out.exr").string()});
+  const auto result = run_clmarch_in_shell(
+      "ulimit -f 40; ", {"render", source_path("scenes/torus.yaml").string(), "--backend", "reference", "--size",
+                         "128x72", "-o", (dir / "out.png").string(), "--buffers", (dir / "out.exr").string()});
   EXPECT_EQ(result.exit_code, kExitOutputFailed) << result.err;
   EXPECT_EQ(result.err, (dir / "out.exr").string() + ": cannot write: File too large\n");
   EXPECT_EQ(dir.files(), std::vector<std::string>{"out.png"}) << "no buffers, no temporary files";

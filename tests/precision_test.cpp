@@ -42,7 +42,8 @@ std::size_t distinct_normals(const FrameBuffers& b) {
   std::set<std::tuple<float, float, float>> normals;
   for (int j = 0; j < b.height; ++j) {
     for (int i = 0; i < b.width; ++i) {
-      if (std::isfinite(b.at(Channel::Depth, i, j))) normals.emplace(b.at(Channel::NX, i, j), b.at(Channel::NY, i, j), b.at(Channel::NZ, i, j));
+      if (std::isfinite(b.at(Channel::Depth, i, j)))
+        normals.emplace(b.at(Channel::NX, i, j), b.at(Channel::NY, i, j), b.at(Channel::NZ, i, j));
     }
   }
   return normals.size();
@@ -195,8 +196,9 @@ TEST(Precision, StatsSayWhichArithmeticRan) {
   const std::string scene = (dir / "scene.yaml").string();
   std::ofstream(scene) << "sdf: {sphere: {}}\nrender: {width: 16, height: 9}\n";
   for (const char* precision : {"float", "double"}) {
-    const testing::CommandResult r = testing::run_clmarch(
-        {"render", scene, "--set", std::string("render.precision=") + precision, "--stats", "-o", (dir / "out.png").string()});
+    const testing::CommandResult r =
+        testing::run_clmarch({"render", scene, "--set", std::string("render.precision=") + precision, "--stats", "-o",
+                              (dir / "out.png").string()});
     ASSERT_EQ(r.exit_code, kExitOk) << r.err;
     const nlohmann::json stats = nlohmann::json::parse(r.out);
     EXPECT_EQ(stats["precision"], precision);
@@ -212,7 +214,8 @@ TEST(Precision, BadValuesAreOneLineErrors) {
   std::ofstream(scene) << "sdf: {sphere: {}}\nrender: {width: 8, height: 8, precision: half}\n";
   const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
       {{"render", scene, "-o", out}, "scene.yaml:2:42: render.precision must be one of float, double (got 'half')"},
-      {{"render", scene, "--set", "render.precision=64", "-o", out}, "render.precision must be one of float, double (got '64')"},
+      {{"render", scene, "--set", "render.precision=64", "-o", out},
+       "render.precision must be one of float, double (got '64')"},
   };
   for (const auto& [args, message] : cases) {
     const testing::CommandResult r = testing::run_clmarch(args);

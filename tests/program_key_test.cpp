@@ -25,7 +25,8 @@ const char* const kLit =
     "sdf:\n  union:\n    - sphere: {center: [0, 0.6, 0], radius: 0.6, reflectivity: 0.3}\n"
     "    - plane: {normal: [0, 1, 0], offset: 0}\n"
     "lights: [{point: {position: [2, 3, 2]}}, {directional: {direction: [-1, 2, 1], intensity: 0.5}}]\n"
-    "shading: {model: blinn_phong, specular: 0.4, step_ao: 5000, ambient_occlusion: {}, shadows: {mode: soft_improved},\n"
+    "shading: {model: blinn_phong, specular: 0.4, step_ao: 5000, ambient_occlusion: {}, shadows: {mode: "
+    "soft_improved},\n"
     "          reflections: 1, sky: {}, glow: {radius: 0.2}, planetary_glow: {}, fog: {density: 0.02},\n"
     "          height_fog: {density: 0.05}, tone_map: reinhard, gamma: 2.2}\n";
 
@@ -82,7 +83,8 @@ TEST(ProgramKey, FeaturesLiteralsAndShapesMakeAnotherProgram) {
       {"specular: 0.4", "specular: 0.7"},
       {"- plane: {normal: [0, 1, 0], offset: 0}", "- box: {half_size: [3, 0.1, 3]}"},
   };
-  for (const auto& [from, to] : changes) EXPECT_NE(program_key(lit_with(from, to), shaded()), key) << from << " -> " << to;
+  for (const auto& [from, to] : changes)
+    EXPECT_NE(program_key(lit_with(from, to), shaded()), key) << from << " -> " << to;
   KernelOptions depth{KernelPurpose::DepthSteps, 16};
   EXPECT_NE(program_key(lit(), depth), key);
   KernelOptions slots = shaded();
@@ -96,7 +98,8 @@ TEST(ProgramKey, CommentsAreNoPartOfTheShape) {
   EXPECT_EQ(code_shape("vfloat d = 1; /* 12 cells */ return d; /* end */"), "vfloat d = 1;  return d; ");
   const auto spheres = [](double spacing) {
     std::string yaml = "render: {pruning: grid}\nsdf:\n  union:\n";
-    for (int i = 0; i < 60; ++i) yaml += fmt::format("    - sphere: {{center: [{}, 0, 0], radius: 0.2}}\n", spacing * i);
+    for (int i = 0; i < 60; ++i)
+      yaml += fmt::format("    - sphere: {{center: [{}, 0, 0], radius: 0.2}}\n", spacing * i);
     return testing::scene_from_yaml(yaml);
   };
   const Scene near = spheres(0.5), far = spheres(1.5);
@@ -127,7 +130,8 @@ TEST(ProgramKey, OneRendererDrawsEachFrameAsItsOwnWould) {
       const FrameBuffers shared = renderer.render().buffers;
       const FrameBuffers own = render_opencl(frame, options).buffers;
       for (int c = 0; c < kChannelCount; ++c) {
-        EXPECT_EQ(shared.planes[c], own.planes[c]) << kChannelNames[c] << " lanes " << lanes << " lights " << frame.lights.size();
+        EXPECT_EQ(shared.planes[c], own.planes[c])
+            << kChannelNames[c] << " lanes " << lanes << " lights " << frame.lights.size();
       }
     }
   }
@@ -151,9 +155,9 @@ TEST(KernelSource, DefinesAreFeatureSwitches) {
       EXPECT_EQ(value, "") << name;
     }
   }
-  for (const char* feature : {"NEED_SHADING", "SHADING_MODEL_BLINN_PHONG", "SHADOW_MODE", "AMBIENT_OCCLUSION", "REFLECTIONS",
-                              "STEP_AO", "FOG", "SKY", "GLOW", "PLANET_GLOW", "HEIGHT_FOG", "TONE_MAP_REINHARD",
-                              "DISPLAY_GAMMA", "COARSE_PASS"}) {
+  for (const char* feature :
+       {"NEED_SHADING", "SHADING_MODEL_BLINN_PHONG", "SHADOW_MODE", "AMBIENT_OCCLUSION", "REFLECTIONS", "STEP_AO",
+        "FOG", "SKY", "GLOW", "PLANET_GLOW", "HEIGHT_FOG", "TONE_MAP_REINHARD", "DISPLAY_GAMMA", "COARSE_PASS"}) {
     EXPECT_EQ(names.count(feature), 1u) << feature;
   }
 }

@@ -23,10 +23,11 @@ constexpr int kHeight = 18;
 
 /// A unit sphere 5 away, seen at 60 degrees: its silhouette covers the middle of the image.
 Scene sphere_scene(const std::string& render) {
-  return testing::scene_from_yaml(fmt::format("camera: {{position: [0, 0, 5], look_at: [0, 0, 0], fov: 60}}\n"
-                                              "render: {{width: {}, height: {}, max_distance: 30, {}}}\n"
-                                              "sdf: {{sphere: {{radius: 1}}}}\n",
-                                              kWidth, kHeight, render));
+  return testing::scene_from_yaml(
+      fmt::format("camera: {{position: [0, 0, 5], look_at: [0, 0, 0], fov: 60}}\n"
+                  "render: {{width: {}, height: {}, max_distance: 30, {}}}\n"
+                  "sdf: {{sphere: {{radius: 1}}}}\n",
+                  kWidth, kHeight, render));
 }
 
 RayStatus status_at(const FrameBuffers& b, int i, int j) { return static_cast<RayStatus>(b.at(Channel::Status, i, j)); }
@@ -76,10 +77,11 @@ TEST(RayStatus, UnboundedRaysRunOutOfDistance) {
 // do. The kernel once started the missing rays at their closest approach to the bound, 60 away,
 // and called them out of distance too.
 TEST(RayStatus, ASceneBeyondMaxDistanceIsOutOfDistanceWhereItsRaysMeetIt) {
-  const Scene scene = testing::scene_from_yaml(fmt::format("camera: {{position: [0, 0, 0], look_at: [0, 0, -60], fov: 4}}\n"
-                                                           "render: {{width: {}, height: {}, max_distance: 30}}\n"
-                                                           "sdf: {{sphere: {{center: [0, 0, -60], radius: 1}}}}\n",
-                                                           kWidth, kHeight));
+  const Scene scene =
+      testing::scene_from_yaml(fmt::format("camera: {{position: [0, 0, 0], look_at: [0, 0, -60], fov: 4}}\n"
+                                           "render: {{width: {}, height: {}, max_distance: 30}}\n"
+                                           "sdf: {{sphere: {{center: [0, 0, -60], radius: 1}}}}\n",
+                                           kWidth, kHeight));
   const CameraBasis basis = camera_basis(scene.camera, kWidth, kHeight);
   OpenClOptions shaded;
   shaded.ray_status = true;
@@ -93,7 +95,8 @@ TEST(RayStatus, ASceneBeyondMaxDistanceIsOutOfDistanceWhereItsRaysMeetIt) {
         const glm::dvec3 d = pixel_ray_direction(basis, i, j);
         const double closest = glm::length(glm::cross(glm::dvec3(0, 0, -60) - basis.origin, d));
         if (std::abs(closest - 1.0) < 0.1) continue;
-        EXPECT_EQ(status_at(buffers, i, j), closest < 1.0 ? RayStatus::OutOfDistance : RayStatus::Miss) << i << ", " << j;
+        EXPECT_EQ(status_at(buffers, i, j), closest < 1.0 ? RayStatus::OutOfDistance : RayStatus::Miss)
+            << i << ", " << j;
         met += closest < 1.0;
         missed += closest >= 1.0;
       }
@@ -138,15 +141,16 @@ TEST(RayStatus, StatsCountThemAndTheStatusViewShowsThem) {
   EXPECT_GT(reference.rays_with_status(RayStatus::OutOfDistance), 64u * 36u / 10u);
   EXPECT_GT(reference.rays_with_status(RayStatus::Hit), 64u * 36u / 10u);
   for (const char* backend : {"opencl", "reference"}) {
-    const testing::CommandResult r =
-        testing::run_clmarch({"render", (dir / "scene.yaml").string(), "--backend", backend, "--stats", "-o", (dir / "s.png").string()});
+    const testing::CommandResult r = testing::run_clmarch(
+        {"render", (dir / "scene.yaml").string(), "--backend", backend, "--stats", "-o", (dir / "s.png").string()});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const nlohmann::json stats = nlohmann::json::parse(r.out);
     EXPECT_EQ(stats["out_of_steps"].get<std::uint64_t>(), out_of_steps) << backend;
-    EXPECT_EQ(stats["out_of_distance"].get<std::uint64_t>(), reference.rays_with_status(RayStatus::OutOfDistance)) << backend;
+    EXPECT_EQ(stats["out_of_distance"].get<std::uint64_t>(), reference.rays_with_status(RayStatus::OutOfDistance))
+        << backend;
   }
-  const testing::CommandResult r = testing::run_clmarch({"render", (dir / "scene.yaml").string(), "--set", "shading.view=status",
-                                                         "-o", (dir / "status.exr").string()});
+  const testing::CommandResult r = testing::run_clmarch(
+      {"render", (dir / "scene.yaml").string(), "--set", "shading.view=status", "-o", (dir / "status.exr").string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const testing::Image image = testing::read_image(dir / "status.exr");
   for (int j = 0; j < 36; ++j) {

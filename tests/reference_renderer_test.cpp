@@ -149,8 +149,7 @@ struct Tally {
 };
 
 // Compares one reference ray with the closed form where the answer is robust; counts the rest.
-void check_ray(const AnalyticShape& shape, const Scene& scene, const glm::dvec3& o, const glm::dvec3& d,
-               Tally& tally) {
+void check_ray(const AnalyticShape& shape, const Scene& scene, const glm::dvec3& o, const glm::dvec3& d, Tally& tally) {
   const RenderSettings& rs = scene.render;
   // A ray that stays farther than epsilon from the surface never sees a distance below epsilon.
   const double grow = 2.0 * rs.epsilon;
@@ -203,10 +202,14 @@ void check_ray(const AnalyticShape& shape, const Scene& scene, const glm::dvec3&
 // start inside a shape are skipped by check_ray (cos < 0 at the exit).
 std::vector<std::pair<glm::dvec3, glm::dvec3>> hand_picked_rays() {
   return {
-      {{0.0, 0.0, 5.0}, {0.0, 0.0, -1.0}},  {{-4.0, 0.0, 0.0}, {1.0, 0.0, 0.0}},
-      {{0.0, 5.0, 0.0}, {0.0, -1.0, 0.0}},  {{1.0, 3.0, 0.0}, {0.0, -1.0, 0.0}},
-      {{0.0, 0.0, 0.0}, {1.0, 0.0, 0.0}},   {{0.0, 0.1, 4.0}, glm::normalize(glm::dvec3(0.05, -0.02, -1.0))},
-      {{3.0, 3.0, 3.0}, glm::normalize(glm::dvec3(-1.0))}, {{0.0, 2.0, 0.0}, glm::normalize(glm::dvec3(1.0, 1.0, 0.0))},
+      {{0.0, 0.0, 5.0}, {0.0, 0.0, -1.0}},
+      {{-4.0, 0.0, 0.0}, {1.0, 0.0, 0.0}},
+      {{0.0, 5.0, 0.0}, {0.0, -1.0, 0.0}},
+      {{1.0, 3.0, 0.0}, {0.0, -1.0, 0.0}},
+      {{0.0, 0.0, 0.0}, {1.0, 0.0, 0.0}},
+      {{0.0, 0.1, 4.0}, glm::normalize(glm::dvec3(0.05, -0.02, -1.0))},
+      {{3.0, 3.0, 3.0}, glm::normalize(glm::dvec3(-1.0))},
+      {{0.0, 2.0, 0.0}, glm::normalize(glm::dvec3(1.0, 1.0, 0.0))},
   };
 }
 
@@ -253,7 +256,7 @@ TEST(AnalyticIntersections, KnownHits) {
 
   const Box box{{1.0, 0.0, 0.0}, {0.5, 1.0, 2.0}};
   EXPECT_DOUBLE_EQ(*intersect_box({-3.0, 0.0, 0.0}, {1.0, 0.0, 0.0}, box), 3.5);
-  EXPECT_DOUBLE_EQ(*intersect_box({1.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, box), 2.0);  // inside: exit
+  EXPECT_DOUBLE_EQ(*intersect_box({1.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, box), 2.0);   // inside: exit
   EXPECT_DOUBLE_EQ(*intersect_box({1.0, 1.0, 5.0}, {0.0, 0.0, -1.0}, box), 3.0);  // along a face
   EXPECT_FALSE(intersect_box({-3.0, 1.5, 0.0}, {1.0, 0.0, 0.0}, box));
   EXPECT_FALSE(intersect_box({-3.0, 0.0, 0.0}, {-1.0, 0.0, 0.0}, box));
@@ -478,11 +481,12 @@ TEST(RenderReference, EveryPixelIsItsRay) {
       // wall_steps 0 (no tiling); the primitive hit or -1; the layers; depth.lo 0 (a float
       // render); its status; one ray per pixel: A is the hit, samples 1.
       const LightTerms& l = r.layers;
-      const double want[kChannelCount] = {r.color.r,   r.color.g,   r.color.b,   r.depth,      double(r.steps),
-                                          r.normal.x,  r.normal.y,  r.normal.z,  0.0,          r.hit ? double(r.primitive) : -1.0,
-                                          l.ambient.r, l.ambient.g, l.ambient.b, l.diffuse.r,  l.diffuse.g,
-                                          l.diffuse.b, l.specular.r, l.specular.g, l.specular.b, 0.0,
-                                          double(r.status), r.hit ? 1.0 : 0.0, 1.0};
+      const double want[kChannelCount] = {
+          r.color.r,        r.color.g,         r.color.b,    r.depth,      double(r.steps),
+          r.normal.x,       r.normal.y,        r.normal.z,   0.0,          r.hit ? double(r.primitive) : -1.0,
+          l.ambient.r,      l.ambient.g,       l.ambient.b,  l.diffuse.r,  l.diffuse.g,
+          l.diffuse.b,      l.specular.r,      l.specular.g, l.specular.b, 0.0,
+          double(r.status), r.hit ? 1.0 : 0.0, 1.0};
       for (int c = 0; c < kChannelCount; ++c) {
         EXPECT_EQ(fb.at(Channel(c), i, j), static_cast<float>(want[c])) << kChannelNames[c] << " at " << i << "," << j;
       }
@@ -514,16 +518,20 @@ TEST(ReshadeHits, TheReferencesOwnHitsKeepTheirColors) {
       for (int i = 0; i < reference.width; ++i) {
         for (int c = 3; c < kChannelCount; ++c) {
           // The layers are the shading's, computed again like the color.
-          if (std::find(std::begin(kLayerChannels), std::end(kLayerChannels), Channel(c)) != std::end(kLayerChannels)) continue;
-          EXPECT_EQ(reshaded.at(Channel(c), i, j), reference.at(Channel(c), i, j)) << name << " copies " << kChannelNames[c];
+          if (std::find(std::begin(kLayerChannels), std::end(kLayerChannels), Channel(c)) != std::end(kLayerChannels))
+            continue;
+          EXPECT_EQ(reshaded.at(Channel(c), i, j), reference.at(Channel(c), i, j))
+              << name << " copies " << kChannelNames[c];
         }
         if (!std::isfinite(reference.at(Channel::Depth, i, j))) {
-          EXPECT_EQ(reshaded.at(Channel::R, i, j), reference.at(Channel::R, i, j)) << name << ": a miss keeps its color";
+          EXPECT_EQ(reshaded.at(Channel::R, i, j), reference.at(Channel::R, i, j))
+              << name << ": a miss keeps its color";
           continue;
         }
         ++hits;
         float diff = 0.0f;
-        for (Channel c : {Channel::R, Channel::G, Channel::B}) diff = std::max(diff, std::abs(reshaded.at(c, i, j) - reference.at(c, i, j)));
+        for (Channel c : {Channel::R, Channel::G, Channel::B})
+          diff = std::max(diff, std::abs(reshaded.at(c, i, j) - reference.at(c, i, j)));
         for (Channel c : kLayerChannels) diff = std::max(diff, std::abs(reshaded.at(c, i, j) - reference.at(c, i, j)));
         changed += diff > 1e-4f;
       }
@@ -537,18 +545,9 @@ TEST(ReshadeHits, TheReferencesOwnHitsKeepTheirColors) {
 // Every pixel centre is at least 0.02 from a silhouette (checked against the closed forms).
 TEST(RenderReference, GoldenHitMask) {
   const char* const kGolden[] = {
-      "................",
-      "................",
-      "....###.........",
-      "...#####........",
-      "...#####........",
-      "...#####........",
-      "....###...###...",
-      "..........###...",
-      "..........###...",
-      "................",
-      "................",
-      "................",
+      "................", "................", "....###.........", "...#####........",
+      "...#####........", "...#####........", "....###...###...", "..........###...",
+      "..........###...", "................", "................", "................",
   };
   Scene s;
   s.sdf.kind = NodeKind::Union;

@@ -36,9 +36,11 @@ Node sphere_node(glm::dvec3 center, double radius, std::optional<glm::dvec3> col
 Node op_node(NodeKind kind, std::vector<Node> children, double k = 0.0) {
   Node n = node_of_kind(kind);
   n.children = std::move(children);
-  std::visit([k](auto& params) {
-    if constexpr (requires { params.k; }) params.k = k;
-  }, n.params);
+  std::visit(
+      [k](auto& params) {
+        if constexpr (requires { params.k; }) params.k = k;
+      },
+      n.params);
   return n;
 }
 
@@ -59,12 +61,12 @@ TEST(ReferenceSdf, Sphere) {
 
 TEST(ReferenceSdf, Box) {
   const Box b{{0.0, 0.0, 0.0}, {1.0, 2.0, 3.0}};
-  EXPECT_NEAR(sd_box({3.0, 0.0, 0.0}, b), 2.0, kExact);             // face region
-  EXPECT_NEAR(sd_box({0.0, -5.0, 1.0}, b), 3.0, kExact);            // face region, negative side
+  EXPECT_NEAR(sd_box({3.0, 0.0, 0.0}, b), 2.0, kExact);                   // face region
+  EXPECT_NEAR(sd_box({0.0, -5.0, 1.0}, b), 3.0, kExact);                  // face region, negative side
   EXPECT_NEAR(sd_box({3.0, 4.0, 0.0}, b), 2.0 * std::sqrt(2.0), kExact);  // edge region
-  EXPECT_NEAR(sd_box({2.0, 3.0, 4.0}, b), std::sqrt(3.0), kExact);  // corner region
-  EXPECT_NEAR(sd_box({0.5, 0.0, 0.0}, b), -0.5, kExact);            // inside, nearest face x
-  EXPECT_NEAR(sd_box({0.0, 1.5, 2.8}, b), -0.2, kExact);            // inside, nearest face z
+  EXPECT_NEAR(sd_box({2.0, 3.0, 4.0}, b), std::sqrt(3.0), kExact);        // corner region
+  EXPECT_NEAR(sd_box({0.5, 0.0, 0.0}, b), -0.5, kExact);                  // inside, nearest face x
+  EXPECT_NEAR(sd_box({0.0, 1.5, 2.8}, b), -0.2, kExact);                  // inside, nearest face z
   EXPECT_NEAR(sd_box({10.0, 10.0, 10.0}, Box{{10.0, 10.0, 10.0}, glm::dvec3(0.5)}), -0.5, kExact);
 }
 
@@ -81,9 +83,9 @@ TEST(ReferenceSdf, RoundBox) {
 TEST(ReferenceSdf, BoxFrame) {
   // Bars 2e = 0.2 wide, flush with the faces of the unit box: they span |x| in [0.8, 1].
   const BoxFrame f{{0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}, 0.1};
-  EXPECT_NEAR(sd_box_frame({2.0, 2.0, 2.0}, f), std::sqrt(3.0), kExact);     // off the corner
+  EXPECT_NEAR(sd_box_frame({2.0, 2.0, 2.0}, f), std::sqrt(3.0), kExact);  // off the corner
   EXPECT_NEAR(sd_box_frame({0.0, 2.0, 2.0}, f), std::sqrt(2.0), kExact);
-  EXPECT_NEAR(sd_box_frame({0.0, 0.0, 1.0}, f), 0.8, kExact);                // centre of a face: hollow
+  EXPECT_NEAR(sd_box_frame({0.0, 0.0, 1.0}, f), 0.8, kExact);                   // centre of a face: hollow
   EXPECT_NEAR(sd_box_frame({0.0, 0.0, 0.0}, f), 0.8 * std::sqrt(2.0), kExact);  // centre of the box
   // Inside one bar of each family (along x, y, z), and off an edge of each family.
   EXPECT_NEAR(sd_box_frame({0.0, 0.9, 0.9}, f), -0.1, kExact);
@@ -96,12 +98,12 @@ TEST(ReferenceSdf, BoxFrame) {
 
 TEST(ReferenceSdf, Torus) {
   const Torus t{{0.0, 0.0, 0.0}, 1.0, 0.25};
-  EXPECT_NEAR(sd_torus({0.0, 0.0, 0.0}, t), 0.75, kExact);                        // centre of the hole
-  EXPECT_NEAR(sd_torus({0.0, 2.0, 0.0}, t), std::sqrt(5.0) - 0.25, kExact);       // on the axis
-  EXPECT_NEAR(sd_torus({2.0, 0.0, 0.0}, t), 0.75, kExact);                        // in plane, outside
-  EXPECT_NEAR(sd_torus({0.0, 0.0, -1.0}, t), -0.25, kExact);                      // on the core circle
+  EXPECT_NEAR(sd_torus({0.0, 0.0, 0.0}, t), 0.75, kExact);                   // centre of the hole
+  EXPECT_NEAR(sd_torus({0.0, 2.0, 0.0}, t), std::sqrt(5.0) - 0.25, kExact);  // on the axis
+  EXPECT_NEAR(sd_torus({2.0, 0.0, 0.0}, t), 0.75, kExact);                   // in plane, outside
+  EXPECT_NEAR(sd_torus({0.0, 0.0, -1.0}, t), -0.25, kExact);                 // on the core circle
   EXPECT_NEAR(sd_torus({0.6, 0.0, 0.8}, t), -0.25, kExact);
-  EXPECT_NEAR(sd_torus({0.0, 1.0, 1.0}, t), 0.75, kExact);                        // above the core
+  EXPECT_NEAR(sd_torus({0.0, 1.0, 1.0}, t), 0.75, kExact);  // above the core
   EXPECT_NEAR(sd_torus({3.0, 1.0, -2.0}, Torus{{3.0, 1.0, 0.0}, 2.0, 0.5}), -0.5, kExact);
 }
 
@@ -114,10 +116,10 @@ TEST(ReferenceSdf, Plane) {
 
 TEST(ReferenceSdf, InfiniteCylinder) {
   const InfiniteCylinder c{{1.0, 0.0, 2.0}, 0.5};
-  EXPECT_NEAR(sd_infinite_cylinder({1.0, 7.0, 2.0}, c), -0.5, kExact);    // on the axis, any height
-  EXPECT_NEAR(sd_infinite_cylinder({4.0, -3.0, 2.0}, c), 2.5, kExact);    // beside it along x
-  EXPECT_NEAR(sd_infinite_cylinder({-2.0, 1e6, 2.0}, c), 2.5, kExact);    // no caps
-  EXPECT_NEAR(sd_infinite_cylinder({4.0, 0.0, 6.0}, c), 4.5, kExact);     // 3-4-5 off the axis
+  EXPECT_NEAR(sd_infinite_cylinder({1.0, 7.0, 2.0}, c), -0.5, kExact);  // on the axis, any height
+  EXPECT_NEAR(sd_infinite_cylinder({4.0, -3.0, 2.0}, c), 2.5, kExact);  // beside it along x
+  EXPECT_NEAR(sd_infinite_cylinder({-2.0, 1e6, 2.0}, c), 2.5, kExact);  // no caps
+  EXPECT_NEAR(sd_infinite_cylinder({4.0, 0.0, 6.0}, c), 4.5, kExact);   // 3-4-5 off the axis
 }
 
 TEST(ReferenceSdf, Capsule) {
@@ -134,10 +136,10 @@ TEST(ReferenceSdf, Capsule) {
 
 TEST(ReferenceSdf, Cylinder) {
   const Cylinder c{{0.0, 0.0, 0.0}, 0.5, 0.5};
-  EXPECT_NEAR(sd_cylinder({1.0, 0.0, 0.0}, c), 0.5, kExact);                 // side
-  EXPECT_NEAR(sd_cylinder({0.6, 0.2, 0.8}, c), 0.5, kExact);                 // side, off axis
-  EXPECT_NEAR(sd_cylinder({0.0, 1.0, 0.0}, c), 0.5, kExact);                 // cap
-  EXPECT_NEAR(sd_cylinder({0.3, -2.0, 0.0}, c), 1.5, kExact);                // bottom cap
+  EXPECT_NEAR(sd_cylinder({1.0, 0.0, 0.0}, c), 0.5, kExact);                   // side
+  EXPECT_NEAR(sd_cylinder({0.6, 0.2, 0.8}, c), 0.5, kExact);                   // side, off axis
+  EXPECT_NEAR(sd_cylinder({0.0, 1.0, 0.0}, c), 0.5, kExact);                   // cap
+  EXPECT_NEAR(sd_cylinder({0.3, -2.0, 0.0}, c), 1.5, kExact);                  // bottom cap
   EXPECT_NEAR(sd_cylinder({1.0, 1.0, 0.0}, c), 0.5 * std::sqrt(2.0), kExact);  // rim edge
   EXPECT_NEAR(sd_cylinder({0.0, 0.0, 0.0}, c), -0.5, kExact);
   EXPECT_NEAR(sd_cylinder({0.4, 0.0, 0.0}, c), -0.1, kExact);
@@ -148,7 +150,7 @@ TEST(ReferenceSdf, Cylinder) {
 TEST(ReferenceSdf, HardOperators) {
   EXPECT_EQ(op_union(0.5, -0.25), -0.25);
   EXPECT_EQ(op_intersection(0.5, -0.25), 0.5);
-  EXPECT_EQ(op_subtraction(0.5, -0.25), 0.5);   // max(0.5, 0.25)
+  EXPECT_EQ(op_subtraction(0.5, -0.25), 0.5);    // max(0.5, 0.25)
   EXPECT_EQ(op_subtraction(-0.5, 0.25), -0.25);  // max(-0.5, -0.25)
   EXPECT_EQ(op_subtraction(-0.5, -0.25), 0.25);  // b carves a
 }
@@ -280,7 +282,7 @@ TEST(ReferenceSdf, RotateNinetyDegreesAboutEachAxis) {
 TEST(ReferenceSdf, UniformScaleMultipliesDistance) {
   Node n = leaf(Box{{0.0, 0.0, 0.0}, {1.0, 2.0, 3.0}}, NodeKind::Box);
   n.transform.scale = 2.0;
-  EXPECT_NEAR(reference_distance(n, {6.0, 0.0, 0.0}), 4.0, kExact);   // face at x = 2
+  EXPECT_NEAR(reference_distance(n, {6.0, 0.0, 0.0}), 4.0, kExact);  // face at x = 2
   EXPECT_NEAR(reference_distance(n, {0.0, 0.0, 0.0}), -2.0, kExact);
   n.transform.translate = {1.0, 1.0, 1.0};
   EXPECT_NEAR(reference_distance(n, {1.0, 1.0, 10.0}), 3.0, kExact);  // face at z = 1 + 6
@@ -304,8 +306,9 @@ TEST(ReferenceSdf, MalformedTreesThrow) {
   Node mismatched = leaf(Sphere{}, NodeKind::Box);
   EXPECT_THROW(reference_distance(mismatched, glm::dvec3(0.0)), std::invalid_argument);
   EXPECT_THROW(reference_distance(op_node(NodeKind::Union, {}), glm::dvec3(0.0)), std::invalid_argument);
-  EXPECT_THROW(reference_distance(op_node(NodeKind::SmoothUnion, {sphere_node(glm::dvec3(0.0), 1.0)}, 0.0), glm::dvec3(0.0)),
-               std::invalid_argument);
+  EXPECT_THROW(
+      reference_distance(op_node(NodeKind::SmoothUnion, {sphere_node(glm::dvec3(0.0), 1.0)}, 0.0), glm::dvec3(0.0)),
+      std::invalid_argument);
 }
 
 // The step factor that makes a default primitive 1-Lipschitz, for the check below. A value-noise
@@ -364,19 +367,30 @@ Node default_node(NodeKind kind) {
   };
   const Node box_child = leaf(Box{{0.2, 0.1, 0.0}, {0.5, 0.3, 0.4}}, NodeKind::Box);
   switch (kind) {
-    case NodeKind::Elongate: return unary(Elongate{{0.3, 0.0, 0.2}}, box_child);
-    case NodeKind::Onion: return unary(Onion{0.1}, box_child);
-    case NodeKind::Round: return unary(Round{0.2}, box_child);
-    case NodeKind::Mirror: return unary(Mirror{{true, false, true}}, sphere_node({0.7, 0.2, 0.5}, 0.4));
-    case NodeKind::RepeatPolar: return unary(RepeatPolar{6}, sphere_node({1.0, 0.1, 0.0}, 0.3));
+    case NodeKind::Elongate:
+      return unary(Elongate{{0.3, 0.0, 0.2}}, box_child);
+    case NodeKind::Onion:
+      return unary(Onion{0.1}, box_child);
+    case NodeKind::Round:
+      return unary(Round{0.2}, box_child);
+    case NodeKind::Mirror:
+      return unary(Mirror{{true, false, true}}, sphere_node({0.7, 0.2, 0.5}, 0.4));
+    case NodeKind::RepeatPolar:
+      return unary(RepeatPolar{6}, sphere_node({1.0, 0.1, 0.0}, 0.3));
     case NodeKind::RepeatLimited:
       return unary(RepeatLimited{{1.5, 0.0, 1.5}, {-1, 0, -1}, {1, 0, 1}}, sphere_node({0.0, 0.0, 0.0}, 0.5));
-    case NodeKind::Revolve: return unary(Revolve{0.5}, leaf(Circle{{0.3, 0.1, 0.0}, 0.3}, NodeKind::Circle));
-    case NodeKind::Extrude: return unary(Extrude{0.4}, leaf(Rectangle{{0.1, 0.0, 0.0}, 0.5, 0.3}, NodeKind::Rectangle));
-    case NodeKind::Twist: return unary(Twist{60.0}, box_child);
-    case NodeKind::Bend: return unary(Bend{-40.0}, box_child);
-    case NodeKind::NonuniformScale: return unary(NonuniformScale{{1.5, 0.7, 1.0}}, box_child);
-    default: break;
+    case NodeKind::Revolve:
+      return unary(Revolve{0.5}, leaf(Circle{{0.3, 0.1, 0.0}, 0.3}, NodeKind::Circle));
+    case NodeKind::Extrude:
+      return unary(Extrude{0.4}, leaf(Rectangle{{0.1, 0.0, 0.0}, 0.5, 0.3}, NodeKind::Rectangle));
+    case NodeKind::Twist:
+      return unary(Twist{60.0}, box_child);
+    case NodeKind::Bend:
+      return unary(Bend{-40.0}, box_child);
+    case NodeKind::NonuniformScale:
+      return unary(NonuniformScale{{1.5, 0.7, 1.0}}, box_child);
+    default:
+      break;
   }
   Node other = sphere_node({0.3, 0.2, 0.0}, 0.6, kRed);
   return op_node(kind, {sphere_node({0.0, 0.0, 0.0}, 0.5), other}, is_smooth_operator(kind) ? 0.25 : 0.0);

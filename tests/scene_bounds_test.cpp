@@ -44,7 +44,8 @@ const BoundCase kBoundedCases[] = {
     {"cylinder", "  cylinder: {radius: 0.4, half_height: 0.8, rotate: [90, 0, 0]}"},
     {"cone", "  cone: {center: [0, 1, 0], angle: 30, height: 1.5}"},
     {"cone_wide", "  cone: {angle: 70, height: 0.5, rotate: [10, 0, 0]}"},
-    {"rounded_cylinder", "  rounded_cylinder: {radius: 0.6, half_height: 0.3, edge_radius: 0.1, translate: [0, 0.5, 0]}"},
+    {"rounded_cylinder",
+     "  rounded_cylinder: {radius: 0.6, half_height: 0.3, edge_radius: 0.1, translate: [0, 0.5, 0]}"},
     {"round_cone", "  round_cone: {a: [-1, 0, 0], b: [1, 0.5, 0], radius_a: 0.5, radius_b: 0.2}"},
     {"capped_torus", "  capped_torus: {angle: 100, major_radius: 1, minor_radius: 0.2, rotate: [30, 0, 0]}"},
     {"link", "  link: {half_length: 0.5, major_radius: 0.5, minor_radius: 0.15}"},
@@ -72,18 +73,29 @@ const BoundCase kBoundedCases[] = {
     {"sierpinski", "  sierpinski: {size: 1.5, iterations: 6, step_factor: 0.8, translate: [0, 0.5, 0]}"},
     {"mandelbox", "  mandelbox: {scale: -1.5, iterations: 8, step_factor: 0.8, translate: [0, 0.5, 0]}"},
     {"julia", "  julia: {c: [-0.2, 0.6, 0.2, 0.1], iterations: 10, step_factor: 0.8}"},
-    {"revolve", "  revolve:\n    offset: 0.6\n    children: [{rounded_rectangle: {center: [0.3, 0.2, 0], half_width: 0.4, half_height: 0.6}}]"},
+    {"revolve",
+     "  revolve:\n    offset: 0.6\n    children: [{rounded_rectangle: {center: [0.3, 0.2, 0], half_width: 0.4, "
+     "half_height: 0.6}}]"},
     {"revolve_of_sphere", "  revolve: {offset: 1, children: [{sphere: {center: [0.5, 0, 0.3], radius: 0.6}}]}"},
-    {"extrude", "  extrude:\n    half_length: 0.8\n    children: [{regular_polygon: {center: [0.4, 0, 3], radius: 1, sides: 5, rotate: [0, 0, 20], "
+    {"extrude",
+     "  extrude:\n    half_length: 0.8\n    children: [{regular_polygon: {center: [0.4, 0, 3], radius: 1, sides: 5, "
+     "rotate: [0, 0, 20], "
      "translate: [0.2, 0.3, 4]}}]"},
-    {"extrude_of_segment", "  extrude: {half_length: 0.3, children: [{segment: {a: [-1, 0.5, 0], b: [1.5, -0.5, 0], radius: 0.2, scale: 1.5}}]}"},
+    {"extrude_of_segment",
+     "  extrude: {half_length: 0.3, children: [{segment: {a: [-1, 0.5, 0], b: [1.5, -0.5, 0], radius: 0.2, scale: "
+     "1.5}}]}"},
     {"twist", "  twist: {rate: 60, children: [{box: {center: [0.5, 0, 0], half_size: [0.6, 1.5, 0.3]}}]}"},
     {"bend", "  bend: {rate: -40, children: [{box: {center: [0, 0.4, 0], half_size: [1.5, 0.2, 0.3]}}]}"},
-    {"nonuniform_scale", "  nonuniform_scale: {factors: [2, 0.5, 1], children: [{torus: {center: [0.5, 0, 0], major_radius: 1, minor_radius: 0.3}}]}"},
-    {"union", "  union:\n    - sphere: {center: [-1, 0, 0], radius: 0.5}\n    - box: {center: [1.5, 0, 0], half_size: [0.3, 0.3, 0.3]}"},
+    {"nonuniform_scale",
+     "  nonuniform_scale: {factors: [2, 0.5, 1], children: [{torus: {center: [0.5, 0, 0], major_radius: 1, "
+     "minor_radius: 0.3}}]}"},
+    {"union",
+     "  union:\n    - sphere: {center: [-1, 0, 0], radius: 0.5}\n    - box: {center: [1.5, 0, 0], half_size: [0.3, "
+     "0.3, 0.3]}"},
     // Each fold of three coincident spheres undershoots the last by up to k / 4: 0.39 k in all.
     {"smooth_union_of_three",
-     "  smooth_union:\n    k: 2\n    children: [{sphere: {radius: 0.5}}, {sphere: {radius: 0.5}}, {sphere: {radius: 0.5}}]"},
+     "  smooth_union:\n    k: 2\n    children: [{sphere: {radius: 0.5}}, {sphere: {radius: 0.5}}, {sphere: {radius: "
+     "0.5}}]"},
     {"smooth_union",
      "  smooth_union:\n    k: 0.8\n    children:\n      - sphere: {center: [-0.6, 0, 0], radius: 0.5}\n"
      "      - sphere: {center: [0.6, 0, 0], radius: 0.5}"},
@@ -92,47 +104,63 @@ const BoundCase kBoundedCases[] = {
      "  smooth_union:\n    k: 0.8\n    children:\n      - sphere: {radius: 1}\n      - sphere: {radius: 1}"},
     {"intersection", "  intersection:\n    - plane: {normal: [0, 1, 0], offset: 0}\n    - sphere: {radius: 1}"},
     {"smooth_subtraction",
-     "  smooth_subtraction:\n    k: 0.3\n    children:\n      - box: {half_size: [1, 1, 1]}\n      - sphere: {radius: 1.2}"},
+     "  smooth_subtraction:\n    k: 0.3\n    children:\n      - box: {half_size: [1, 1, 1]}\n      - sphere: {radius: "
+     "1.2}"},
     // The blends' bulges: radius 0.8 across the 0.2 gap between two spheres, and three children (the
     // growth adds up per fold).
     {"union_chamfer",
-     "  union_chamfer: {radius: 0.8, children: [{sphere: {center: [-0.6, 0, 0], radius: 0.5}}, {sphere: {center: [0.6, 0, 0], radius: 0.5}}]}"},
+     "  union_chamfer: {radius: 0.8, children: [{sphere: {center: [-0.6, 0, 0], radius: 0.5}}, {sphere: {center: [0.6, "
+     "0, 0], radius: 0.5}}]}"},
     {"union_chamfer_three",
-     "  union_chamfer: {radius: 0.8, children: [{sphere: {center: [-0.6, 0, 0], radius: 0.5}}, {sphere: {center: [0.6, 0, 0], radius: 0.5}}, {sphere: {center: [0, 0.9, 0], radius: 0.5}}]}"},
+     "  union_chamfer: {radius: 0.8, children: [{sphere: {center: [-0.6, 0, 0], radius: 0.5}}, {sphere: {center: [0.6, "
+     "0, 0], radius: 0.5}}, {sphere: {center: [0, 0.9, 0], radius: 0.5}}]}"},
     {"union_round",
-     "  union_round: {radius: 0.8, children: [{sphere: {center: [-0.6, 0, 0], radius: 0.5}}, {sphere: {center: [0.6, 0, 0], radius: 0.5}}]}"},
+     "  union_round: {radius: 0.8, children: [{sphere: {center: [-0.6, 0, 0], radius: 0.5}}, {sphere: {center: [0.6, "
+     "0, 0], radius: 0.5}}]}"},
     {"union_round_three",
-     "  union_round: {radius: 0.8, children: [{sphere: {center: [-0.6, 0, 0], radius: 0.5}}, {sphere: {center: [0.6, 0, 0], radius: 0.5}}, {sphere: {center: [0, 0.9, 0], radius: 0.5}}]}"},
+     "  union_round: {radius: 0.8, children: [{sphere: {center: [-0.6, 0, 0], radius: 0.5}}, {sphere: {center: [0.6, "
+     "0, 0], radius: 0.5}}, {sphere: {center: [0, 0.9, 0], radius: 0.5}}]}"},
     {"union_stairs",
-     "  union_stairs: {radius: 0.8, steps: 3, children: [{sphere: {center: [-0.6, 0, 0], radius: 0.5}}, {sphere: {center: [0.6, 0, 0], radius: 0.5}}]}"},
+     "  union_stairs: {radius: 0.8, steps: 3, children: [{sphere: {center: [-0.6, 0, 0], radius: 0.5}}, {sphere: "
+     "{center: [0.6, 0, 0], radius: 0.5}}]}"},
     {"union_stairs_three",
-     "  union_stairs: {radius: 0.8, steps: 2, children: [{sphere: {center: [-0.6, 0, 0], radius: 0.5}}, {sphere: {center: [0.6, 0, 0], radius: 0.5}}, {sphere: {center: [0, 0.9, 0], radius: 0.5}}]}"},
+     "  union_stairs: {radius: 0.8, steps: 2, children: [{sphere: {center: [-0.6, 0, 0], radius: 0.5}}, {sphere: "
+     "{center: [0.6, 0, 0], radius: 0.5}}, {sphere: {center: [0, 0.9, 0], radius: 0.5}}]}"},
     {"union_columns",
-     "  union_columns: {radius: 0.8, steps: 2, children: [{sphere: {center: [-0.6, 0, 0], radius: 0.5}}, {sphere: {center: [0.6, 0, 0], radius: 0.5}}]}"},
+     "  union_columns: {radius: 0.8, steps: 2, children: [{sphere: {center: [-0.6, 0, 0], radius: 0.5}}, {sphere: "
+     "{center: [0.6, 0, 0], radius: 0.5}}]}"},
     {"union_columns_three",
-     "  union_columns: {radius: 0.8, steps: 1, children: [{sphere: {center: [-0.6, 0, 0], radius: 0.5}}, {sphere: {center: [0.6, 0, 0], radius: 0.5}}, {sphere: {center: [0, 0.9, 0], radius: 0.5}}]}"},
+     "  union_columns: {radius: 0.8, steps: 1, children: [{sphere: {center: [-0.6, 0, 0], radius: 0.5}}, {sphere: "
+     "{center: [0.6, 0, 0], radius: 0.5}}, {sphere: {center: [0, 0.9, 0], radius: 0.5}}]}"},
     {"intersection_chamfer",
-     "  intersection_chamfer: {radius: 0.3, children: [{box: {half_size: [1, 1, 1]}}, {sphere: {center: [1, 1, 0], radius: 0.8}}]}"},
+     "  intersection_chamfer: {radius: 0.3, children: [{box: {half_size: [1, 1, 1]}}, {sphere: {center: [1, 1, 0], "
+     "radius: 0.8}}]}"},
     {"intersection_round",
-     "  intersection_round: {radius: 0.3, children: [{box: {half_size: [1, 1, 1]}}, {sphere: {center: [1, 1, 0], radius: 0.8}}]}"},
+     "  intersection_round: {radius: 0.3, children: [{box: {half_size: [1, 1, 1]}}, {sphere: {center: [1, 1, 0], "
+     "radius: 0.8}}]}"},
     {"intersection_stairs",
-     "  intersection_stairs: {radius: 0.3, steps: 2, children: [{box: {half_size: [1, 1, 1]}}, {sphere: {center: [1, 1, 0], radius: 0.8}}]}"},
+     "  intersection_stairs: {radius: 0.3, steps: 2, children: [{box: {half_size: [1, 1, 1]}}, {sphere: {center: [1, "
+     "1, 0], radius: 0.8}}]}"},
     {"intersection_columns",
-     "  intersection_columns: {radius: 0.3, steps: 2, children: [{box: {half_size: [1, 1, 1]}}, {sphere: {center: [1, 1, 0], radius: 0.8}}]}"},
+     "  intersection_columns: {radius: 0.3, steps: 2, children: [{box: {half_size: [1, 1, 1]}}, {sphere: {center: [1, "
+     "1, 0], radius: 0.8}}]}"},
     {"difference_chamfer",
-     "  difference_chamfer: {radius: 0.3, children: [{box: {half_size: [1, 1, 1]}}, {sphere: {center: [1, 1, 0], radius: 0.8}}]}"},
+     "  difference_chamfer: {radius: 0.3, children: [{box: {half_size: [1, 1, 1]}}, {sphere: {center: [1, 1, 0], "
+     "radius: 0.8}}]}"},
     {"difference_round",
-     "  difference_round: {radius: 0.3, children: [{box: {half_size: [1, 1, 1]}}, {sphere: {center: [1, 1, 0], radius: 0.8}}]}"},
+     "  difference_round: {radius: 0.3, children: [{box: {half_size: [1, 1, 1]}}, {sphere: {center: [1, 1, 0], radius: "
+     "0.8}}]}"},
     {"difference_stairs",
-     "  difference_stairs: {radius: 0.3, steps: 2, children: [{box: {half_size: [1, 1, 1]}}, {sphere: {center: [1, 1, 0], radius: 0.8}}]}"},
+     "  difference_stairs: {radius: 0.3, steps: 2, children: [{box: {half_size: [1, 1, 1]}}, {sphere: {center: [1, 1, "
+     "0], radius: 0.8}}]}"},
     {"difference_columns",
-     "  difference_columns: {radius: 0.3, steps: 2, children: [{box: {half_size: [1, 1, 1]}}, {sphere: {center: [1, 1, 0], radius: 0.8}}]}"},
-    {"xor",
-     "  xor: [{sphere: {center: [-0.6, 0, 0], radius: 0.5}}, {sphere: {center: [0.6, 0, 0], radius: 0.5}}]"},
-    {"pipe",
-     "  pipe: {radius: 0.2, children: [{sphere: {radius: 1}}, {plane: {normal: [1, 0, 0], offset: 0.2}}]}"},
+     "  difference_columns: {radius: 0.3, steps: 2, children: [{box: {half_size: [1, 1, 1]}}, {sphere: {center: [1, 1, "
+     "0], radius: 0.8}}]}"},
+    {"xor", "  xor: [{sphere: {center: [-0.6, 0, 0], radius: 0.5}}, {sphere: {center: [0.6, 0, 0], radius: 0.5}}]"},
+    {"pipe", "  pipe: {radius: 0.2, children: [{sphere: {radius: 1}}, {plane: {normal: [1, 0, 0], offset: 0.2}}]}"},
     {"pipe_three",
-     "  pipe: {radius: 0.2, children: [{plane: {normal: [0, 1, 0]}}, {sphere: {radius: 1}}, {plane: {normal: [1, 0, 0], offset: 0.2}}]}"},
+     "  pipe: {radius: 0.2, children: [{plane: {normal: [0, 1, 0]}}, {sphere: {radius: 1}}, {plane: {normal: [1, 0, "
+     "0], offset: 0.2}}]}"},
     {"engrave",
      "  engrave: {radius: 0.3, children: [{sphere: {radius: 1}}, {plane: {normal: [1, 0, 0], offset: 0.2}}]}"},
     {"groove",
@@ -140,11 +168,13 @@ const BoundCase kBoundedCases[] = {
     {"tongue",
      "  tongue: {ra: 0.3, rb: 0.2, children: [{sphere: {radius: 1}}, {plane: {normal: [1, 0, 0], offset: 0.2}}]}"},
     {"tongue_three",
-     "  tongue: {ra: 0.3, rb: 0.2, children: [{sphere: {radius: 1}}, {plane: {normal: [1, 0, 0], offset: 0.2}}, {plane: {normal: [0, 0, 1]}}]}"},
+     "  tongue: {ra: 0.3, rb: 0.2, children: [{sphere: {radius: 1}}, {plane: {normal: [1, 0, 0], offset: 0.2}}, "
+     "{plane: {normal: [0, 0, 1]}}]}"},
     {"displace", "  displace:\n    amplitude: 0.2\n    frequency: 5\n    children:\n      - sphere: {radius: 1}"},
     // The child's gain scales the amplitude: a child that steps short, and displacement twice.
     {"displace_of_short_steps",
-     "  displace:\n    amplitude: 0.5\n    frequency: 3\n    children:\n      - sphere: {radius: 1, step_factor: 0.25}"},
+     "  displace:\n    amplitude: 0.5\n    frequency: 3\n    children:\n      - sphere: {radius: 1, step_factor: "
+     "0.25}"},
     {"displace_of_displace",
      "  displace:\n    amplitude: 0.3\n    frequency: 3\n    children:\n      - displace:\n          amplitude: 0.3\n"
      "          frequency: 4\n          children:\n            - sphere: {radius: 1}"},
@@ -204,7 +234,8 @@ INSTANTIATE_TEST_SUITE_P(Kinds, NodeBounds, ::testing::ValuesIn(kBoundedCases),
 
 TEST(NodeBoxes, FollowTheShapesWhereTheyAreBoxy) {
   // A box turned 90 degrees about y swaps its x and z half sizes; scaled, moved.
-  const BoundingBox turned = *node_box(tree("  box: {half_size: [1, 2, 3], rotate: [0, 90, 0], scale: 2, translate: [1, 0, 0]}"));
+  const BoundingBox turned =
+      *node_box(tree("  box: {half_size: [1, 2, 3], rotate: [0, 90, 0], scale: 2, translate: [1, 0, 0]}"));
   EXPECT_NEAR(turned.low.x, 1.0 - 6.0, 1e-12);
   EXPECT_NEAR(turned.high.y, 4.0, 1e-12);
   EXPECT_NEAR(turned.high.z, 2.0, 1e-12);
@@ -216,15 +247,18 @@ TEST(NodeBoxes, FollowTheShapesWhereTheyAreBoxy) {
   EXPECT_DOUBLE_EQ(ring.high.y, 0.25);
   EXPECT_DOUBLE_EQ(ring.high.x, 1.25);
   // Unions span their children; intersections keep what all share; subtractions the first.
-  const BoundingBox both = *node_box(tree("  union:\n    - box: {center: [-2, 0, 0], half_size: [0.5, 0.5, 0.5]}\n"
-                                          "    - box: {center: [2, 0, 0], half_size: [0.5, 0.5, 0.5]}"));
+  const BoundingBox both =
+      *node_box(tree("  union:\n    - box: {center: [-2, 0, 0], half_size: [0.5, 0.5, 0.5]}\n"
+                     "    - box: {center: [2, 0, 0], half_size: [0.5, 0.5, 0.5]}"));
   EXPECT_DOUBLE_EQ(both.low.x, -2.5);
   EXPECT_DOUBLE_EQ(both.high.x, 2.5);
   EXPECT_DOUBLE_EQ(both.high.y, 0.5);
-  const BoundingBox common = *node_box(tree("  intersection:\n    - box: {half_size: [2, 0.5, 2]}\n    - sphere: {radius: 1}"));
+  const BoundingBox common =
+      *node_box(tree("  intersection:\n    - box: {half_size: [2, 0.5, 2]}\n    - sphere: {radius: 1}"));
   EXPECT_DOUBLE_EQ(common.high.y, 0.5);
   EXPECT_DOUBLE_EQ(common.high.x, 1.0);
-  const BoundingBox cut = *node_box(tree("  subtraction:\n    - box: {half_size: [1, 0.5, 1]}\n    - sphere: {radius: 3}"));
+  const BoundingBox cut =
+      *node_box(tree("  subtraction:\n    - box: {half_size: [1, 0.5, 1]}\n    - sphere: {radius: 3}"));
   EXPECT_DOUBLE_EQ(cut.high.y, 0.5);
   // A kind without a box of its own has its sphere's cube.
   const BoundingBox ball = *node_box(tree("  sphere: {center: [1, 0, 0], radius: 0.5}"));
@@ -286,13 +320,15 @@ TEST(NodeBounds, UnboundedFieldsHaveNone) {
 
 TEST(NodeBounds, StepFactorAndDisplacementRaiseTheGain) {
   EXPECT_DOUBLE_EQ(node_bounds(tree("  sphere: {radius: 1, step_factor: 0.5}"))->gain, 2.0);
-  const Node displaced = tree("  displace:\n    amplitude: 0.1\n    frequency: 2\n    children:\n      - sphere: {radius: 1}");
+  const Node displaced =
+      tree("  displace:\n    amplitude: 0.1\n    frequency: 2\n    children:\n      - sphere: {radius: 1}");
   const BoundingSphere b = *node_bounds(displaced);
   EXPECT_DOUBLE_EQ(b.radius, 1.1);
   EXPECT_DOUBLE_EQ(b.gain, displacement_lipschitz(displaced));
   // Under a child whose field is scaled down 4×, the amplitude reaches 4× as far.
   const BoundingSphere short_steps =
-      *node_bounds(tree("  displace:\n    amplitude: 0.1\n    frequency: 2\n    children:\n      - sphere: {radius: 1, step_factor: 0.25}"));
+      *node_bounds(tree("  displace:\n    amplitude: 0.1\n    frequency: 2\n    children:\n      - sphere: {radius: 1, "
+                        "step_factor: 0.25}"));
   EXPECT_DOUBLE_EQ(short_steps.radius, 1.4);
 }
 
@@ -377,11 +413,13 @@ void expect_bounds_keep_the_colors(Scene scene) {
   int hits = 0, off = 0;
   for (int j = 0; j < full.height; ++j) {
     for (int i = 0; i < full.width; ++i) {
-      ASSERT_EQ(std::isinf(clipped.at(Channel::Depth, i, j)), std::isinf(full.at(Channel::Depth, i, j))) << i << ", " << j;
+      ASSERT_EQ(std::isinf(clipped.at(Channel::Depth, i, j)), std::isinf(full.at(Channel::Depth, i, j)))
+          << i << ", " << j;
       if (std::isinf(full.at(Channel::Depth, i, j))) continue;
       ++hits;
       double diff = 0.0;
-      for (Channel c : {Channel::R, Channel::G, Channel::B}) diff = std::max(diff, double(std::abs(clipped.at(c, i, j) - full.at(c, i, j))));
+      for (Channel c : {Channel::R, Channel::G, Channel::B})
+        diff = std::max(diff, double(std::abs(clipped.at(c, i, j) - full.at(c, i, j))));
       off += diff > 0.5 / 255.0;
     }
   }
@@ -394,17 +432,17 @@ TEST(SecondaryRayBounds, ShadowsAndMirrorsMatchTheUnclippedOnes) {
   // scene's bounds as camera rays do; nothing lies outside them, so the picture is the unclipped
   // one but where a shadow ray grazes a surface (a hit on the other side of an edge). A sphere
   // clipped about the wrong point would cut shadows short and darken or light whole areas.
-  expect_bounds_keep_the_colors(scene_from_yaml(
-      "camera: {position: [2.5, 2, 4], look_at: [0, 0.3, 0], fov: 45}\n"
-      "render: {width: 64, height: 48}\n"
-      "sdf:\n  union:\n    children:\n"
-      "      - box: {center: [0, -0.6, 0], half_size: [2, 0.1, 2], reflectivity: 0.5}\n"
-      "      - sphere: {center: [0, 0.3, 0], radius: 0.7, reflectivity: 0.3}\n"
-      "      - torus: {major_radius: 0.5, minor_radius: 0.15, translate: [1.2, -0.35, 0.8]}\n"
-      "lights:\n"
-      "  - point: {position: [3, 4, 2], intensity: 0.8, color: [1, 1, 1]}\n"
-      "  - directional: {direction: [-0.6, 1, 0.3], intensity: 0.6, color: [1, 1, 1]}\n"
-      "shading: {shadows: {mode: soft, k: 8}, reflections: 2, background: [0.2, 0.3, 0.4]}\n"));
+  expect_bounds_keep_the_colors(
+      scene_from_yaml("camera: {position: [2.5, 2, 4], look_at: [0, 0.3, 0], fov: 45}\n"
+                      "render: {width: 64, height: 48}\n"
+                      "sdf:\n  union:\n    children:\n"
+                      "      - box: {center: [0, -0.6, 0], half_size: [2, 0.1, 2], reflectivity: 0.5}\n"
+                      "      - sphere: {center: [0, 0.3, 0], radius: 0.7, reflectivity: 0.3}\n"
+                      "      - torus: {major_radius: 0.5, minor_radius: 0.15, translate: [1.2, -0.35, 0.8]}\n"
+                      "lights:\n"
+                      "  - point: {position: [3, 4, 2], intensity: 0.8, color: [1, 1, 1]}\n"
+                      "  - directional: {direction: [-0.6, 1, 0.3], intensity: 0.6, color: [1, 1, 1]}\n"
+                      "shading: {shadows: {mode: soft, k: 8}, reflections: 2, background: [0.2, 0.3, 0.4]}\n"));
 }
 
 TEST(SecondaryRayBounds, SoftShadowsGoOnWhileTheirPenumbraCouldFall) {
@@ -417,7 +455,8 @@ TEST(SecondaryRayBounds, SoftShadowsGoOnWhileTheirPenumbraCouldFall) {
       "render: {width: 96, height: 54, epsilon: 1.0e-4}\n"
       "sdf: {menger: {half_size: 1, iterations: 3, color: [0.85, 0.8, 0.7]}}\n"
       "lights:\n  - directional: {direction: [0.8, 0.6, 0.3], color: [1, 1, 1], intensity: 1}\n"
-      "shading: {model: lambert, ambient: 0.1, diffuse: 0.9, shadows: {mode: soft, k: 8, min_t: 0.01, max_t: 10, max_steps: 128}}\n");
+      "shading: {model: lambert, ambient: 0.1, diffuse: 0.9, shadows: {mode: soft, k: 8, min_t: 0.01, max_t: 10, "
+      "max_steps: 128}}\n");
   ASSERT_TRUE(camera_ray_box(scene));
   const FrameBuffers opencl = render_opencl(scene, OpenClOptions{}).buffers;
   const CheckReport report = cross_check(scene, opencl, render_reference(scene), reshade_hits(scene, opencl));
@@ -459,9 +498,9 @@ TEST(CameraRayBounds, TilesSkippedWholeByDepthProgramsAreMissesOfTheShadedOnes) 
   };
   const View views[] = {{"[0, 0.5, 2.2]", "[0.3, 0, 0.1]", "50"}, {"[-2, 4, 4]", "[0.3, 0, 0.1]", "50"},
                         {"[30, 12, -25]", "[0.3, 0, 0.1]", "20"}, {"[150, 40, 90]", "[0.3, 0, 0.1]", "4"},
-                        {"[0, 0, 6]", "[2.6, 0, 0]", "50"},        {"[0, 0, 6]", "[-2.2, 1.7, 0]", "50"},
-                        {"[0, 0, 6]", "[0, -2.1, 0]", "50"},       {"[0, 0, 6]", "[0, 0, 12]", "50"},
-                        {"[0.2, 0.1, 0.3]", "[3, 1, 2]", "50"},    {"[0, 3, 2]", "[0, 2.2, -1]", "150"}};
+                        {"[0, 0, 6]", "[2.6, 0, 0]", "50"},       {"[0, 0, 6]", "[-2.2, 1.7, 0]", "50"},
+                        {"[0, 0, 6]", "[0, -2.1, 0]", "50"},      {"[0, 0, 6]", "[0, 0, 12]", "50"},
+                        {"[0.2, 0.1, 0.3]", "[3, 1, 2]", "50"},   {"[0, 3, 2]", "[0, 2.2, -1]", "150"}};
   const auto all_zero = [](const std::vector<float>& plane) {
     return std::all_of(plane.begin(), plane.end(), [](float v) { return v == 0.0f; });
   };
@@ -469,7 +508,8 @@ TEST(CameraRayBounds, TilesSkippedWholeByDepthProgramsAreMissesOfTheShadedOnes) 
   for (const View& view : views) {
     const std::string position = std::string(view.position) + " looking at " + view.look_at;
     Scene scene = scene_from_yaml(std::string("camera: {position: ") + view.position + ", look_at: " + view.look_at +
-                                  ", fov: " + view.fov + "}\n"
+                                  ", fov: " + view.fov +
+                                  "}\n"
                                   "render: {width: 61, height: 45, max_distance: 1000}\nsdf: {torus: {}}\n");
     // Tiles of 4x4 (16 lanes) and of 4x2 (8 lanes): the tile test finds its row by the tile height.
     for (int lanes : {8, 16}) {
@@ -537,13 +577,14 @@ TEST(CameraRayBounds, LiveTileRangeHoldsEveryTileTheKernelsTestPasses) {
     const std::string yaml = fmt::format(
         "camera: {{position: [{}, {}, {}], look_at: [{}, {}, {}], fov: {}}}\n"
         "render: {{width: {}, height: {}, max_distance: 1e5}}\nsdf: {{sphere: {{center: [{}, {}, {}], radius: {}}}}}\n",
-        position.x, position.y, position.z, look_at.x, look_at.y, look_at.z, fov, 37 + trial % 90, 29 + (trial * 7) % 70,
-        unit(rng), unit(rng), unit(rng), 0.05 + (unit(rng) + 1.0));
+        position.x, position.y, position.z, look_at.x, look_at.y, look_at.z, fov, 37 + trial % 90,
+        29 + (trial * 7) % 70, unit(rng), unit(rng), unit(rng), 0.05 + (unit(rng) + 1.0));
     const Scene scene = scene_from_yaml(yaml);
     PreparedProgram program;
     program.lanes = 16;
     program.packets_per_item = 2;
-    const Dispatch dispatch = plan_tile_dispatch(program, scene.render.width, scene.render.height, std::size_t{1} << 20);
+    const Dispatch dispatch =
+        plan_tile_dispatch(program, scene.render.width, scene.render.height, std::size_t{1} << 20);
     const MarchParams params = march_params(scene, dispatch);
     ASSERT_GT(params.bounds.s[3], 0.0f) << yaml;
     const int columns = (scene.render.width + 3) / 4, rows = (scene.render.height + 3) / 4;
@@ -552,10 +593,11 @@ TEST(CameraRayBounds, LiveTileRangeHoldsEveryTileTheKernelsTestPasses) {
       for (int column = 0; column < columns; ++column) {
         if (!tile_test_passes(params, column, row, 4, 4)) continue;
         ++live;
-        EXPECT_TRUE(column >= params.live_columns[0] && column <= params.live_columns[1] && row >= params.live_rows[0] &&
-                    row <= params.live_rows[1])
+        EXPECT_TRUE(column >= params.live_columns[0] && column <= params.live_columns[1] &&
+                    row >= params.live_rows[0] && row <= params.live_rows[1])
             << "tile " << column << ", " << row << " outside columns " << params.live_columns[0] << ".."
-            << params.live_columns[1] << ", rows " << params.live_rows[0] << ".." << params.live_rows[1] << " of\n" << yaml;
+            << params.live_columns[1] << ", rows " << params.live_rows[0] << ".." << params.live_rows[1] << " of\n"
+            << yaml;
       }
     }
     if (live > 0) ++views_with_live_tiles;
@@ -572,12 +614,14 @@ TEST(CameraRayBounds, LiveTilesOfASphereAheadAreItsDisc) {
   // 4 x 4 tiles: its disc has a radius of tan(asin(0.1)) / tan(45 deg) * 200 = 20.1 pixels around
   // the centre (200, 200), 5.03 tiles, and the range holds the tiles whose centre lies in it
   // (columns and rows 45 to 54) and one more on each side.
-  Scene scene = scene_from_yaml("camera: {position: [0, 0, 10], look_at: [0, 0, 0], fov: 90}\n"
-                                "render: {width: 400, height: 400}\nsdf: {sphere: {radius: 1}}\n");
+  Scene scene = scene_from_yaml(
+      "camera: {position: [0, 0, 10], look_at: [0, 0, 0], fov: 90}\n"
+      "render: {width: 400, height: 400}\nsdf: {sphere: {radius: 1}}\n");
   const CameraBasis basis = camera_basis(scene.camera, 400, 400);
   const TileRange live = live_tiles(basis, glm::dvec3(0, 0, 10), 1.0, 4, 4);
   const double disc_tiles = std::tan(std::asin(0.1)) * 200.0 / 4.0;
-  for (const auto& [first, last] : {std::pair{live.first_column, live.last_column}, std::pair{live.first_row, live.last_row}}) {
+  for (const auto& [first, last] :
+       {std::pair{live.first_column, live.last_column}, std::pair{live.first_row, live.last_row}}) {
     EXPECT_EQ(first + last, 99) << "centred on tile 49.5";
     EXPECT_EQ(first, static_cast<int>(std::ceil(49.5 - disc_tiles)) - 1);
   }

@@ -33,8 +33,9 @@ TEST(SceneLimits, AliasBombStopsAtTheNodeLimit) {
   // position is its anchor's (line 3, the spheres of level 0) and the path says how the walk got there.
   const std::string message = error_of(alias_bomb(9));
   EXPECT_EQ(message.find("s.yaml:3:7: sdf.union[4].union[7]"), 0u) << message;
-  EXPECT_NE(message.find("the tree has too many nodes through aliases (got aliased node 10001 here, expected at most 10000"),
-            std::string::npos)
+  EXPECT_NE(
+      message.find("the tree has too many nodes through aliases (got aliased node 10001 here, expected at most 10000"),
+      std::string::npos)
       << message;
 }
 
@@ -106,7 +107,8 @@ TEST(SceneLimits, HugeFilesAreNotRead) {
     load_scene_file(big.string());
     FAIL() << "an 80 MiB scene file loaded";
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), big.string() + ": the scene file is too large (got more than 67108864 bytes, expected at most 67108864)");
+    EXPECT_EQ(std::string(e.what()),
+              big.string() + ": the scene file is too large (got more than 67108864 bytes, expected at most 67108864)");
   }
   try {
     load_scene_file(dir.path().string());

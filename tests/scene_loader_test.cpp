@@ -42,13 +42,15 @@ sdf:
 }
 
 TEST(SceneLoader, AcceptsJson) {
-  const Scene scene = scene_from_yaml(R"({"render": {"width": 32, "height": 16}, "sdf": {"box": {"half_size": [1, 2, 3]}}})");
+  const Scene scene =
+      scene_from_yaml(R"({"render": {"width": 32, "height": 16}, "sdf": {"box": {"half_size": [1, 2, 3]}}})");
   EXPECT_EQ(scene.render.width, 32);
   EXPECT_EQ(std::get<Box>(scene.sdf.params).half_size, glm::dvec3(1, 2, 3));
 }
 
 TEST(SceneLoader, NormalisesPlaneNormalsAndLightDirections) {
-  const Scene scene = scene_from_yaml("sdf: {plane: {normal: [0, 3, 4]}}\nlights: [{directional: {direction: [2, 0, 0]}}]\n");
+  const Scene scene =
+      scene_from_yaml("sdf: {plane: {normal: [0, 3, 4]}}\nlights: [{directional: {direction: [2, 0, 0]}}]\n");
   EXPECT_NEAR(glm::length(std::get<Plane>(scene.sdf.params).normal), 1.0, 1e-15);
   EXPECT_EQ(scene.lights[0].direction, glm::dvec3(1, 0, 0));
 }
@@ -74,16 +76,19 @@ TEST(SceneLoader, OverrideErrorsNameTheOption) {
   EXPECT_NE(error_of(yaml, {{"render.width", "[1"}}).find("not valid YAML"), std::string::npos);
   EXPECT_NE(error_of(yaml, {{"render.width", "0"}}).find("s.yaml (--set): render.width"), std::string::npos);
   EXPECT_NE(error_of(yaml, {{"sdf.union.-1.sphere.radius", "1"}}).find("'-1' must be a list index"), std::string::npos);
-  EXPECT_NE(error_of(yaml, {{"lights.0.point.intensity", "2"}}).find("the scene has no lights, so index 0 reaches nothing"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of(yaml, {{"lights.0.point.intensity", "2"}}).find("the scene has no lights, so index 0 reaches nothing"),
+      std::string::npos);
   // An override that adds a second node kind is blamed on --set, not on the file's line.
-  EXPECT_EQ(error_of(yaml, {{"sdf.sphere.radius", "1"}}),
-            "s.yaml (--set): sdf must be a map with one key naming the node kind, e.g. sphere: {radius: 1} (got 2 keys: "
-            "union, sphere)");
+  EXPECT_EQ(
+      error_of(yaml, {{"sdf.sphere.radius", "1"}}),
+      "s.yaml (--set): sdf must be a map with one key naming the node kind, e.g. sphere: {radius: 1} (got 2 keys: "
+      "union, sphere)");
 }
 
 TEST(SceneLoader, OverridesReplaceListItemsAndFillAnEmptyFile) {
-  const Scene item = load_scene_text("sdf: {union: [{sphere: {}}]}\n", "s.yaml", {{"sdf.union.0", "{box: {half_size: [1, 2, 3]}}"}});
+  const Scene item =
+      load_scene_text("sdf: {union: [{sphere: {}}]}\n", "s.yaml", {{"sdf.union.0", "{box: {half_size: [1, 2, 3]}}"}});
   ASSERT_EQ(item.sdf.children.size(), 1u);
   EXPECT_EQ(std::get<Box>(item.sdf.children[0].params).half_size, glm::dvec3(1, 2, 3));
   const Scene empty = load_scene_text("", "s.yaml", {{"sdf", "{torus: {major_radius: 2}}"}});
@@ -95,7 +100,8 @@ TEST(SceneLoader, OverridesReplaceListItemsAndFillAnEmptyFile) {
 TEST(SceneLoader, RejectsBadOperatorShapesAndVectors) {
   EXPECT_EQ(error_of("sdf: {repeat: {period: [0, 0, 0], children: [{sphere: {}}]}}\n"),
             "s.yaml:1:24: sdf.repeat.period must repeat along at least one axis (a component > 0)");
-  EXPECT_EQ(error_of("sdf: {union: 5}\n"), "s.yaml:1:14: sdf.union must be a list of nodes or a map with children (got '5')");
+  EXPECT_EQ(error_of("sdf: {union: 5}\n"),
+            "s.yaml:1:14: sdf.union must be a list of nodes or a map with children (got '5')");
   EXPECT_EQ(error_of("sdf: {repeat: {period: [1, 1, 1], children: [{sphere: {}}, {box: {}}]}}\n"),
             "s.yaml:1:45: sdf.repeat takes exactly 1 child node (got 2); wrap several in a union");
   EXPECT_EQ(error_of("sdf: {displace: {amplitude: 0.1, children: []}}\n"),
@@ -123,8 +129,10 @@ TEST(SceneLoader, RejectsBadCatalogueValues) {
   expect_error("sdf: {mirror: {axes: [w], children: [{sphere: {}}]}}\n", "s.yaml:1:23: ", "unknown axis 'w'");
   expect_error("sdf: {mirror: {axes: [x, x], children: [{sphere: {}}]}}\n", "s.yaml:1:26: ", "axis x is listed twice");
   expect_error("sdf: {mirror: {axes: [], children: [{sphere: {}}]}}\n", "s.yaml:1:22: ", "non-empty list");
-  expect_error("sdf: {repeat_polar: {count: 0, children: [{sphere: {}}]}}\n", "s.yaml:1:29: ", "sdf.repeat_polar.count");
-  expect_error("sdf: {repeat_polar: {count: 2.5, children: [{sphere: {}}]}}\n", "s.yaml:1:29: ", "sdf.repeat_polar.count");
+  expect_error("sdf: {repeat_polar: {count: 0, children: [{sphere: {}}]}}\n",
+               "s.yaml:1:29: ", "sdf.repeat_polar.count");
+  expect_error("sdf: {repeat_polar: {count: 2.5, children: [{sphere: {}}]}}\n",
+               "s.yaml:1:29: ", "sdf.repeat_polar.count");
   expect_error("sdf: {repeat_limited: {period: [1, 0, 0], min: [1, 0, 0], max: [0, 0, 0], children: [{sphere: {}}]}}\n",
                "s.yaml:1:", "sdf.repeat_limited.min[0] must be at most sdf.repeat_limited.max[0] (got 1 > 0)");
   expect_error("sdf: {repeat_limited: {period: [1, 0, 0], min: [0, 0], max: [0, 0, 0], children: [{sphere: {}}]}}\n",
@@ -158,8 +166,10 @@ TEST(SceneLoader, AnEmptyValueIsPlacedAtItsKey) {
   // An empty item of a block list is placed at the list's start (the next token is under another
   // key); in a flow list, at the comma after it.
   EXPECT_EQ(error_of("sdf:\n  union:\n    - sphere: {}\n    -\n\nrender: {width: 8}\n"),
-            "s.yaml:3:5: sdf.union[1] must be a map with one key naming the node kind, e.g. sphere: {radius: 1} (got nothing)");
-  EXPECT_EQ(error_of("sdf: {sphere: {center: [1, , 2]}}\n"), "s.yaml:1:28: sdf.sphere.center[1] must be a number (got nothing)");
+            "s.yaml:3:5: sdf.union[1] must be a map with one key naming the node kind, e.g. sphere: {radius: 1} (got "
+            "nothing)");
+  EXPECT_EQ(error_of("sdf: {sphere: {center: [1, , 2]}}\n"),
+            "s.yaml:1:28: sdf.sphere.center[1] must be a number (got nothing)");
   // Aliases can make the tree a graph with a cycle; the search for the key goes around it.
   EXPECT_EQ(error_of("render: {width: }\nsdf: {sphere: {}}\nlights: &a [{point: {position: [0, 1, 0]}}, *a]\n"),
             "s.yaml:1:10: render.width must be an integer in decimal digits (got nothing)");
@@ -175,8 +185,10 @@ TEST(SceneLoader, RejectsBadScenes) {
   EXPECT_NE(error_of("sdf: {sphere: {}}\nrender: {width: 65536, height: 65536}\n").find("exceeds"), std::string::npos);
   EXPECT_NE(error_of("sdf: {sphere: {}}\ncamera: {position: [1, 1, 1], look_at: [1, 1, 1]}\n").find("must differ"),
             std::string::npos);
-  EXPECT_NE(error_of("sdf: {sphere: {}}\ncamera: {fov: 180}\n").find("camera.fov must be in (0, 180)"), std::string::npos);
-  EXPECT_NE(error_of("sdf: {sphere: {}}\nshading: {model: toon}\n").find("lambert, phong, blinn_phong"), std::string::npos);
+  EXPECT_NE(error_of("sdf: {sphere: {}}\ncamera: {fov: 180}\n").find("camera.fov must be in (0, 180)"),
+            std::string::npos);
+  EXPECT_NE(error_of("sdf: {sphere: {}}\nshading: {model: toon}\n").find("lambert, phong, blinn_phong"),
+            std::string::npos);
   EXPECT_NE(error_of("sdf: {sphere: {}}\nlights: [{lamp: {}}]\n").find("unknown key 'lamp'"), std::string::npos);
   EXPECT_NE(error_of("sdf: {sphere: {}}\nlights: [{spot: {}}]\n").find("lights[0].spot.direction"), std::string::npos);
   EXPECT_NE(error_of("sdf: {sphere: {color: [1, -1, 0]}}\n").find("must be >= 0"), std::string::npos);
@@ -193,8 +205,9 @@ TEST(SceneLoader, NumbersMayBeExpressionsOfTime) {
   EXPECT_EQ(at_half.time, 0.5);
   // Ranges apply to the value at that time, which the message shows with the time, and a bad
   // expression names itself.
-  EXPECT_NE(error_of("sdf: {sphere: {radius: \"sin(t) - 1\"}}\n").find("radius must be > 0 (got sin(t) - 1 = -1 at t = 0)"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of("sdf: {sphere: {radius: \"sin(t) - 1\"}}\n").find("radius must be > 0 (got sin(t) - 1 = -1 at t = 0)"),
+      std::string::npos);
   try {
     load_scene_text("sdf: {sphere: {radius: \"1 / (2 - t)\"}}\n", "s.yaml", {}, 2.0);
     ADD_FAILURE() << "1 / 0 must be refused";

@@ -31,12 +31,14 @@ const char* const kAnimated =
     "render: {width: 45, height: 27, coarse_pass: cone}\n"
     "sdf:\n"
     "  union:\n"
-    "    - sphere: {center: [\"cos(t)\", 0, 0], radius: \"0.5 + 0.1 * sin(3 * t)\", color: [\"0.5 + 0.4 * sin(t)\", 0.3, 0.2]}\n"
+    "    - sphere: {center: [\"cos(t)\", 0, 0], radius: \"0.5 + 0.1 * sin(3 * t)\", color: [\"0.5 + 0.4 * sin(t)\", "
+    "0.3, 0.2]}\n"
     "    - box: {half_size: [0.4, 0.4, 0.4], translate: [-1.5, 0, 0], rotate: [0, \"40 * t\", 0], reflectivity: 0.4}\n"
     "    - torus: {center: [1.5, 0, 0], major_radius: 0.5, minor_radius: 0.15, scale: \"1 + 0.2 * sin(t)\"}\n"
     "    - plane: {normal: [0, 1, 0], offset: 0.7}\n"
     "lights: [{point: {position: [2, 4, 3]}}]\n"
-    "shading: {shadows: {mode: soft}, ambient_occlusion: {}, reflections: 1, background: [\"0.2 + 0.1 * sin(t)\", 0.3, 0.4],\n"
+    "shading: {shadows: {mode: soft}, ambient_occlusion: {}, reflections: 1, background: [\"0.2 + 0.1 * sin(t)\", 0.3, "
+    "0.4],\n"
     "          ambient: \"0.1 + 0.05 * cos(t)\", fog: {density: \"0.05 + 0.02 * sin(t)\", color: [0.5, 0.5, 0.6]}}\n";
 
 Scene frame_at(double t, const std::string& yaml = kAnimated) { return load_scene_text(yaml, "animated.yaml", {}, t); }
@@ -84,9 +86,7 @@ TEST(VaryingLiterals, OnlyWhatTheTimeChangesVaries) {
   for (double t : {0.2, 0.7, 1.1}) varying.add(frame_at(t));
   const Scene frame = frame_at(0.2);
   const std::vector<float> values = slot_values(march_scene_code(frame), varying.slots_for(frame)).joined();
-  const auto count = [&](double v) {
-    return std::count(values.begin(), values.end(), static_cast<float>(v));
-  };
+  const auto count = [&](double v) { return std::count(values.begin(), values.end(), static_cast<float>(v)); };
   EXPECT_EQ(values.size(), 2u * (2u + 4u + 3u + 1u + 2u) + 1u);
   EXPECT_EQ(count(std::cos(0.2)), 2);
   EXPECT_EQ(count(0.5 + 0.1 * std::sin(0.6)), 2);
@@ -183,7 +183,8 @@ TEST(SceneValues, EveryLiteralAsAnInputRendersTheSpelledImage) {
       "    - box: {half_size: [0.3, 0.3, 0.3], translate: [1.2, 0.3, 0], rotate: [0, 25, 0]}\n"
       "    - plane: {normal: [0, 1, 0], offset: 0}\n"
       "lights: [{point: {position: [2, 3, 2]}}, {directional: {direction: [-1, 2, 1], intensity: 0.5}}]\n"
-      "shading: {model: blinn_phong, specular: 0.4, step_ao: 5000, ambient_occlusion: {}, shadows: {mode: soft_improved},\n"
+      "shading: {model: blinn_phong, specular: 0.4, step_ao: 5000, ambient_occlusion: {}, shadows: {mode: "
+      "soft_improved},\n"
       "          reflections: 1, sky: {}, glow: {radius: 0.2}, planetary_glow: {}, fog: {density: 0.02},\n"
       "          height_fog: {density: 0.05}, tone_map: reinhard, gamma: 2.2}\n",
       "every_feature.yaml");
@@ -198,7 +199,8 @@ TEST(SceneValues, EveryLiteralAsAnInputRendersTheSpelledImage) {
     inputs.value_slots = every;
     const RenderResult a = render_opencl(scene, inputs);
     const RenderResult b = render_opencl(scene, spelled);
-    for (int c = 0; c < kChannelCount; ++c) EXPECT_EQ(a.buffers.planes[c], b.buffers.planes[c]) << kChannelNames[c] << " lanes " << lanes;
+    for (int c = 0; c < kChannelCount; ++c)
+      EXPECT_EQ(a.buffers.planes[c], b.buffers.planes[c]) << kChannelNames[c] << " lanes " << lanes;
   }
   EXPECT_EQ(spell_sdf_code(march_scene_code(scene), every).find('@'), std::string::npos);
 }

@@ -37,14 +37,16 @@ int mandelbulb_iterations(const Node& node) {
 double color_tolerance(const Scene& scene) {
   const double delta = 4.0 * std::ldexp(1.0, -24) * mandelbulb_iterations(scene.sdf);
   double intensity = 0.0;
-  for (const Light& light : scene.lights) intensity += light.intensity * std::max({light.color.r, light.color.g, light.color.b});
+  for (const Light& light : scene.lights)
+    intensity += light.intensity * std::max({light.color.r, light.color.g, light.color.b});
   return 1e-4 + intensity * std::sqrt(3.0) * delta / scene.render.normal_epsilon;
 }
 
 TEST(BuildLog, WarningsInAnyCaseButNvidiasNoteOnKernels) {
   EXPECT_EQ(testing::compiler_warnings(""), "");
-  EXPECT_EQ(testing::compiler_warnings("<kernel>:3:1: warning: unused variable 'x'\n  int x;\n  ^\n1 warning generated.\n"),
-            "<kernel>:3:1: warning: unused variable 'x'\n1 warning generated.\n");
+  EXPECT_EQ(
+      testing::compiler_warnings("<kernel>:3:1: warning: unused variable 'x'\n  int x;\n  ^\n1 warning generated.\n"),
+      "<kernel>:3:1: warning: unused variable 'x'\n1 warning generated.\n");
   EXPECT_EQ(testing::compiler_warnings("(): Warning: Function march is a kernel, so overriding noinline attribute. "
                                        "The function may be inlined when called.\n"),
             "");
@@ -56,12 +58,13 @@ class ShippedScene : public ::testing::TestWithParam<std::string> {};
 TEST_P(ShippedScene, BuildsWithoutWarnings) {
   const Scene scene = load_small(GetParam());
   const DeviceEntry device = select_device(std::nullopt);
-  for (KernelPurpose purpose : {KernelPurpose::DepthSteps, KernelPurpose::Normals, KernelPurpose::Shaded, KernelPurpose::Buffers,
-                                KernelPurpose::EvalPoints}) {
+  for (KernelPurpose purpose : {KernelPurpose::DepthSteps, KernelPurpose::Normals, KernelPurpose::Shaded,
+                                KernelPurpose::Buffers, KernelPurpose::EvalPoints}) {
     for (int lanes : {1, 16}) {
       const DeviceProgram program = build_device_program(device, generate_kernel_source(scene, {purpose, lanes}));
       EXPECT_EQ(testing::compiler_warnings(program.build_log), "")
-          << "purpose " << static_cast<int>(purpose) << " lanes " << lanes << ":\n" << program.build_log;
+          << "purpose " << static_cast<int>(purpose) << " lanes " << lanes << ":\n"
+          << program.build_log;
     }
   }
 }
@@ -99,11 +102,12 @@ TEST_P(ShippedScene, FiniteBuffersThatAgreeAcrossPacketWidths) {
   EXPECT_LE(mask_differences, 2) << "hit masks of packet widths 1 and 16 differ";
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene, ::testing::ValuesIn(testing::shipped_scene_names()), [](const auto& info) {
-  std::string name = info.param;
-  for (char& ch : name) ch = std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
-  return name;
-});
+INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene, ::testing::ValuesIn(testing::shipped_scene_names()),
+                         [](const auto& info) {
+                           std::string name = info.param;
+                           for (char& ch : name) ch = std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
+                           return name;
+                         });
 
 }  // namespace
 }  // namespace clmarch

@@ -25,7 +25,8 @@ std::string lit_scene(const std::string& model) {
       "sdf:\n  union:\n"
       "    - plane: {{normal: [0, 1, 0], offset: 1, color: [0.5, 0.5, 0.5]}}\n"
       "    - sphere: {{center: [-1.2, 0, 0], radius: 0.8, color: [0.9, 0.3, 0.2]}}\n"
-      "    - box: {{center: [1.2, 0, 0], half_size: [0.6, 0.6, 0.6], color: [0.2, 0.5, 0.9], metallic: 0.6, roughness: 0.3}}\n"
+      "    - box: {{center: [1.2, 0, 0], half_size: [0.6, 0.6, 0.6], color: [0.2, 0.5, 0.9], metallic: 0.6, roughness: "
+      "0.3}}\n"
       "lights:\n"
       "  - directional: {{direction: [-1, 2, 1.5], color: [1, 1, 1], intensity: 0.8}}\n"
       "  - point: {{position: [2, 3, 2], color: [1, 0.9, 0.8], intensity: 2}}\n"
@@ -66,7 +67,8 @@ double expect_layers_sum_to_the_color(const FrameBuffers& b, const std::string& 
       for (int c = 0; c < 3; ++c) {
         const LayerSum s = layer_sum(b, c, i, j);
         const double color = b.at(static_cast<Channel>(static_cast<int>(Channel::R) + c), i, j);
-        EXPECT_NEAR(color, s.sum, 8.0 * roundoff * s.size + 1e-30) << what << " pixel " << i << "," << j << " channel " << c;
+        EXPECT_NEAR(color, s.sum, 8.0 * roundoff * s.size + 1e-30)
+            << what << " pixel " << i << "," << j << " channel " << c;
         specular += b.at(kLayerChannels[6 + c], i, j);
       }
       if (!std::isfinite(b.at(Channel::Depth, i, j)) && b.at(Channel::Samples, i, j) == 1.0f) {
@@ -89,7 +91,8 @@ TEST(ShadingLayers, SumToTheColorOnBothBackendsAlsoAntiAliased) {
         options.lanes = lanes;
         options.purpose = KernelPurpose::Buffers;
         const FrameBuffers device = render_opencl(scene, options).buffers;
-        EXPECT_GT(expect_layers_sum_to_the_color(device, what + fmt::format(", lanes {}", lanes)), 1.0) << what << ": highlights";
+        EXPECT_GT(expect_layers_sum_to_the_color(device, what + fmt::format(", lanes {}", lanes)), 1.0)
+            << what << ": highlights";
       }
       EXPECT_GT(expect_layers_sum_to_the_color(render_reference(scene), what + ", reference"), 1.0);
     }
@@ -136,7 +139,8 @@ TEST(ShadingLayers, FogScalesEachLayerByWhatItLeaves) {
         for (Channel layer : kLayerChannels) {
           const double clear_value = a.at(layer, i, j);
           EXPECT_NEAR(b.at(layer, i, j), clear_value * left, 64.0 * 0x1p-24 * (clear_value + 1.0))
-              << (reference ? "reference" : "device") << " " << kChannelNames[static_cast<int>(layer)] << " at " << i << "," << j;
+              << (reference ? "reference" : "device") << " " << kChannelNames[static_cast<int>(layer)] << " at " << i
+              << "," << j;
         }
         // The fog's own light is the rest of the color.
         const double fog_light = 0.7 * (1.0 - left);

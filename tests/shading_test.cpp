@@ -31,7 +31,8 @@ struct CentreColor {
 };
 
 CentreColor centre_color(const std::string& yaml) {
-  const Scene scene = testing::scene_from_yaml(yaml + "render: {width: 1, height: 1, max_steps: 500, epsilon: 1.0e-6}\n");
+  const Scene scene =
+      testing::scene_from_yaml(yaml + "render: {width: 1, height: 1, max_steps: 500, epsilon: 1.0e-6}\n");
   const FrameBuffers b = render_opencl(scene, {}).buffers;
   const CameraBasis basis = camera_basis(scene.camera, 1, 1);
   const RayResult r = reference_trace(scene, basis.origin, pixel_ray_direction(basis, 0, 0));
@@ -52,9 +53,10 @@ const std::string kPlaneBelow =
 
 TEST(Shading, LambertOfAPlaneIsAlbedoTimesCosine) {
   // Light 60 degrees from the normal: n.l = 0.5.
-  const CentreColor c = centre_color(kPlaneBelow +
-                                     "lights: [{directional: {direction: [0.8660254037844386, 0.5, 0], intensity: 2}}]\n"
-                                     "shading: {model: lambert, ambient: 0.1, diffuse: 0.9}\n");
+  const CentreColor c =
+      centre_color(kPlaneBelow +
+                   "lights: [{directional: {direction: [0.8660254037844386, 0.5, 0], intensity: 2}}]\n"
+                   "shading: {model: lambert, ambient: 0.1, diffuse: 0.9}\n");
   const glm::dvec3 albedo(0.8, 0.6, 0.4);
   expect_color(c, albedo * (0.1 + 0.9 * 2.0 * 0.5));
 }
@@ -80,7 +82,8 @@ TEST(Shading, FresnelAtNormalIncidenceIsF0) {
 // Light 60 degrees from the normal, seen along the normal (v = n): n.l = 1/2, the mirror direction
 // of l makes 60 degrees with v (Phong: r.v = 1/2) and the half vector 30 degrees with n (Blinn-Phong
 // and GGX: n.h = h.v = cos 30).
-const std::string kLitAtSixtyDegrees = "lights: [{directional: {direction: [0.8660254037844386, 0.5, 0], intensity: 2}}]\n";
+const std::string kLitAtSixtyDegrees =
+    "lights: [{directional: {direction: [0.8660254037844386, 0.5, 0], intensity: 2}}]\n";
 
 TEST(Shading, PhongAndBlinnPhongSpecularAtSixtyDegrees) {
   const glm::dvec3 albedo(0.8, 0.6, 0.4);
@@ -115,7 +118,8 @@ TEST(Shading, PbrAtSixtyDegrees) {
 TEST(Shading, BeerLambertFogAtAKnownDepth) {
   // Ambient light only: the surface color is the albedo; at depth 2 the fog keeps exp(-2 d).
   const double density = 0.3;
-  const CentreColor c = centre_color(kPlaneBelow + "shading: {ambient: 1, fog: {color: [0.2, 0.3, 0.9], density: 0.3}}\n");
+  const CentreColor c =
+      centre_color(kPlaneBelow + "shading: {ambient: 1, fog: {color: [0.2, 0.3, 0.9], density: 0.3}}\n");
   const glm::dvec3 fog(0.2, 0.3, 0.9), albedo(0.8, 0.6, 0.4);
   expect_color(c, fog + (albedo - fog) * std::exp(-density * 2.0), 1e-4);
 }
@@ -146,13 +150,15 @@ TEST(Shading, ShadowsLeaveAnUnoccludedPointFullyLit) {
 
 TEST(Shading, ShadowsOfAPointLightEndAtTheLight) {
   // A sphere beyond the light, on the line from the point through the light: it casts no shadow.
-  const std::string lit = "camera: {position: [0, 2, 0], look_at: [0, 0, 0], up: [0, 0, -1]}\n"
-                          "lights: [{point: {position: [1, 3, 0.5]}}]\nshading: {ambient: 0.1";
+  const std::string lit =
+      "camera: {position: [0, 2, 0], look_at: [0, 0, 0], up: [0, 0, -1]}\n"
+      "lights: [{point: {position: [1, 3, 0.5]}}]\nshading: {ambient: 0.1";
   const std::string plane = "plane: {normal: [0, 1, 0], offset: 0, color: [0.8, 0.6, 0.4]}";
   const CentreColor plain = centre_color("sdf: {" + plane + "}\n" + lit + "}\n");
   for (const char* mode : {"hard", "soft", "soft_improved"}) {
-    const CentreColor shadowed = centre_color("sdf: {union: [{" + plane + "}, {sphere: {center: [2, 6, 1], radius: 0.5}}]}\n" +
-                                              lit + ", shadows: {mode: " + mode + "}}\n");
+    const CentreColor shadowed =
+        centre_color("sdf: {union: [{" + plane + "}, {sphere: {center: [2, 6, 1], radius: 0.5}}]}\n" + lit +
+                     ", shadows: {mode: " + mode + "}}\n");
     expect_color(shadowed, plain.reference);
   }
 }
@@ -183,8 +189,9 @@ TEST(Shading, NormalOcclusionBetweenAFloorAndACeiling) {
   const double ao = 1.0 - (0.05 * 0.05 / 2 + 0.15 * 0.15 / 3 + 0.25 * 0.25 / 4 + 0.35 * 0.35 / 5);
   expect_color(centre_color(between + "shading: {ambient: 1, ambient_occlusion: {samples: 5, step: 0.05}}\n"),
                glm::dvec3(0.8, 0.6, 0.4) * ao);
-  expect_color(centre_color(between + "shading: {ambient: 0.5, ambient_occlusion: {samples: 5, step: 0.05, power: 3}}\n"),
-               glm::dvec3(0.8, 0.6, 0.4) * 0.5 * std::pow(ao, 3.0));
+  expect_color(
+      centre_color(between + "shading: {ambient: 0.5, ambient_occlusion: {samples: 5, step: 0.05, power: 3}}\n"),
+      glm::dvec3(0.8, 0.6, 0.4) * 0.5 * std::pow(ao, 3.0));
 }
 
 TEST(Shading, AMirrorAddsItsReflectivityTimesWhatItReflects) {
@@ -213,13 +220,13 @@ TEST(Shading, SkyGradientOfMisses) {
   expect_color(c, glm::dvec3(0.1, 0.2, 0.6));
 }
 
-
 /// Looking straight down at the point (x, 0, 0) of the plane y = 0, white, Lambert with diffuse 1
 /// and no ambient light: the colour is the light's radiance there times n.l.
 std::string plane_at(double x, const std::string& lights) {
-  return fmt::format("camera: {{position: [{0}, 2, 0], look_at: [{0}, 0, 0], up: [0, 0, -1]}}\n"
-                     "sdf: {{plane: {{normal: [0, 1, 0], offset: 0}}}}\nlights: [{1}]\nshading: {{ambient: 0}}\n",
-                     x, lights);
+  return fmt::format(
+      "camera: {{position: [{0}, 2, 0], look_at: [{0}, 0, 0], up: [0, 0, -1]}}\n"
+      "sdf: {{plane: {{normal: [0, 1, 0], offset: 0}}}}\nlights: [{1}]\nshading: {{ambient: 0}}\n",
+      x, lights);
 }
 
 // A point light 2 above the origin with intensity 4: I / d^2 times n.l = h / d at each point.
@@ -227,7 +234,8 @@ TEST(Shading, InverseSquareFalloffAtKnownDistances) {
   const double h = 2.0, intensity = 4.0;
   for (double x : {0.0, 1.0, 3.0}) {
     const double d = std::hypot(x, h);
-    const CentreColor c = centre_color(plane_at(x, "{point: {position: [0, 2, 0], intensity: 4, falloff: inverse_square}}"));
+    const CentreColor c =
+        centre_color(plane_at(x, "{point: {position: [0, 2, 0], intensity: 4, falloff: inverse_square}}"));
     expect_color(c, glm::dvec3(intensity / (d * d) * h / d), 1e-5);
   }
   // falloff: none keeps today's light: I n.l at any distance.
@@ -262,7 +270,8 @@ TEST(Shading, SpotConeEdges) {
   }
   // Equal angles: a hard edge.
   const std::string hard = "{spot: {position: [0, 2, 0], direction: [0, -1, 0], inner_angle: 25, outer_angle: 25}}";
-  expect_color(centre_color(plane_at(h * std::tan(24.0 * M_PI / 180.0), hard)), glm::dvec3(std::cos(24.0 * M_PI / 180.0)), 1e-5);
+  expect_color(centre_color(plane_at(h * std::tan(24.0 * M_PI / 180.0), hard)),
+               glm::dvec3(std::cos(24.0 * M_PI / 180.0)), 1e-5);
   expect_color(centre_color(plane_at(h * std::tan(26.0 * M_PI / 180.0), hard)), glm::dvec3(0.0), 1e-5);
 }
 
@@ -272,26 +281,31 @@ TEST(Shading, ShadowsPerLight) {
   const std::string ball =
       "camera: {position: [0, 0.5, 0], look_at: [0, 0, 0], up: [0, 0, -1]}\n"
       "sdf: {union: [{plane: {normal: [0, 1, 0], offset: 0}}, {sphere: {center: [0, 2, 0], radius: 0.5}}]}\n";
-  const CentreColor blocked = centre_color(ball + "lights: [{directional: {direction: [0, 1, 0]}}]\nshading: {ambient: 0, shadows: {mode: hard}}\n");
+  const CentreColor blocked = centre_color(
+      ball + "lights: [{directional: {direction: [0, 1, 0]}}]\nshading: {ambient: 0, shadows: {mode: hard}}\n");
   expect_color(blocked, glm::dvec3(0.0));
-  const CentreColor through = centre_color(ball + "lights: [{directional: {direction: [0, 1, 0], shadows: false}}]\n"
-                                                  "shading: {ambient: 0, shadows: {mode: hard}}\n");
+  const CentreColor through = centre_color(ball +
+                                           "lights: [{directional: {direction: [0, 1, 0], shadows: false}}]\n"
+                                           "shading: {ambient: 0, shadows: {mode: hard}}\n");
   expect_color(through, glm::dvec3(1.0));
-  const CentreColor asked = centre_color(ball + "lights: [{directional: {direction: [0, 1, 0], shadows: true}}]\nshading: {ambient: 0}\n");
+  const CentreColor asked =
+      centre_color(ball + "lights: [{directional: {direction: [0, 1, 0], shadows: true}}]\nshading: {ambient: 0}\n");
   expect_color(asked, glm::dvec3(0.0));
 }
 
 /// The device against the reference as clmarch check compares them, at one lane and sixteen in
 /// float and at sixteen in double.
 void expect_check_passes(const Scene& scene, const std::string& label) {
-  for (const auto& [lanes, precision] : {std::pair{1, Precision::Float}, std::pair{16, Precision::Float}, std::pair{16, Precision::Double}}) {
+  for (const auto& [lanes, precision] :
+       {std::pair{1, Precision::Float}, std::pair{16, Precision::Float}, std::pair{16, Precision::Double}}) {
     Scene variant = scene;
     variant.render.precision = precision;
     OpenClOptions options;
     options.lanes = lanes;
     const FrameBuffers opencl = render_opencl(variant, options).buffers;
     const CheckReport report = cross_check(variant, opencl, render_reference(variant), reshade_hits(variant, opencl));
-    EXPECT_TRUE(report.passed()) << label << " lanes " << lanes << " " << kPrecisionNames[static_cast<int>(precision)] << "\n"
+    EXPECT_TRUE(report.passed()) << label << " lanes " << lanes << " " << kPrecisionNames[static_cast<int>(precision)]
+                                 << "\n"
                                  << report.to_text();
   }
 }
@@ -303,13 +317,13 @@ TEST(Shading, ShapedLightsPassTheCheck) {
       "camera: {position: [0, 3, 6], look_at: [0, 0, 0]}\nrender: {width: 64, height: 36}\n"
       "sdf: {union: [{plane: {normal: [0, 1, 0], offset: 0}}, {sphere: {center: [0.5, 0.6, 0], radius: 0.6}}]}\n"
       "lights:\n"
-      "  - spot: {position: [0, 4, 0], direction: [0, -1, 0], inner_angle: 20, outer_angle: 30, intensity: 16, falloff: inverse_square}\n"
+      "  - spot: {position: [0, 4, 0], direction: [0, -1, 0], inner_angle: 20, outer_angle: 30, intensity: 16, "
+      "falloff: inverse_square}\n"
       "  - point: {position: [-2, 1, 1], intensity: 0.8, range: 4, shadows: false}\n"
       "  - directional: {direction: [1, 1, 0], intensity: 0.2}\n"
       "shading: {model: blinn_phong, specular: 0.3, shadows: {mode: soft}, ambient: 0.05}\n");
   expect_check_passes(scene, "shaped lights");
 }
-
 
 // Per-node materials (issue 29): a node's specular and shininess replace the scene's for Phong
 // and Blinn-Phong, inherited down the tree; its emission adds unlit.
@@ -317,21 +331,26 @@ TEST(Shading, SpecularAndShininessPerNode) {
   const glm::dvec3 albedo(0.8, 0.6, 0.4);
   const double cos30 = std::sqrt(3.0) / 2.0;
   // The plane's own 0.25 and 4 win over the scene's 0.5 and 8; a parent's apply where the node sets none.
-  const std::string own = "camera: {position: [0, 2, 0], look_at: [0, 0, 0], up: [0, 0, -1]}\n"
-                          "sdf: {plane: {normal: [0, 1, 0], offset: 0, color: [0.8, 0.6, 0.4], specular: 0.25, shininess: 4}}\n";
-  const std::string inherited = "camera: {position: [0, 2, 0], look_at: [0, 0, 0], up: [0, 0, -1]}\n"
-                                "sdf: {union: {specular: 0.25, shininess: 4, children: [{plane: {normal: [0, 1, 0], offset: 0, "
-                                "color: [0.8, 0.6, 0.4]}}, {sphere: {center: [0, -5, 0], radius: 1}}]}}\n";
+  const std::string own =
+      "camera: {position: [0, 2, 0], look_at: [0, 0, 0], up: [0, 0, -1]}\n"
+      "sdf: {plane: {normal: [0, 1, 0], offset: 0, color: [0.8, 0.6, 0.4], specular: 0.25, shininess: 4}}\n";
+  const std::string inherited =
+      "camera: {position: [0, 2, 0], look_at: [0, 0, 0], up: [0, 0, -1]}\n"
+      "sdf: {union: {specular: 0.25, shininess: 4, children: [{plane: {normal: [0, 1, 0], offset: 0, "
+      "color: [0.8, 0.6, 0.4]}}, {sphere: {center: [0, -5, 0], radius: 1}}]}}\n";
   for (const std::string& scene : {own, inherited}) {
-    const CentreColor c = centre_color(scene + kLitAtSixtyDegrees + "shading: {model: blinn_phong, ambient: 0.1, diffuse: 0.9, specular: 0.5, shininess: 8}\n");
+    const CentreColor c =
+        centre_color(scene + kLitAtSixtyDegrees +
+                     "shading: {model: blinn_phong, ambient: 0.1, diffuse: 0.9, specular: 0.5, shininess: 8}\n");
     expect_color(c, albedo * (0.1 + 0.9 * 0.5 * 2.0) + glm::dvec3(0.25 * std::pow(cos30, 4.0) * 2.0), 1e-4);
   }
 }
 
 TEST(Shading, EmissionAddsUnlit) {
   // No light and no ambient: only the emission shows; with a light it adds to the lit color.
-  const std::string plane = "camera: {position: [0, 2, 0], look_at: [0, 0, 0], up: [0, 0, -1]}\n"
-                            "sdf: {plane: {normal: [0, 1, 0], offset: 0, color: [0.8, 0.6, 0.4], emission: [0.2, 0.3, 0.4]}}\n";
+  const std::string plane =
+      "camera: {position: [0, 2, 0], look_at: [0, 0, 0], up: [0, 0, -1]}\n"
+      "sdf: {plane: {normal: [0, 1, 0], offset: 0, color: [0.8, 0.6, 0.4], emission: [0.2, 0.3, 0.4]}}\n";
   expect_color(centre_color(plane + "shading: {ambient: 0}\n"), glm::dvec3(0.2, 0.3, 0.4));
   expect_color(centre_color(plane + "lights: [{directional: {direction: [0, 1, 0]}}]\nshading: {ambient: 0}\n"),
                glm::dvec3(0.8 + 0.2, 0.6 + 0.3, 0.4 + 0.4));
@@ -342,30 +361,33 @@ TEST(Shading, EmissionAddsUnlit) {
 TEST(Shading, MaterialsPerNodePassTheCheck) {
   std::string balls;
   for (int i = 0; i < 60; ++i) {
-    balls += fmt::format("      - sphere: {{center: [{}, 0.2, {}], radius: 0.15, specular: {}, shininess: {}{}}}\n", -2.0 + 0.5 * (i % 10),
-                         -1.0 - 0.5 * (i / 10), 0.1 * (i % 5), 4 + 10 * (i % 3), i % 7 == 0 ? ", emission: [1, 0.5, 0.2]" : "");
+    balls += fmt::format("      - sphere: {{center: [{}, 0.2, {}], radius: 0.15, specular: {}, shininess: {}{}}}\n",
+                         -2.0 + 0.5 * (i % 10), -1.0 - 0.5 * (i / 10), 0.1 * (i % 5), 4 + 10 * (i % 3),
+                         i % 7 == 0 ? ", emission: [1, 0.5, 0.2]" : "");
   }
   for (const char* model : {"blinn_phong", "phong", "pbr"}) {
     const Scene scene = testing::scene_from_yaml(
         "camera: {position: [0, 1.5, 5], look_at: [0, 0.3, -1]}\nrender: {width: 64, height: 36, pruning: grid}\n"
         "sdf:\n  union:\n    - plane: {normal: [0, 1, 0], offset: 0, specular: 0}\n"
-        "    - smooth_union: {k: 0.3, children: [{sphere: {center: [-0.6, 0.6, 0], radius: 0.5, specular: 1, shininess: 64, "
+        "    - smooth_union: {k: 0.3, children: [{sphere: {center: [-0.6, 0.6, 0], radius: 0.5, specular: 1, "
+        "shininess: 64, "
         "roughness: 0.2}}, {sphere: {center: [0.4, 0.6, 0], radius: 0.5, specular: 0.1, shininess: 4, metallic: 1}}]}\n"
         "    - sphere: {center: [1.6, 0.4, 0.5], radius: 0.3, emission: [2, 1.5, 0.5]}\n"
-        "    - union:\n" + balls +
-        "lights: [{point: {position: [2, 3, 3]}}]\nshading: {model: " + model + ", specular: 0.5, shininess: 16, ambient: 0.1}\n");
+        "    - union:\n" +
+        balls + "lights: [{point: {position: [2, 3, 3]}}]\nshading: {model: " + model +
+        ", specular: 0.5, shininess: 16, ambient: 0.1}\n");
     expect_check_passes(scene, model);
   }
 }
 
-
 /// Looking straight down at the point (x, 0, z) of a floor whose color is pattern, seen under the
 /// ambient light alone (1): the color there.
 CentreColor floor_color_at(double x, double z, const std::string& floor, double time = 0.0) {
-  const std::string yaml = fmt::format("camera: {{position: [{0}, 2, {1}], look_at: [{0}, 0, {1}], up: [0, 0, -1]}}\n"
-                                       "sdf: {2}\nshading: {{ambient: 1}}\n"
-                                       "render: {{width: 1, height: 1, max_steps: 500, epsilon: 1.0e-6}}\n",
-                                       x, z, floor);
+  const std::string yaml = fmt::format(
+      "camera: {{position: [{0}, 2, {1}], look_at: [{0}, 0, {1}], up: [0, 0, -1]}}\n"
+      "sdf: {2}\nshading: {{ambient: 1}}\n"
+      "render: {{width: 1, height: 1, max_steps: 500, epsilon: 1.0e-6}}\n",
+      x, z, floor);
   const Scene scene = testing::scene_from_yaml(yaml, time);
   const FrameBuffers b = render_opencl(scene, {}).buffers;
   const CameraBasis basis = camera_basis(scene.camera, 1, 1);
@@ -379,9 +401,12 @@ const glm::dvec3 kLight(0.9, 0.8, 0.7), kDark(0.1, 0.2, 0.3);
 // the floor), b where odd; in the frame of the node that sets it, here a union moved by 0.5 in x
 // over the floor, so the world point x is the local x + 0.5.
 TEST(ColorPattern, CheckerAtKnownPointsInBothFrames) {
-  const std::string world = "{plane: {normal: [0, 1, 0], offset: 0, color: {checker: {size: 1, colors: [[0.9, 0.8, 0.7], [0.1, 0.2, 0.3]]}}}}";
-  const std::string moved = "{union: {translate: [0.5, 0, 0], color: {checker: {size: 1, colors: [[0.9, 0.8, 0.7], [0.1, 0.2, 0.3]]}}, "
-                            "children: [{plane: {normal: [0, 1, 0], offset: 0}}]}}";
+  const std::string world =
+      "{plane: {normal: [0, 1, 0], offset: 0, color: {checker: {size: 1, colors: [[0.9, 0.8, 0.7], [0.1, 0.2, "
+      "0.3]]}}}}";
+  const std::string moved =
+      "{union: {translate: [0.5, 0, 0], color: {checker: {size: 1, colors: [[0.9, 0.8, 0.7], [0.1, 0.2, 0.3]]}}, "
+      "children: [{plane: {normal: [0, 1, 0], offset: 0}}]}}";
   expect_color(floor_color_at(0.25, 0.25, world), kLight);
   expect_color(floor_color_at(1.25, 0.25, world), kDark);
   expect_color(floor_color_at(-0.25, 0.25, world), kDark);
@@ -394,16 +419,22 @@ TEST(ColorPattern, CheckerAtKnownPointsInBothFrames) {
     SCOPED_TRACE("local x = 0.25");
     expect_color(floor_color_at(0.75, 0.25, moved), kLight);
   }
-  const std::string half = "{plane: {normal: [0, 1, 0], offset: 0, color: {checker: {size: 0.5, colors: [[0.9, 0.8, 0.7], [0.1, 0.2, 0.3]]}}}}";
+  const std::string half =
+      "{plane: {normal: [0, 1, 0], offset: 0, color: {checker: {size: 0.5, colors: [[0.9, 0.8, 0.7], [0.1, 0.2, "
+      "0.3]]}}}}";
   expect_color(floor_color_at(0.6, 0.1, half), kDark);
 }
 
 TEST(ColorPattern, StripesAndGrid) {
-  const std::string stripes = "{plane: {normal: [0, 1, 0], offset: 0, color: {stripes: {size: 0.5, axis: z, colors: [[0.9, 0.8, 0.7], [0.1, 0.2, 0.3]]}}}}";
+  const std::string stripes =
+      "{plane: {normal: [0, 1, 0], offset: 0, color: {stripes: {size: 0.5, axis: z, colors: [[0.9, 0.8, 0.7], [0.1, "
+      "0.2, 0.3]]}}}}";
   expect_color(floor_color_at(3.0, 0.25, stripes), kLight);
   expect_color(floor_color_at(3.0, 0.75, stripes), kDark);
   expect_color(floor_color_at(-7.0, -0.25, stripes), kDark);
-  const std::string grid = "{plane: {normal: [0, 1, 0], offset: 0, color: {grid: {size: 1, line_width: 0.1, colors: [[0.9, 0.8, 0.7], [0.1, 0.2, 0.3]]}}}}";
+  const std::string grid =
+      "{plane: {normal: [0, 1, 0], offset: 0, color: {grid: {size: 1, line_width: 0.1, colors: [[0.9, 0.8, 0.7], [0.1, "
+      "0.2, 0.3]]}}}}";
   {
     SCOPED_TRACE("a cell's middle");
     expect_color(floor_color_at(0.5, 0.5, grid), kLight);
@@ -424,7 +455,9 @@ TEST(ColorPattern, StripesAndGrid) {
 
 // A color of expressions of the point and the time, at t = 0.25.
 TEST(ColorPattern, ExpressionsOfThePoint) {
-  const std::string floor = "{plane: {normal: [0, 1, 0], offset: 0, color: [\"0.5 + 0.5 * sin(x)\", \"fract(z)\", \"mod(t, 1) + length(x, z) * 0\"]}}";
+  const std::string floor =
+      "{plane: {normal: [0, 1, 0], offset: 0, color: [\"0.5 + 0.5 * sin(x)\", \"fract(z)\", \"mod(t, 1) + length(x, z) "
+      "* 0\"]}}";
   expect_color(floor_color_at(1.0, 2.3, floor, 0.25), glm::dvec3(0.5 + 0.5 * std::sin(1.0), 0.3, 0.25), 1e-5);
   expect_color(floor_color_at(-2.0, -0.4, floor, 1.25), glm::dvec3(0.5 + 0.5 * std::sin(-2.0), 0.6, 0.25), 1e-5);
 }
@@ -434,19 +467,25 @@ TEST(ColorPattern, ExpressionsOfThePoint) {
 TEST(ColorPattern, PatternsPassTheCheck) {
   std::string balls;
   for (int i = 0; i < 50; ++i) {
-    balls += fmt::format("      - sphere: {{center: [{}, 0.2, {}], radius: 0.15, color: {{stripes: {{size: 0.05, axis: y}}}}}}\n",
-                         -2.0 + 0.5 * (i % 10), -1.0 - 0.5 * (i / 10));
+    balls += fmt::format(
+        "      - sphere: {{center: [{}, 0.2, {}], radius: 0.15, color: {{stripes: {{size: 0.05, axis: y}}}}}}\n",
+        -2.0 + 0.5 * (i % 10), -1.0 - 0.5 * (i / 10));
   }
   for (int samples : {1, 4}) {
     const Scene scene = testing::scene_from_yaml(
         "camera: {position: [0, 1.5, 5], look_at: [0, 0.3, -1]}\n"
-        "render: {width: 64, height: 36, pruning: grid, samples: " + std::to_string(samples) + "}\n"
+        "render: {width: 64, height: 36, pruning: grid, samples: " +
+        std::to_string(samples) +
+        "}\n"
         "sdf:\n  union:\n"
-        "    - union: {rotate: [0, 30, 0], color: {checker: {size: 0.5}}, children: [{plane: {normal: [0, 1, 0], offset: 0}}]}\n"
-        "    - smooth_union: {k: 0.3, children: [{sphere: {center: [-0.6, 0.6, 0], radius: 0.5, color: {grid: {size: 0.2, axes: [x, y, z]}}}},\n"
-        "                                        {sphere: {center: [0.4, 0.6, 0], radius: 0.5, color: [\"0.5 + 0.5 * sin(8 * x)\", \"smoothstep(0, 1, y)\", 0.3]}}]}\n"
-        "    - union:\n" + balls +
-        "lights: [{point: {position: [2, 3, 3]}}]\nshading: {ambient: 0.2}\n");
+        "    - union: {rotate: [0, 30, 0], color: {checker: {size: 0.5}}, children: [{plane: {normal: [0, 1, 0], "
+        "offset: 0}}]}\n"
+        "    - smooth_union: {k: 0.3, children: [{sphere: {center: [-0.6, 0.6, 0], radius: 0.5, color: {grid: {size: "
+        "0.2, axes: [x, y, z]}}}},\n"
+        "                                        {sphere: {center: [0.4, 0.6, 0], radius: 0.5, color: [\"0.5 + 0.5 * "
+        "sin(8 * x)\", \"smoothstep(0, 1, y)\", 0.3]}}]}\n"
+        "    - union:\n" +
+        balls + "lights: [{point: {position: [2, 3, 3]}}]\nshading: {ambient: 0.2}\n");
     expect_check_passes(scene, "samples " + std::to_string(samples));
   }
 }
@@ -465,7 +504,8 @@ TEST(ColorPattern, AFloorOnTheWallsTakesOneCell) {
   int checked = 0;
   for (int j = 0; j < 96; ++j) {
     for (int i = 0; i < 96; ++i) {
-      const glm::dvec3 hit = basis.origin + pixel_ray_direction(basis, i, j) * static_cast<double>(b.at(Channel::Depth, i, j));
+      const glm::dvec3 hit =
+          basis.origin + pixel_ray_direction(basis, i, j) * static_cast<double>(b.at(Channel::Depth, i, j));
       // Pixels near a wall in x or z may take either side: their hit points are known to 1e-4.
       if (std::abs(hit.x - std::round(hit.x)) < 0.02 || std::abs(hit.z - std::round(hit.z)) < 0.02) continue;
       const bool odd = static_cast<long long>(std::floor(hit.x) + std::floor(hit.z)) % 2 != 0;

@@ -42,20 +42,24 @@ struct BoundCase {
 // Terrain (value noise): slope bound L = amplitude * frequency * octaves * 1.5 * sqrt(2) =
 // 1.5 * 1.2 * 3 * 2.12 = 11.5 (docs/scene-format.md), factor 1 / (1 + L) = 0.08.
 const BoundCase kCases[] = {
-    {"terrain", "terrain: {{amplitude: 1.5, frequency: 1.2, octaves: 3, step_factor: {0}}}", "{position: [0, 3.5, 6], look_at: [0, 0, 0]}",
-     0.08, true},
-    {"mandelbulb_power2", "mandelbulb: {{power: 2, step_factor: {0}}}", "{position: [0.3, 0.4, 2.6], look_at: [0, 0, 0]}", 0.25, true},
+    {"terrain", "terrain: {{amplitude: 1.5, frequency: 1.2, octaves: 3, step_factor: {0}}}",
+     "{position: [0, 3.5, 6], look_at: [0, 0, 0]}", 0.08, true},
+    {"mandelbulb_power2", "mandelbulb: {{power: 2, step_factor: {0}}}",
+     "{position: [0.3, 0.4, 2.6], look_at: [0, 0, 0]}", 0.25, true},
     {"displace", "displace: {{amplitude: 0.15, frequency: 9, step_factor: {0}, children: [{{sphere: {{radius: 1}}}}]}}",
      "{position: [0, 1, 3], look_at: [0, 0, 0]}", 1.0, false},
-    {"smooth_blend", "smooth_union: {{k: 0.6, step_factor: {0}, children: [{{sphere: {{radius: 0.7}}}}, {{box: {{center: [0.9, 0, 0]}}}}, {{torus: {{center: [-0.6, 0.2, 0], major_radius: 0.6, minor_radius: 0.15}}}}]}}",
+    {"smooth_blend",
+     "smooth_union: {{k: 0.6, step_factor: {0}, children: [{{sphere: {{radius: 0.7}}}}, {{box: {{center: [0.9, 0, "
+     "0]}}}}, {{torus: {{center: [-0.6, 0.2, 0], major_radius: 0.6, minor_radius: 0.15}}}}]}}",
      "{position: [0.5, 1.5, 3], look_at: [0, 0, 0]}", 1.0, false},
-    {"menger", "menger: {{half_size: 1, iterations: 3, step_factor: {0}}}", "{position: [1.6, 1.3, 2.2], look_at: [0, 0, 0]}", 1.0,
-     false},
+    {"menger", "menger: {{half_size: 1, iterations: 3, step_factor: {0}}}",
+     "{position: [1.6, 1.3, 2.2], look_at: [0, 0, 0]}", 1.0, false},
 };
 
 Scene bound_scene(const BoundCase& c, double factor) {
-  return testing::scene_from_yaml(fmt::format("camera: {}\nrender: {{width: {}, height: {}, max_steps: {}, max_distance: 20}}\nsdf: {{{}}}\n",
-                                              c.camera, kWidth, kHeight, kMaxSteps, fmt::format(fmt::runtime(c.yaml), factor)));
+  return testing::scene_from_yaml(
+      fmt::format("camera: {}\nrender: {{width: {}, height: {}, max_steps: {}, max_distance: 20}}\nsdf: {{{}}}\n",
+                  c.camera, kWidth, kHeight, kMaxSteps, fmt::format(fmt::runtime(c.yaml), factor)));
 }
 
 struct Tunnelling {
@@ -106,8 +110,8 @@ TEST(NonExactFields, Sweep) {
     for (double factor : {1.0, 0.75, 0.5, c.safe_factor}) {
       if (factor == c.safe_factor && factor == 1.0) continue;  // already measured first
       const Tunnelling t = compare(render_checked(bound_scene(c, factor), KernelPurpose::Normals), reference);
-      std::cout << fmt::format("| {} | {} | {} | {} of {} | {} | {:.1f} |\n", c.name, c.safe_factor, factor, t.tunnelled,
-                               t.reference_hits, t.budget_misses, t.mean_steps);
+      std::cout << fmt::format("| {} | {} | {} | {} of {} | {} | {:.1f} |\n", c.name, c.safe_factor, factor,
+                               t.tunnelled, t.reference_hits, t.budget_misses, t.mean_steps);
     }
   }
 }

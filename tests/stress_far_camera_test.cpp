@@ -1,8 +1,8 @@
 // Where float breaks when the camera (and the scene it looks at) is far from the origin, with and
 // without tiling (issue 7). Without tiling the march runs in the map frame near the camera (its
 // origin folded into the generated code in double), the cells tiling in the camera's cell (offset
-// computed in double): neither depends on the offset; the mod tiling wraps world positions. CLMARCH_STRESS_SWEEP=1 prints the whole
-// table of docs/accuracy.md (every power of ten from 1e3 to 1e7 on each axis).
+// computed in double): neither depends on the offset; the mod tiling wraps world positions. CLMARCH_STRESS_SWEEP=1
+// prints the whole table of docs/accuracy.md (every power of ten from 1e3 to 1e7 on each axis).
 #include "analytic_intersections.hpp"
 #include "check/cross_check.hpp"
 #include "codegen/sdf_codegen.hpp"
@@ -35,7 +35,8 @@ std::string plain_yaml(const glm::dvec3& centre) {
   return fmt::format(
       "camera: {{position: [{}, {}, {}], look_at: [{}, {}, {}], fov: 45}}\n"
       "render: {{width: {}, height: {}, epsilon: {}, max_steps: 1000, max_distance: 20}}\n"
-      "sdf: {{union: [{{sphere: {{center: [{}, {}, {}], radius: 1}}}}, {{plane: {{normal: [0, 1, 0], offset: {}}}}}]}}\n",
+      "sdf: {{union: [{{sphere: {{center: [{}, {}, {}], radius: 1}}}}, {{plane: {{normal: [0, 1, 0], offset: "
+      "{}}}}}]}}\n",
       centre.x + 0.3, centre.y + 1.0, centre.z + 4.0, centre.x, centre.y, centre.z, kWidth, kHeight, kEpsilon, centre.x,
       centre.y, centre.z, 1.0 - centre.y);
 }
@@ -112,9 +113,11 @@ FarErrors measure_plain(const glm::dvec3& centre) {
       if (!t.hit) continue;
       const double short_by = t.depth - depth;
       e.depth_in_epsilons = std::max(e.depth_in_epsilons, std::abs(short_by) / kEpsilon);
-      e.over_documented = std::max(e.over_documented, over_tolerance(short_by, t.cosine, kFloatRelative * (distance + t.depth)));
+      e.over_documented =
+          std::max(e.over_documented, over_tolerance(short_by, t.cosine, kFloatRelative * (distance + t.depth)));
       e.over_origin = std::max(e.over_origin, over_tolerance(short_by, t.cosine, kFloatRelative * t.depth));
-      e.over_frame = std::max(e.over_frame, over_tolerance(short_by, t.cosine, kFloatRelative * (frame_distance + t.depth)));
+      e.over_frame =
+          std::max(e.over_frame, over_tolerance(short_by, t.cosine, kFloatRelative * (frame_distance + t.depth)));
     }
   }
   return e;
@@ -144,7 +147,8 @@ struct LatticeDifference {
 
 LatticeDifference measure_lattice(const glm::dvec3& position, const char* method) {
   const glm::dvec3 near = offset_in_cell(position, glm::dvec3(1, 1.5, 0.75));
-  const FrameBuffers reference = render(testing::scene_from_yaml(lattice_yaml(near, "cells")), KernelPurpose::DepthSteps);
+  const FrameBuffers reference =
+      render(testing::scene_from_yaml(lattice_yaml(near, "cells")), KernelPurpose::DepthSteps);
   const Scene scene = testing::scene_from_yaml(lattice_yaml(position, method));
   const FrameBuffers far = render_checked(scene, KernelPurpose::DepthSteps);
   LatticeDifference diff;
@@ -189,10 +193,12 @@ TEST(FarCamera, PlainMarchKeepsTheOriginsAccuracyOnEveryAxis) {
 /// function placing points relative to an offset, at the origin and 10^3 + 500 away (frame origin
 /// 1472 on x), in float and in double (render.precision), and expects the cross-check against the
 /// double reference to pass at both.
-void expect_checks_near_and_far(const std::function<std::string(const std::function<std::string(double, double, double)>&,
-                                                                const glm::dvec3&)>& sdf_at) {
-  for (const auto& [offset, precision] : {std::pair{glm::dvec3(0.0), "float"}, std::pair{glm::dvec3(1500.0, -1200.0, 900.0), "float"},
-                                          std::pair{glm::dvec3(0.0), "double"}, std::pair{glm::dvec3(1500.0, -1200.0, 900.0), "double"}}) {
+void expect_checks_near_and_far(
+    const std::function<std::string(const std::function<std::string(double, double, double)>&, const glm::dvec3&)>&
+        sdf_at) {
+  for (const auto& [offset, precision] :
+       {std::pair{glm::dvec3(0.0), "float"}, std::pair{glm::dvec3(1500.0, -1200.0, 900.0), "float"},
+        std::pair{glm::dvec3(0.0), "double"}, std::pair{glm::dvec3(1500.0, -1200.0, 900.0), "double"}}) {
     SCOPED_TRACE(fmt::format("offset ({}, {}, {}), {}", offset.x, offset.y, offset.z, precision));
     const auto at = [&](double x, double y, double z) {
       return fmt::format("[{}, {}, {}]", x + offset.x, y + offset.y, z + offset.z);
@@ -247,8 +253,10 @@ TEST(FarCamera, EveryNodeKindRendersInTheMapFrame) {
         "    - elongate: {{h: [0.3, 0, 0], translate: {}, children: [{{box: {{half_size: [0.2, 0.2, 0.2]}}}}]}}\n"
         "    - onion: {{thickness: 0.05, translate: {}, children: [{{sphere: {{radius: 0.35}}}}]}}\n"
         "    - round: {{radius: 0.1, translate: {}, children: [{{box: {{half_size: [0.25, 0.25, 0.25]}}}}]}}\n"
-        "    - mirror: {{axes: [x, z], translate: {}, children: [{{sphere: {{center: [0.3, 0, 0.3], radius: 0.2}}}}]}}\n"
-        "    - repeat_polar: {{count: 6, translate: {}, children: [{{sphere: {{center: [0.6, 0, 0], radius: 0.2}}}}]}}\n"
+        "    - mirror: {{axes: [x, z], translate: {}, children: [{{sphere: {{center: [0.3, 0, 0.3], radius: "
+        "0.2}}}}]}}\n"
+        "    - repeat_polar: {{count: 6, translate: {}, children: [{{sphere: {{center: [0.6, 0, 0], radius: "
+        "0.2}}}}]}}\n"
         "    - repeat_limited: {{period: [0.6, 0, 0], min: [-2, 0, 0], max: [2, 0, 0], translate: {},\n"
         "                       children: [{{box: {{half_size: [0.15, 0.15, 0.15]}}}}]}}\n",
         1.0 - offset.y, at(-1.5, 0, 0), at(-0.5, -0.5, 1), at(0.5, 0.2, 1.2), at(1.5, 0, 0), at(0, -0.4, 0),
@@ -263,7 +271,8 @@ TEST(FarCamera, EveryNodeKindRendersInTheMapFrame) {
         "    - cone: {{center: {}, angle: 30, height: 0.8}}\n"
         "    - rounded_cylinder: {{center: {}, radius: 0.35, half_height: 0.4, edge_radius: 0.1}}\n"
         "    - round_cone: {{a: {}, b: {}, radius_a: 0.3, radius_b: 0.15}}\n"
-        "    - capped_torus: {{angle: 120, major_radius: 0.35, minor_radius: 0.1, translate: {}, rotate: [-60, 0, 0]}}\n"
+        "    - capped_torus: {{angle: 120, major_radius: 0.35, minor_radius: 0.1, translate: {}, rotate: [-60, 0, "
+        "0]}}\n"
         "    - link: {{center: {}, half_length: 0.2, major_radius: 0.25, minor_radius: 0.08}}\n",
         1.0 - offset.y, at(-1.5, 0.2, 0), at(-0.5, -0.5, 1), at(0.5, -0.6, 1.2), at(0.6, 0.1, 1.0), at(1.5, 0, 0),
         at(0, -0.4, 0));
@@ -286,7 +295,8 @@ TEST(FarCamera, EveryNodeKindRendersInTheMapFrame) {
         "    - plane: {{normal: [0, 1, 0], offset: {}}}\n"
         "    - solid_angle: {{center: {}, angle: 40, radius: 0.6}}\n"
         "    - cut_hollow_sphere: {{center: {}, radius: 0.4, cut_height: 0.1, thickness: 0.04}}\n"
-        "    - death_star: {{radius: 0.45, carve_radius: 0.35, carve_distance: 0.4, translate: {}, rotate: [0, -40, 0]}}\n"
+        "    - death_star: {{radius: 0.45, carve_radius: 0.35, carve_distance: 0.4, translate: {}, rotate: [0, -40, "
+        "0]}}\n"
         "    - rhombus: {{center: {}, half_width: 0.5, half_depth: 0.3, half_height: 0.1, corner_radius: 0.05}}\n",
         1.0 - offset.y, at(-1.5, -0.6, 0), at(-0.5, -0.4, 1), at(0.6, 0.1, 1.0), at(1.5, -0.7, -0.3));
   });
@@ -294,15 +304,22 @@ TEST(FarCamera, EveryNodeKindRendersInTheMapFrame) {
   // the estimates with step_factor 0.7 (they are up to sqrt 2 steeper than the distance).
   expect_checks_near_and_far([](const auto& at, const glm::dvec3& offset) {
     const std::pair<const char*, const char*> blends[] = {
-        {"union_chamfer", "radius: 0.1, step_factor: 0.7"},     {"intersection_chamfer", "radius: 0.1, step_factor: 0.7"},
-        {"difference_chamfer", "radius: 0.1, step_factor: 0.7"}, {"union_round", "radius: 0.1, step_factor: 0.7"},
-        {"intersection_round", "radius: 0.1, step_factor: 0.7"}, {"difference_round", "radius: 0.1, step_factor: 0.7"},
-        {"union_stairs", "radius: 0.15, steps: 3"},             {"intersection_stairs", "radius: 0.15, steps: 3"},
-        {"difference_stairs", "radius: 0.15, steps: 3"},        {"union_columns", "radius: 0.15, steps: 2, step_factor: 0.7"},
+        {"union_chamfer", "radius: 0.1, step_factor: 0.7"},
+        {"intersection_chamfer", "radius: 0.1, step_factor: 0.7"},
+        {"difference_chamfer", "radius: 0.1, step_factor: 0.7"},
+        {"union_round", "radius: 0.1, step_factor: 0.7"},
+        {"intersection_round", "radius: 0.1, step_factor: 0.7"},
+        {"difference_round", "radius: 0.1, step_factor: 0.7"},
+        {"union_stairs", "radius: 0.15, steps: 3"},
+        {"intersection_stairs", "radius: 0.15, steps: 3"},
+        {"difference_stairs", "radius: 0.15, steps: 3"},
+        {"union_columns", "radius: 0.15, steps: 2, step_factor: 0.7"},
         {"intersection_columns", "radius: 0.15, steps: 2, step_factor: 0.7"},
         {"difference_columns", "radius: 0.15, steps: 2, step_factor: 0.7"},
-        {"xor", ""},                                            {"pipe", "radius: 0.05, step_factor: 0.7"},
-        {"engrave", "radius: 0.08, step_factor: 0.7"},           {"groove", "ra: 0.08, rb: 0.05"},
+        {"xor", ""},
+        {"pipe", "radius: 0.05, step_factor: 0.7"},
+        {"engrave", "radius: 0.08, step_factor: 0.7"},
+        {"groove", "ra: 0.08, rb: 0.05"},
         {"tongue", "ra: 0.08, rb: 0.05"}};
     std::string sdf = fmt::format("  union:\n    - plane: {{normal: [0, 1, 0], offset: {}}}\n", 1.0 - offset.y);
     int i = 0;
@@ -310,13 +327,15 @@ TEST(FarCamera, EveryNodeKindRendersInTheMapFrame) {
       const double x = -2.0 + 0.8 * (i % 6), z = -1.6 + 1.2 * (i / 6);
       const std::string head = fmt::format("{}{}", params, *params ? ", " : "");
       if (i < 6) {
-        sdf += fmt::format("    - {}: {{{}children: [{{sphere: {{center: {}, radius: 0.3}}}}, "
-                           "{{box: {{center: {}, half_size: [0.2, 0.2, 0.2]}}}}]}}\n",
-                           name, head, at(x - 0.1, 0, z), at(x + 0.15, 0.1, z));
+        sdf += fmt::format(
+            "    - {}: {{{}children: [{{sphere: {{center: {}, radius: 0.3}}}}, "
+            "{{box: {{center: {}, half_size: [0.2, 0.2, 0.2]}}}}]}}\n",
+            name, head, at(x - 0.1, 0, z), at(x + 0.15, 0.1, z));
       } else {
-        sdf += fmt::format("    - {}: {{{}translate: {}, children: [{{sphere: {{center: [-0.1, 0, 0], radius: 0.3}}}}, "
-                           "{{box: {{center: [0.15, 0.1, 0], half_size: [0.2, 0.2, 0.2]}}}}]}}\n",
-                           name, head, at(x, 0, z));
+        sdf += fmt::format(
+            "    - {}: {{{}translate: {}, children: [{{sphere: {{center: [-0.1, 0, 0], radius: 0.3}}}}, "
+            "{{box: {{center: [0.15, 0.1, 0], half_size: [0.2, 0.2, 0.2]}}}}]}}\n",
+            name, head, at(x, 0, z));
       }
       ++i;
     }
@@ -363,9 +382,11 @@ TEST(FarCamera, ModelAuthoredFarAndTranslatedHomeRendersAsAtHome) {
         ++both_hit;
         EXPECT_NEAR(t, t_home, rounding) << i << ", " << j;
         const glm::dvec3 n(opencl.at(Channel::NX, i, j), opencl.at(Channel::NY, i, j), opencl.at(Channel::NZ, i, j));
-        const glm::dvec3 n_home(at_home.at(Channel::NX, i, j), at_home.at(Channel::NY, i, j), at_home.at(Channel::NZ, i, j));
+        const glm::dvec3 n_home(at_home.at(Channel::NX, i, j), at_home.at(Channel::NY, i, j),
+                                at_home.at(Channel::NZ, i, j));
         // Normals of points at most `rounding` apart, from taps h = render.normal_epsilon apart.
-        EXPECT_LE(std::acos(std::clamp(glm::dot(n, n_home), -1.0, 1.0)), std::sqrt(3.0) * 2.0 * rounding / 1e-3) << i << ", " << j;
+        EXPECT_LE(std::acos(std::clamp(glm::dot(n, n_home), -1.0, 1.0)), std::sqrt(3.0) * 2.0 * rounding / 1e-3)
+            << i << ", " << j;
       }
     }
     EXPECT_GT(both_hit, 64 * 36 / 10);
@@ -381,12 +402,13 @@ TEST(FarCamera, ModelAuthoredFarAndTranslatedHomeRendersAsAtHome) {
 TEST(FarCamera, DisplacementFarAwayKeepsTheFramesPrecision) {
   for (const glm::dvec3 centre : {glm::dvec3(1500.0, -1200.0, 900.0), glm::dvec3(1e5, -1e5, 1e5)}) {
     SCOPED_TRACE(fmt::format("sphere at ({}, {}, {})", centre.x, centre.y, centre.z));
-    const Scene scene = testing::scene_from_yaml(fmt::format(
-        "camera: {{position: [{0}, {1}, {3}], look_at: [{0}, {1}, {2}], fov: 50}}\n"
-        "render: {{width: 64, height: 36, epsilon: 1.0e-4, max_steps: 400, max_distance: 40}}\n"
-        "sdf: {{displace: {{amplitude: 0.2, frequency: 3, children: [{{sphere: {{center: [{0}, {1}, {2}], radius: 1}}}}]}}}}\n"
-        "lights: [{{directional: {{direction: [1, 2, 1.5]}}}}]\n",
-        centre.x, centre.y, centre.z, centre.z + 2.2));
+    const Scene scene = testing::scene_from_yaml(
+        fmt::format("camera: {{position: [{0}, {1}, {3}], look_at: [{0}, {1}, {2}], fov: 50}}\n"
+                    "render: {{width: 64, height: 36, epsilon: 1.0e-4, max_steps: 400, max_distance: 40}}\n"
+                    "sdf: {{displace: {{amplitude: 0.2, frequency: 3, children: [{{sphere: {{center: [{0}, {1}, {2}], "
+                    "radius: 1}}}}]}}}}\n"
+                    "lights: [{{directional: {{direction: [1, 2, 1.5]}}}}]\n",
+                    centre.x, centre.y, centre.z, centre.z + 2.2));
     ASSERT_NE(map_frame_origin(scene), glm::dvec3(0.0));
     const FrameBuffers opencl = render_checked(scene, KernelPurpose::Shaded);
     const CheckReport report = cross_check(scene, opencl, render_reference(scene), reshade_hits(scene, opencl));
@@ -433,7 +455,8 @@ TEST(FarCamera, TheCheckSeesTurnedNormalsFarAway) {
     for (int i = 0; i < turned.width; ++i) {
       const glm::dvec3 n(turned.at(Channel::NX, i, j), turned.at(Channel::NY, i, j), turned.at(Channel::NZ, i, j));
       if (!std::isfinite(turned.at(Channel::Depth, i, j))) continue;
-      const glm::dvec3 across = glm::normalize(glm::cross(n, std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
+      const glm::dvec3 across =
+          glm::normalize(glm::cross(n, std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
       const glm::dvec3 m = std::cos(angle) * n + std::sin(angle) * across;
       turned.at(Channel::NX, i, j) = static_cast<float>(m.x);
       turned.at(Channel::NY, i, j) = static_cast<float>(m.y);
@@ -470,10 +493,11 @@ TEST(FarCamera, Sweep) {
       const glm::dvec3 lattice_camera = kLatticeCamera + kAxes[a] * offset;
       const LatticeDifference cells = measure_lattice(lattice_camera, "cells");
       const LatticeDifference mod = measure_lattice(lattice_camera, "mod");
-      std::cout << fmt::format("| {} | 1e{} | {} | {} | {:.3g} | {:.3g} | {:.3g} | {:.3g} | {} | {:.2g}{} | {:.1f} % |\n", kAxisNames[a],
-                               std::lround(std::log10(offset)), e.compared, e.mask_mismatch, e.depth_in_epsilons,
-                               e.over_documented, e.over_origin, e.over_frame, cells.wrong, cells.max_depth_difference,
-                               cells.bitwise_equal ? " (bitwise)" : "", 100.0 * mod.wrong / (kWidth * kHeight));
+      std::cout << fmt::format(
+          "| {} | 1e{} | {} | {} | {:.3g} | {:.3g} | {:.3g} | {:.3g} | {} | {:.2g}{} | {:.1f} % |\n", kAxisNames[a],
+          std::lround(std::log10(offset)), e.compared, e.mask_mismatch, e.depth_in_epsilons, e.over_documented,
+          e.over_origin, e.over_frame, cells.wrong, cells.max_depth_difference, cells.bitwise_equal ? " (bitwise)" : "",
+          100.0 * mod.wrong / (kWidth * kHeight));
     }
   }
 }

@@ -130,7 +130,8 @@ TEST(GrazingRays, AlongBoxFacesAndEdges) {
     // none runs out of steps, and those of the middle row and column that meet the box hit it.
     EXPECT_EQ(counts.budget_misses, 0);
     int along_faces = 0;
-    for (int k = 0; k <= 16; ++k) along_faces += std::isfinite(b.at(Channel::Depth, k, 16)) + std::isfinite(b.at(Channel::Depth, 16, 32 - k));
+    for (int k = 0; k <= 16; ++k)
+      along_faces += std::isfinite(b.at(Channel::Depth, k, 16)) + std::isfinite(b.at(Channel::Depth, 16, 32 - k));
     EXPECT_GE(along_faces, 10);
   }
 }
@@ -141,8 +142,8 @@ TEST(AxisRays, CentrePixelRunsAlongEachAxis) {
   const struct {
     const char* position;
     const char* up;
-  } cameras[] = {{"[5, 0, 0]", "[0, 1, 0]"}, {"[-5, 0, 0]", "[0, 1, 0]"}, {"[0, 5, 0]", "[0, 0, 1]"},
-                 {"[0, -5, 0]", "[0, 0, 1]"}, {"[0, 0, 5]", "[0, 1, 0]"}, {"[0, 0, -5]", "[0, 1, 0]"}};
+  } cameras[] = {{"[5, 0, 0]", "[0, 1, 0]"},  {"[-5, 0, 0]", "[0, 1, 0]"}, {"[0, 5, 0]", "[0, 0, 1]"},
+                 {"[0, -5, 0]", "[0, 0, 1]"}, {"[0, 0, 5]", "[0, 1, 0]"},  {"[0, 0, -5]", "[0, 1, 0]"}};
   for (const char* shape : {"sphere: {radius: 1}", "box: {half_size: [1, 1, 1]}"}) {
     for (const auto& c : cameras) {
       SCOPED_TRACE(fmt::format("{} from {}", shape, c.position));
@@ -181,23 +182,28 @@ TEST(CameraPlacement, OnASurfaceOrInsideEveryPixelHitsAtDepthZero) {
     const char* yaml;
     bool zero_normal;  // the gradient vanishes at the camera (the sphere's centre)
   } cases[] = {
-      {"on the sphere looking out", "camera: {position: [0, 0, 1], look_at: [0, 0, 3]}\nsdf: {sphere: {radius: 1}}\n", false},
-      {"on the sphere looking along it", "camera: {position: [0, 0, 1], look_at: [1, 0, 1]}\nsdf: {sphere: {radius: 1}}\n", false},
-      {"on the floor looking along it", "camera: {position: [0, 0, 0], look_at: [0, 0, -1]}\nsdf: {plane: {}}\n", false},
-      {"at the sphere's centre", "camera: {position: [0, 0, 0], look_at: [0, 0, -1]}\nsdf: {sphere: {radius: 1}}\n", true},
-      {"inside a box, off centre", "camera: {position: [0.2, 0.1, 0], look_at: [0, 0, -1]}\nsdf: {box: {half_size: [1, 1, 1]}}\n",
+      {"on the sphere looking out", "camera: {position: [0, 0, 1], look_at: [0, 0, 3]}\nsdf: {sphere: {radius: 1}}\n",
        false},
+      {"on the sphere looking along it",
+       "camera: {position: [0, 0, 1], look_at: [1, 0, 1]}\nsdf: {sphere: {radius: 1}}\n", false},
+      {"on the floor looking along it", "camera: {position: [0, 0, 0], look_at: [0, 0, -1]}\nsdf: {plane: {}}\n",
+       false},
+      {"at the sphere's centre", "camera: {position: [0, 0, 0], look_at: [0, 0, -1]}\nsdf: {sphere: {radius: 1}}\n",
+       true},
+      {"inside a box, off centre",
+       "camera: {position: [0.2, 0.1, 0], look_at: [0, 0, -1]}\nsdf: {box: {half_size: [1, 1, 1]}}\n", false},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.name);
-    Scene scene = testing::scene_from_yaml(std::string(c.yaml) +
-                                           "render: {width: 24, height: 16}\nlights: [{directional: {direction: [1, 2, 3]}}]\n");
+    Scene scene = testing::scene_from_yaml(
+        std::string(c.yaml) + "render: {width: 24, height: 16}\nlights: [{directional: {direction: [1, 2, 3]}}]\n");
     const FrameBuffers b = render_checked(scene, KernelPurpose::Shaded);
     for (int j = 0; j < b.height; ++j) {
       for (int i = 0; i < b.width; ++i) {
         ASSERT_EQ(b.at(Channel::Depth, i, j), 0.0f) << i << "," << j;
         ASSERT_EQ(b.at(Channel::Steps, i, j), 1.0f) << i << "," << j;
-        const double n = glm::length(glm::dvec3(b.at(Channel::NX, i, j), b.at(Channel::NY, i, j), b.at(Channel::NZ, i, j)));
+        const double n =
+            glm::length(glm::dvec3(b.at(Channel::NX, i, j), b.at(Channel::NY, i, j), b.at(Channel::NZ, i, j)));
         ASSERT_NEAR(n, c.zero_normal ? 0.0 : 1.0, 1e-5) << i << "," << j;
       }
     }
@@ -211,13 +217,13 @@ TEST(CameraPlacement, OnASurfaceOrInsideEveryPixelHitsAtDepthZero) {
 TEST(CameraPlacement, OnACellWallEdgeOrCorner) {
   for (const char* position : {"[3, 0.7, 0.3]", "[3, 1.5, 0.3]", "[3, 1.5, 1.5]", "[-2, -3, -0.75]", "[0, 0, 0]"}) {
     SCOPED_TRACE(position);
-    const Scene scene = testing::scene_from_yaml(fmt::format(
-        "camera: {{position: {}, look_at: [5.2, 2.1, 4.4], fov: 60}}\n"
-        "render: {{width: 48, height: 32, max_steps: 1000, max_distance: 30}}\n"
-        "tiling: {{cell: [1, 1.5, 0.75]}}\n"
-        "sdf: {{sphere: {{center: [0.5, 0.75, 0.375], radius: 0.3}}}}\n"
-        "lights: [{{directional: {{direction: [1, 2, 3]}}}}]\n",
-        position));
+    const Scene scene =
+        testing::scene_from_yaml(fmt::format("camera: {{position: {}, look_at: [5.2, 2.1, 4.4], fov: 60}}\n"
+                                             "render: {{width: 48, height: 32, max_steps: 1000, max_distance: 30}}\n"
+                                             "tiling: {{cell: [1, 1.5, 0.75]}}\n"
+                                             "sdf: {{sphere: {{center: [0.5, 0.75, 0.375], radius: 0.3}}}}\n"
+                                             "lights: [{{directional: {{direction: [1, 2, 3]}}}}]\n",
+                                             position));
     expect_kernel_matches_reference(scene);
   }
 }

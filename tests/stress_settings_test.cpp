@@ -127,11 +127,11 @@ TEST(StepBudget, AHitOnTheLastStepCountsAndOneStepShortIsAMiss) {
 TEST(StepBudget, EveryBudgetEndsEveryPixelByTheRule) {
   for (int budget : {1, 2, 5, 16, 64}) {
     SCOPED_TRACE(fmt::format("max_steps {}", budget));
-    const Scene scene = testing::scene_from_yaml(fmt::format(
-        "camera: {{position: [0, 2.5, 3], look_at: [0, 0, 0]}}\n"
-        "render: {{width: 48, height: 27, max_steps: {}, max_distance: 20}}\n"
-        "sdf: {{torus: {{major_radius: 1, minor_radius: 0.3}}}}\n",
-        budget));
+    const Scene scene =
+        testing::scene_from_yaml(fmt::format("camera: {{position: [0, 2.5, 3], look_at: [0, 0, 0]}}\n"
+                                             "render: {{width: 48, height: 27, max_steps: {}, max_distance: 20}}\n"
+                                             "sdf: {{torus: {{major_radius: 1, minor_radius: 0.3}}}}\n",
+                                             budget));
     const FrameBuffers opencl = render_checked(scene, KernelPurpose::Normals);
     const FrameBuffers reference = render_reference(scene);
     EXPECT_EQ(invariant_violation(reference, budget, false), "") << "reference";
@@ -151,7 +151,8 @@ TEST(StepBudget, EveryBudgetEndsEveryPixelByTheRule) {
     // reach max_distance 20), and both sides decide alike.
     const std::uint64_t out_opencl = opencl.rays_with_status(RayStatus::OutOfSteps);
     const std::uint64_t out_reference = reference.rays_with_status(RayStatus::OutOfSteps);
-    EXPECT_LE(std::max(out_opencl, out_reference) - std::min(out_opencl, out_reference), static_cast<std::uint64_t>(48 * 27 / 50));
+    EXPECT_LE(std::max(out_opencl, out_reference) - std::min(out_opencl, out_reference),
+              static_cast<std::uint64_t>(48 * 27 / 50));
     if (budget == 1) {
       EXPECT_EQ(hits, 0) << "one step from outside cannot arrive";
       EXPECT_EQ(out_opencl, out_reference);
@@ -181,11 +182,11 @@ TEST(StepBudget, FarGrazingRaysArriveInsteadOfStalling) {
   const Plane floor{{0, 1, 0}, 0.0};
   for (const char* threshold : {"fixed", "pixel_cone"}) {
     SCOPED_TRACE(threshold);
-    const Scene scene = testing::scene_from_yaml(fmt::format(
-        "camera: {{position: [0, 1000, 0], look_at: [0, 0, -20000], fov: 1}}\n"
-        "render: {{width: 32, height: 18, max_steps: 500, max_distance: 100000, hit_threshold: {}}}\n"
-        "sdf: {{plane: {{}}}}\n",
-        threshold));
+    const Scene scene = testing::scene_from_yaml(
+        fmt::format("camera: {{position: [0, 1000, 0], look_at: [0, 0, -20000], fov: 1}}\n"
+                    "render: {{width: 32, height: 18, max_steps: 500, max_distance: 100000, hit_threshold: {}}}\n"
+                    "sdf: {{plane: {{}}}}\n",
+                    threshold));
     const FrameBuffers b = render_checked(scene, KernelPurpose::DepthSteps);
     const double slope = hit_cone_slope(scene.render, scene.camera);
     for (int j = 0; j < b.height; ++j) {
@@ -193,7 +194,8 @@ TEST(StepBudget, FarGrazingRaysArriveInsteadOfStalling) {
         const glm::dvec3 d = ray_direction(scene, i, j);
         const double t_exact = *intersect_plane(scene.camera.position, d, floor);
         const float depth = b.at(Channel::Depth, i, j);
-        ASSERT_TRUE(std::isfinite(depth)) << i << "," << j << ": a miss after " << b.at(Channel::Steps, i, j) << " steps";
+        ASSERT_TRUE(std::isfinite(depth))
+            << i << "," << j << ": a miss after " << b.at(Channel::Steps, i, j) << " steps";
         // threshold / cos in front of the floor at most; float rounding of t (16u t) either side.
         const double threshold_there = std::max({scene.render.epsilon, slope * t_exact, 0x1p-23 * t_exact});
         const double rounding = kFloatRelative * (glm::length(scene.camera.position) + t_exact);
@@ -222,11 +224,11 @@ TEST(StepBudget, TheLargestBudgetEnds) {
 
 /// A unit sphere and a floor seen from a given camera.
 Scene degenerate_scene(const std::string& camera, const std::string& render) {
-  return testing::scene_from_yaml(fmt::format(
-      "camera: {}\nrender: {}\n"
-      "sdf: {{union: [{{sphere: {{radius: 1}}}}, {{plane: {{normal: [0, 1, 0], offset: 1}}}}]}}\n"
-      "lights: [{{directional: {{direction: [1, 2, 3]}}}}]\n",
-      camera, render));
+  return testing::scene_from_yaml(
+      fmt::format("camera: {}\nrender: {}\n"
+                  "sdf: {{union: [{{sphere: {{radius: 1}}}}, {{plane: {{normal: [0, 1, 0], offset: 1}}}}]}}\n"
+                  "lights: [{{directional: {{direction: [1, 2, 3]}}}}]\n",
+                  camera, render));
 }
 
 // Extreme but valid settings give finite images that the reference confirms within the
@@ -279,10 +281,12 @@ TEST(DegenerateSettings, EpsilonBelowFloatResolutionActsAsTheFloor) {
   };
   const Scene usable = degenerate_scene("{position: [0, 0.5, 5]}", "{width: 32, height: 18, epsilon: 1.0e-6}");
   const auto [usable_hits, usable_budget_misses] = tally(render(usable, KernelPurpose::DepthSteps), 255);
-  for (const char* render_yaml : {"{width: 32, height: 18, epsilon: 1.0e-12}", "{width: 32, height: 18, epsilon: 1.0e-45}",
-                                  "{width: 32, height: 18, epsilon: 1.0e-300}"}) {
+  for (const char* render_yaml :
+       {"{width: 32, height: 18, epsilon: 1.0e-12}", "{width: 32, height: 18, epsilon: 1.0e-45}",
+        "{width: 32, height: 18, epsilon: 1.0e-300}"}) {
     SCOPED_TRACE(render_yaml);
-    const FrameBuffers b = render_checked(degenerate_scene("{position: [0, 0.5, 5]}", render_yaml), KernelPurpose::Shaded);
+    const FrameBuffers b =
+        render_checked(degenerate_scene("{position: [0, 0.5, 5]}", render_yaml), KernelPurpose::Shaded);
     const auto [hits, budget_misses] = tally(b, 255);
     // Silhouette rays within rounding of the threshold may go either way: 1 % of the image.
     EXPECT_NEAR(hits, usable_hits, 6);
@@ -302,14 +306,16 @@ TEST(DegenerateSettings, OutOfRangeValuesAreOneLineErrors) {
       {"render: {normal_epsilon: 0}", "scene.yaml:2:26: render.normal_epsilon must be > 0 (got 0)"},
       {"render: {height: 0}", "scene.yaml:2:18: render.height must be in [1, 65536] (got 0)"},
       {"camera: {position: [1, 2, 3], look_at: [1, 2, 3]}", "scene.yaml:2:"},
-      {"render: {max_distance: 1.0e+300}", "scene.yaml:2:24: render.max_distance must be within +-3.40282e+38, the float range"},
+      {"render: {max_distance: 1.0e+300}",
+       "scene.yaml:2:24: render.max_distance must be within +-3.40282e+38, the float range"},
       {"render: {max_distance: 1.0e+400}", "scene.yaml:2:24: render.max_distance must be"},
   };
   testing::TempDir dir;
   for (const auto& [line, message] : cases) {
     SCOPED_TRACE(line);
     std::ofstream(dir / "scene.yaml") << "sdf: {sphere: {}}\n" << line << "\n";
-    const testing::CommandResult r = testing::run_clmarch({"render", (dir / "scene.yaml").string(), "-o", (dir / "out.png").string()});
+    const testing::CommandResult r =
+        testing::run_clmarch({"render", (dir / "scene.yaml").string(), "-o", (dir / "out.png").string()});
     EXPECT_EQ(r.exit_code, kExitBadInput) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
@@ -333,13 +339,15 @@ TEST(DegenerateSettings, NumbersTheKernelsDeriveStayWithinFloat) {
   EXPECT_EQ(tiny.err, (dir / "scene.yaml").string() +
                           ":1:23: sdf.sphere.scale must be in [2.93874e-39, 3.40282e+38] (got 1.0e-40)\n");
 
-  const std::string far = "sdf: {sphere: {center: [3.0e+38, 0, 0]}}\ncamera: {position: [-3.0e+38, 0, 0], look_at: [0, 0, 0]}\n";
+  const std::string far =
+      "sdf: {sphere: {center: [3.0e+38, 0, 0]}}\ncamera: {position: [-3.0e+38, 0, 0], look_at: [0, 0, 0]}\n";
   const testing::CommandResult opencl = render(far, "opencl");
   EXPECT_EQ(opencl.exit_code, kExitBadInput) << opencl.err;
   EXPECT_EQ(std::count(opencl.err.begin(), opencl.err.end(), '\n'), 1) << opencl.err;
-  EXPECT_EQ(opencl.err.rfind((dir / "scene.yaml").string() + ": the scene needs the number 6e+38 in its OpenCL program, beyond "
-                                                             "float's range",
-                              0),
+  EXPECT_EQ(opencl.err.rfind((dir / "scene.yaml").string() +
+                                 ": the scene needs the number 6e+38 in its OpenCL program, beyond "
+                                 "float's range",
+                             0),
             0u)
       << "one line naming the file: " << opencl.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "out.png"));

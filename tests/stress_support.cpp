@@ -22,22 +22,27 @@ std::string invariant_violation(const FrameBuffers& b, int max_steps, bool shade
       const float wall_steps = b.at(Channel::WallSteps, i, j);
       const glm::dvec3 n(b.at(Channel::NX, i, j), b.at(Channel::NY, i, j), b.at(Channel::NZ, i, j));
       if (std::isnan(depth) || depth < 0.0f || depth == -INFINITY) return where(fmt::format("depth {}", depth));
-      if (!std::isfinite(steps) || steps != std::floor(steps) || steps < 0.0f || steps > static_cast<float>(max_steps)) {
+      if (!std::isfinite(steps) || steps != std::floor(steps) || steps < 0.0f ||
+          steps > static_cast<float>(max_steps)) {
         return where(fmt::format("steps {} outside [0, {}]", steps, max_steps));
       }
       // A ray that misses the scene's bounding sphere is not marched at all.
       if (steps == 0.0f && std::isfinite(depth)) return where("a hit without a step");
-      if (!(wall_steps >= 0.0f && wall_steps <= steps)) return where(fmt::format("wall steps {} of {}", wall_steps, steps));
+      if (!(wall_steps >= 0.0f && wall_steps <= steps))
+        return where(fmt::format("wall steps {} of {}", wall_steps, steps));
       if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z)) return where("normal not finite");
       const double length = glm::length(n);
       if (!std::isfinite(depth) && length != 0.0) return where("a miss with a normal");
-      if (std::isfinite(depth) && length != 0.0 && std::abs(length - 1.0) > 1e-4) return where(fmt::format("|normal| {}", length));
+      if (std::isfinite(depth) && length != 0.0 && std::abs(length - 1.0) > 1e-4)
+        return where(fmt::format("|normal| {}", length));
       // How the ray ended agrees with what it left: a hit, or a miss whose budget ran out at
       // exactly max_steps (issue 26's status channel).
       if (b.has_status) {
         const float status = b.at(Channel::Status, i, j);
-        if (!(status >= 0.0f && status <= 3.0f && status == std::floor(status))) return where(fmt::format("status {}", status));
-        if ((status == static_cast<float>(RayStatus::Hit)) != std::isfinite(depth)) return where(fmt::format("status {} at depth {}", status, depth));
+        if (!(status >= 0.0f && status <= 3.0f && status == std::floor(status)))
+          return where(fmt::format("status {}", status));
+        if ((status == static_cast<float>(RayStatus::Hit)) != std::isfinite(depth))
+          return where(fmt::format("status {} at depth {}", status, depth));
         if (status == static_cast<float>(RayStatus::OutOfSteps) && steps != static_cast<float>(max_steps)) {
           return where(fmt::format("out of steps after {} of {}", steps, max_steps));
         }
@@ -45,7 +50,8 @@ std::string invariant_violation(const FrameBuffers& b, int max_steps, bool shade
       if (shaded) {
         for (Channel c : {Channel::R, Channel::G, Channel::B}) {
           const float v = b.at(c, i, j);
-          if (!std::isfinite(v) || v < 0.0f) return where(fmt::format("color {} = {}", kChannelNames[static_cast<int>(c)], v));
+          if (!std::isfinite(v) || v < 0.0f)
+            return where(fmt::format("color {} = {}", kChannelNames[static_cast<int>(c)], v));
         }
       }
     }

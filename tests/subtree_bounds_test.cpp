@@ -74,22 +74,27 @@ TEST(SubtreeBounds, GatedFieldsAndMaterialsEqualTheReference) {
       "union: [{menger: {color: [1, 0, 0]}}, {plane: {normal: [0, 1, 0], offset: 1.4, color: [0, 1, 0]}}]",
       "union: [{sphere: {center: [3, 0, 0], color: [0, 0, 1]}}, {menger: {half_size: 0.8, translate: [-2, 0.5, 0], "
       "rotate: [10, 20, 30], color: [1, 1, 0]}}, {mandelbulb: {scale: 0.7, step_factor: 0.8, center: [0, 0, 2]}}]",
-      "subtraction: [{box: {half_size: [3, 3, 3], color: [0.2, 0.4, 0.6]}}, {menger: {translate: [2.5, 0, 0], color: [1, 0, 1]}}]",
+      "subtraction: [{box: {half_size: [3, 3, 3], color: [0.2, 0.4, 0.6]}}, {menger: {translate: [2.5, 0, 0], color: "
+      "[1, 0, 1]}}]",
       "smooth_union: {k: 0.5, children: [{sphere: {radius: 0.8, color: [1, 0, 0]}}, {menger: {translate: [2.2, 0, 0], "
       "color: [0, 0, 1]}}]}",
       "smooth_subtraction: {k: 0.3, children: [{box: {half_size: [2, 2, 2]}}, {mandelbulb: {translate: [0, 2, 0], "
       "color: [0, 1, 0]}}]}",
   };
   // The blends' skip limits (codegen/blend_code.cpp): a gated Menger sponge after a cheap operand.
-  const std::string blend_with = "[{sphere: {radius: 0.8, color: [1, 0, 0]}}, {menger: {translate: [2.2, 0, 0], color: [0, 0, 1]}}]";
-  const std::string cut_with = "[{box: {half_size: [2, 2, 2], color: [1, 0, 0]}}, {menger: {translate: [2.5, 0, 0], color: [0, 0, 1]}}]";
-  for (const char* blend : {"union_chamfer: {radius: 0.3, ", "union_round: {radius: 0.3, ", "union_stairs: {radius: 0.3, steps: 3, ",
-                            "union_columns: {radius: 0.3, steps: 2, ", "xor: {"}) {
+  const std::string blend_with =
+      "[{sphere: {radius: 0.8, color: [1, 0, 0]}}, {menger: {translate: [2.2, 0, 0], color: [0, 0, 1]}}]";
+  const std::string cut_with =
+      "[{box: {half_size: [2, 2, 2], color: [1, 0, 0]}}, {menger: {translate: [2.5, 0, 0], color: [0, 0, 1]}}]";
+  for (const char* blend :
+       {"union_chamfer: {radius: 0.3, ", "union_round: {radius: 0.3, ", "union_stairs: {radius: 0.3, steps: 3, ",
+        "union_columns: {radius: 0.3, steps: 2, ", "xor: {"}) {
     trees.push_back(std::string(blend) + "children: " + blend_with + "}");
   }
-  for (const char* blend : {"difference_chamfer: {radius: 0.3, ", "difference_round: {radius: 0.3, ",
-                            "difference_stairs: {radius: 0.3, steps: 3, ", "difference_columns: {radius: 0.3, steps: 2, ",
-                            "engrave: {radius: 0.2, ", "groove: {ra: 0.2, rb: 0.1, ", "tongue: {ra: 0.2, rb: 0.1, "}) {
+  for (const char* blend :
+       {"difference_chamfer: {radius: 0.3, ", "difference_round: {radius: 0.3, ",
+        "difference_stairs: {radius: 0.3, steps: 3, ", "difference_columns: {radius: 0.3, steps: 2, ",
+        "engrave: {radius: 0.2, ", "groove: {ra: 0.2, rb: 0.1, ", "tongue: {ra: 0.2, rb: 0.1, "}) {
     trees.push_back(std::string(blend) + "children: " + cut_with + "}");
   }
   const std::vector<glm::dvec3> points = spread_points();

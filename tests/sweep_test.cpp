@@ -71,7 +71,8 @@ TEST(SweepSpec, AtMostAThousandCombinations) {
     return a;
   };
   const std::string too_many = "--sweep: more than 1000 combinations; sweep fewer values";
-  EXPECT_EQ(expand_sweep({axis("render.max_steps", 10), axis("render.width", 10), axis("render.height", 10)}).size(), 1000u);
+  EXPECT_EQ(expand_sweep({axis("render.max_steps", 10), axis("render.width", 10), axis("render.height", 10)}).size(),
+            1000u);
   try {
     expand_sweep({axis("render.max_steps", 10), axis("render.width", 10), axis("render.height", 11)});
     ADD_FAILURE() << "1100 combinations";
@@ -102,13 +103,18 @@ TEST(SweepCommand, BadInputIsOneLineAndExitCode2) {
   const std::string torus = source_path("scenes/torus.yaml").string();
   const std::string csv = (dir / "s.csv").string();
   for (const std::vector<std::string>& extra :
-       {std::vector<std::string>{"--sweep", "render.epsilon", "--csv", csv}, {"--sweep", "colour=1,2", "--csv", csv},
-        {"--sweep", "lanes=3", "--csv", csv}, {"--sweep", "render.epsilom=1e-3", "--csv", csv},
-        {"--sweep", "render.epsilon=-1", "--csv", csv}, {"--sweep", "render.epsilon=1e-3"}, {"--csv", csv},
+       {std::vector<std::string>{"--sweep", "render.epsilon", "--csv", csv},
+        {"--sweep", "colour=1,2", "--csv", csv},
+        {"--sweep", "lanes=3", "--csv", csv},
+        {"--sweep", "render.epsilom=1e-3", "--csv", csv},
+        {"--sweep", "render.epsilon=-1", "--csv", csv},
+        {"--sweep", "render.epsilon=1e-3"},
+        {"--csv", csv},
         {"--sweep", "render.epsilon=1e-3", "--csv", "/no/such/folder/s.csv"},
         {"--sweep", "precision=double", "--sweep", "native_math=on", "--csv", csv},
         {"--set", "render.precision=double", "--sweep", "native_math=on", "--csv", csv},
-        {"--sweep", "render.width=16,32", "--csv", csv}, {"--sweep", "lanes=1,1", "--csv", csv}}) {
+        {"--sweep", "render.width=16,32", "--csv", csv},
+        {"--sweep", "lanes=1,1", "--csv", csv}}) {
     std::vector<std::string> args = {"bench", torus, "--size", "16x9"};
     args.insert(args.end(), extra.begin(), extra.end());
     const testing::CommandResult r = run_clmarch(args);
@@ -158,8 +164,9 @@ TEST(SweepCommand, TinySweepWritesOrderedErrors) {
   testing::TempDir dir;
   const std::filesystem::path csv = dir / "torus.csv";
   const std::string torus = source_path("scenes/torus.yaml").string();
-  const testing::CommandResult r = run_clmarch({"bench", torus, "--size", "48x27", "--repeat", "2", "-q", "--sweep",
-                                                "render.epsilon=1e-2,1e-5", "--sweep", "lanes=1,16", "--csv", csv.string()});
+  const testing::CommandResult r =
+      run_clmarch({"bench", torus, "--size", "48x27", "--repeat", "2", "-q", "--sweep", "render.epsilon=1e-2,1e-5",
+                   "--sweep", "lanes=1,16", "--csv", csv.string()});
   ASSERT_EQ(r.exit_code, kExitOk) << r.err;
   EXPECT_TRUE(r.err.empty()) << r.err;
   std::string header;
@@ -218,15 +225,15 @@ TEST(SweepCommand, TinySweepWritesOrderedErrors) {
 
   // An empty file takes the rows and their header, as a missing one does.
   std::ofstream(dir / "empty.csv").flush();
-  const testing::CommandResult empty = run_clmarch({"bench", torus, "--size", "16x9", "--repeat", "1", "-q", "--sweep", "lanes=16",
-                                                    "--append", "--csv", (dir / "empty.csv").string()});
+  const testing::CommandResult empty = run_clmarch({"bench", torus, "--size", "16x9", "--repeat", "1", "-q", "--sweep",
+                                                    "lanes=16", "--append", "--csv", (dir / "empty.csv").string()});
   ASSERT_EQ(empty.exit_code, kExitOk) << empty.err;
   EXPECT_EQ(read_csv(dir / "empty.csv", &header).size(), 1u);
   EXPECT_EQ(header, expected_header);
 
   std::ofstream(dir / "other.csv") << "a,b\n1,2\n";
-  const testing::CommandResult mismatch = run_clmarch({"bench", torus, "--size", "16x9", "--sweep", "lanes=1", "--append",
-                                                       "--csv", (dir / "other.csv").string()});
+  const testing::CommandResult mismatch = run_clmarch(
+      {"bench", torus, "--size", "16x9", "--sweep", "lanes=1", "--append", "--csv", (dir / "other.csv").string()});
   EXPECT_EQ(mismatch.exit_code, kExitBadInput) << mismatch.err;
 }
 
@@ -269,10 +276,9 @@ TEST(SweepCommand, AntialiasingIsComparedWithAConvergedImage) {
 TEST(SweepCommand, EachPictureIsComparedWithItsOwnReference) {
   testing::TempDir dir;
   const std::filesystem::path csv = dir / "camera.csv";
-  const testing::CommandResult r =
-      run_clmarch({"bench", source_path("scenes/torus.yaml").string(), "--size", "48x27", "--repeat", "1", "-q",
-                   "--sweep", "camera.position=[-2,4,4],[0,0.5,5]", "--sweep", "render.epsilon=1e-3,1e-4", "--csv",
-                   csv.string()});
+  const testing::CommandResult r = run_clmarch({"bench", source_path("scenes/torus.yaml").string(), "--size", "48x27",
+                                                "--repeat", "1", "-q", "--sweep", "camera.position=[-2,4,4],[0,0.5,5]",
+                                                "--sweep", "render.epsilon=1e-3,1e-4", "--csv", csv.string()});
   ASSERT_EQ(r.exit_code, kExitOk) << r.err;
   std::string header;
   const auto rows = read_csv(csv, &header);
@@ -316,9 +322,8 @@ TEST(SweepCommand, AutomaticChoicesAreThoseOfTheRender) {
   EXPECT_NEAR(std::stod(rows[0].at("steps_per_pixel")) * 48 * 27, render_steps, 0.5);
 
   // Without occlusion the render itself takes the cone pass and omega 1.2, and so does its row.
-  const testing::CommandResult plain =
-      run_clmarch({"bench", scene, "--repeat", "1", "-q", "--set", "shading.step_ao=0", "--sweep", "lanes=16", "--append",
-                   "--csv", csv.string()});
+  const testing::CommandResult plain = run_clmarch({"bench", scene, "--repeat", "1", "-q", "--set", "shading.step_ao=0",
+                                                    "--sweep", "lanes=16", "--append", "--csv", csv.string()});
   ASSERT_EQ(plain.exit_code, kExitOk) << plain.err;
   const auto both = read_csv(csv, &header);
   ASSERT_EQ(both.size(), 2u);

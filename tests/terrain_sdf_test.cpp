@@ -87,8 +87,10 @@ TEST(ValueNoise, GradientIsTheDerivativeOfTheValue) {
   constexpr double kDifferenceTolerance = 1e-8;
   for (const glm::dvec2& q : random_points_2d(500, 20.0, 3)) {
     const NoiseSample n = value_noise(q, 11);
-    const double dx = (value_noise(q + glm::dvec2(h, 0.0), 11).value - value_noise(q - glm::dvec2(h, 0.0), 11).value) / (2 * h);
-    const double dz = (value_noise(q + glm::dvec2(0.0, h), 11).value - value_noise(q - glm::dvec2(0.0, h), 11).value) / (2 * h);
+    const double dx =
+        (value_noise(q + glm::dvec2(h, 0.0), 11).value - value_noise(q - glm::dvec2(h, 0.0), 11).value) / (2 * h);
+    const double dz =
+        (value_noise(q + glm::dvec2(0.0, h), 11).value - value_noise(q - glm::dvec2(0.0, h), 11).value) / (2 * h);
     EXPECT_NEAR(n.gradient.x, dx, kDifferenceTolerance);
     EXPECT_NEAR(n.gradient.y, dz, kDifferenceTolerance);
     // Each partial derivative is the cubic's slope (at most 1.5) times a blend of lattice steps
@@ -202,8 +204,13 @@ TEST(TerrainKernel, LatticeValuesAreTheReferenceHashBitForBit) {
   // One octave at frequency 1 on integer (x, z): the height is the lattice value k / 2^24, exact
   // in float, so the kernel's distance -v must equal the reference's exactly: the kernel's uint
   // arithmetic wraps like the reference's, for negative and large cells and every seed.
-  const std::vector<glm::dvec3> lattice = {{0, 0, 0},         {1, 0, 0},         {0, 0, 1},         {-1, 0, -1},
-                                           {12345, 0, -6789}, {-2000000, 0, 3000000}, {16000000, 0, -16000000}};
+  const std::vector<glm::dvec3> lattice = {{0, 0, 0},
+                                           {1, 0, 0},
+                                           {0, 0, 1},
+                                           {-1, 0, -1},
+                                           {12345, 0, -6789},
+                                           {-2000000, 0, 3000000},
+                                           {16000000, 0, -16000000}};
   for (std::uint32_t seed : {0u, 1u, 2147483647u}) {
     const Scene scene = scene_from_yaml(fmt::format("sdf: {{terrain: {{octaves: 1, seed: {}}}}}\n", seed));
     for (int lanes : {1, 16}) {
@@ -234,11 +241,14 @@ TEST(TerrainKeys, DefaultsAndRanges) {
 
   EXPECT_EQ(error_of("sdf: {terrain: {noise: simplex}}\n"),
             "s.yaml:1:24: sdf.terrain.noise must be one of value, perlin, derivative (got 'simplex')");
-  EXPECT_EQ(error_of("sdf: {terrain: {octaves: 17}}\n"), "s.yaml:1:26: sdf.terrain.octaves must be in [1, 16] (got 17)");
-  EXPECT_EQ(error_of("sdf: {terrain: {seed: -1}}\n"), "s.yaml:1:23: sdf.terrain.seed must be in [0, 2147483647] (got -1)");
+  EXPECT_EQ(error_of("sdf: {terrain: {octaves: 17}}\n"),
+            "s.yaml:1:26: sdf.terrain.octaves must be in [1, 16] (got 17)");
+  EXPECT_EQ(error_of("sdf: {terrain: {seed: -1}}\n"),
+            "s.yaml:1:23: sdf.terrain.seed must be in [0, 2147483647] (got -1)");
   EXPECT_EQ(error_of("sdf: {terrain: {frequency: 0}}\n"), "s.yaml:1:28: sdf.terrain.frequency must be > 0 (got 0)");
   EXPECT_EQ(error_of("sdf: {terrain: {amplitude: -1}}\n"), "s.yaml:1:28: sdf.terrain.amplitude must be >= 0 (got -1)");
-  EXPECT_NE(error_of("sdf: {terrain: {center: [0, 0, 0]}}\n").find("unknown key 'center' in sdf.terrain"), std::string::npos);
+  EXPECT_NE(error_of("sdf: {terrain: {center: [0, 0, 0]}}\n").find("unknown key 'center' in sdf.terrain"),
+            std::string::npos);
 }
 
 TEST(TerrainKernelSource, NoiseIsCompiledInOnlyWhenUsed) {

@@ -40,14 +40,15 @@ struct LatticeHit {
 
 /// First sphere of the lattice along the ray, by walking the cells it crosses in order.
 std::optional<LatticeHit> lattice_first_hit(const glm::dvec3& o, const glm::dvec3& d, double max_distance,
-                                            double radius = kCellSphere.radius, double centre_x = kCellSphere.center.x) {
+                                            double radius = kCellSphere.radius,
+                                            double centre_x = kCellSphere.center.x) {
   glm::dvec3 index = glm::floor(o / kCell);
   glm::dvec3 next_wall, step_t;
   for (int a = 0; a < 3; ++a) {
     step_t[a] = d[a] != 0.0 ? kCell[a] / std::abs(d[a]) : INFINITY;
-    next_wall[a] = d[a] > 0.0 ? ((index[a] + 1.0) * kCell[a] - o[a]) / d[a]
-                 : d[a] < 0.0 ? (index[a] * kCell[a] - o[a]) / d[a]
-                              : INFINITY;
+    next_wall[a] = d[a] > 0.0   ? ((index[a] + 1.0) * kCell[a] - o[a]) / d[a]
+                   : d[a] < 0.0 ? (index[a] * kCell[a] - o[a]) / d[a]
+                                : INFINITY;
   }
   double t = 0.0;
   while (t < max_distance) {
@@ -130,7 +131,8 @@ TEST(TilingCells, MatchesTheGridWalkNearTheOrigin) { expect_lattice_depths(kNear
 // the origin (the seed's world-space mod loses all precision long before 1e7).
 TEST(TilingCells, MatchesTheGridWalkFarFromTheOrigin) {
   for (double distance : {1e3, 1e5, 1e7}) {
-    for (const glm::dvec3& axis : {glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, -1), glm::dvec3(1, -1, 1)}) {
+    for (const glm::dvec3& axis :
+         {glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, -1), glm::dvec3(1, -1, 1)}) {
       const glm::dvec3 shift = glm::round(axis * distance / kCell) * kCell;
       expect_lattice_depths(kNearCamera + shift, kNearCamera + shift + kView);
     }
@@ -156,9 +158,11 @@ struct OneRay {
   float wall_steps;
 };
 
-OneRay march_one_ray(const glm::dvec3& position, const glm::dvec3& direction, int lanes, RayBounds bounds = RayBounds::Sphere) {
+OneRay march_one_ray(const glm::dvec3& position, const glm::dvec3& direction, int lanes,
+                     RayBounds bounds = RayBounds::Sphere) {
   const bool vertical = direction.x == 0.0 && direction.z == 0.0;
-  Scene scene = testing::scene_from_yaml(lattice_yaml(position, position + direction, 1, 1, vertical ? "[1, 0, 0]" : "[0, 1, 0]"));
+  Scene scene = testing::scene_from_yaml(
+      lattice_yaml(position, position + direction, 1, 1, vertical ? "[1, 0, 0]" : "[0, 1, 0]"));
   scene.render.bounds = bounds;
   OpenClOptions options;
   options.lanes = lanes;
@@ -253,8 +257,8 @@ double wrong_pixel_share(const char* method, double radius, double centre_x, con
   int wrong = 0;
   for (int j = 0; j < h; ++j) {
     for (int i = 0; i < w; ++i) {
-      const std::optional<LatticeHit> truth =
-          lattice_first_hit(basis.origin, pixel_ray_direction(basis, i, j), scene.render.max_distance, radius, centre_x);
+      const std::optional<LatticeHit> truth = lattice_first_hit(basis.origin, pixel_ray_direction(basis, i, j),
+                                                                scene.render.max_distance, radius, centre_x);
       const float depth = b.at(Channel::Depth, i, j);
       if (std::isfinite(depth) != truth.has_value() || (truth && std::abs(depth - truth->depth) > 1e-3)) ++wrong;
     }

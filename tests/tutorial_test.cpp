@@ -41,9 +41,8 @@ TEST_P(TutorialStep, LoadsAndRenders) {
   EXPECT_GT(hits, 48 * 27 / 2) << "the floor and the shapes fill most of the image";
 }
 
-INSTANTIATE_TEST_SUITE_P(Tutorial, TutorialStep, ::testing::ValuesIn(tutorial_steps()), [](const auto& info) {
-  return info.param.substr(0, info.param.find('.'));
-});
+INSTANTIATE_TEST_SUITE_P(Tutorial, TutorialStep, ::testing::ValuesIn(tutorial_steps()),
+                         [](const auto& info) { return info.param.substr(0, info.param.find('.')); });
 
 TEST(Tutorial, SnippetsAreVerbatimPartsOfTheirStepFiles) {
   std::istringstream page(read_text(source_path("docs/tutorial.md")));
@@ -60,8 +59,9 @@ TEST(Tutorial, SnippetsAreVerbatimPartsOfTheirStepFiles) {
     ++snippets;
     const std::string file = read_text(source_path(name));
     ASSERT_FALSE(file.empty()) << name << " is missing";
-    EXPECT_NE(file.find(shown), std::string::npos) << "docs/tutorial.md shows lines that " << name << " does not hold:\n"
-                                                   << shown;
+    EXPECT_NE(file.find(shown), std::string::npos)
+        << "docs/tutorial.md shows lines that " << name << " does not hold:\n"
+        << shown;
   }
   EXPECT_GE(snippets, static_cast<int>(tutorial_steps().size())) << "every step shows its YAML";
 }

@@ -36,12 +36,15 @@ TEST(Verbosity, VerboseNamesTheMarchSettingsInForce) {
     return result.err;
   };
   const std::string automatic = run({});
-  EXPECT_TRUE(contains(automatic, "clmarch: march: from the camera (unbounded), coarse pass none (auto), over-relaxation 1 (auto)\n"))
+  EXPECT_TRUE(contains(
+      automatic, "clmarch: march: from the camera (unbounded), coarse pass none (auto), over-relaxation 1 (auto)\n"))
       << automatic;
   const std::string given = run({"render.coarse_pass=cone", "render.over_relaxation=1.5"});
-  EXPECT_TRUE(contains(given, "clmarch: march: from the camera (unbounded), coarse pass cone, over-relaxation 1.5\n")) << given;
+  EXPECT_TRUE(contains(given, "clmarch: march: from the camera (unbounded), coarse pass cone, over-relaxation 1.5\n"))
+      << given;
   const std::string tiled = run({"tiling={cell: [4, 4, 4]}"});
-  EXPECT_TRUE(contains(tiled, "clmarch: march: through the cells of the tiling, coarse pass none (auto), over-relaxation 1 (auto)\n"))
+  EXPECT_TRUE(contains(
+      tiled, "clmarch: march: through the cells of the tiling, coarse pass none (auto), over-relaxation 1 (auto)\n"))
       << tiled;
 }
 
@@ -81,12 +84,13 @@ TEST(Verbosity, VerboseNamesDeviceBuildLanesLocalSizeAndCache) {
   TempDir cache;
   std::ofstream(dir / "s.yaml") << kScene;
   const DeviceEntry device = select_device(std::nullopt);
-  const std::vector<std::string> args = {"--verbose", "render", (dir / "s.yaml").string(), "--lanes", "4",
-                                         "-o", (dir / "o.png").string()};
+  const std::vector<std::string> args = {"--verbose", "render", (dir / "s.yaml").string(), "--lanes",
+                                         "4",         "-o",     (dir / "o.png").string()};
   const std::vector<std::string> environment = {"POCL_CACHE_DIR=" + cache.path().string()};
   const auto first = run_clmarch(args, environment);
   ASSERT_EQ(first.exit_code, kExitOk) << first.err;
-  EXPECT_TRUE(contains(first.err, "clmarch: device " + device.label() + ", CPU, build options '-cl-std=CL1.2'\n")) << first.err;
+  EXPECT_TRUE(contains(first.err, "clmarch: device " + device.label() + ", CPU, build options '-cl-std=CL1.2'\n"))
+      << first.err;
   EXPECT_TRUE(contains(first.err, "clmarch: lanes 4 (pixels per work-item), local size " +
                                       std::to_string(default_local_size(device)) + ", 1 chunk, kernel "))
       << first.err;
@@ -108,9 +112,10 @@ TEST(Verbosity, VerboseShowsTheWarningsOfASuccessfulBuildVerbatim) {
   const DeviceEntry device = select_device(std::nullopt);
   // A source no driver cache holds: NVIDIA's gives an empty log when its cache serves a build.
   const auto source = [](int build) {
-    return fmt::format("#pragma clang diagnostic ignored \"-Wclmarch-test-warning\"\n/* {} {} */\n"
-                       "kernel void fill(global float* x) {{ x[0] = 1.0f; }}\n",
-                       std::chrono::steady_clock::now().time_since_epoch().count(), build);
+    return fmt::format(
+        "#pragma clang diagnostic ignored \"-Wclmarch-test-warning\"\n/* {} {} */\n"
+        "kernel void fill(global float* x) {{ x[0] = 1.0f; }}\n",
+        std::chrono::steady_clock::now().time_since_epoch().count(), build);
   };
   const Verbosity before = verbosity();
   set_verbosity(Verbosity::Normal);
@@ -137,7 +142,8 @@ TEST(Verbosity, ProgressOnlyOnATerminalAndNotWhenQuiet) {
                                    "render: {width: 512, height: 512, max_steps: 1000, max_distance: 1.0e6}\n"
                                    "sdf: {plane: {normal: [0, 1, 0]}}\n";
   const auto args = [&](const std::string& output, bool quiet) {
-    std::vector<std::string> a = {"render", (dir / "s.yaml").string(), "--backend", "reference", "-o", (dir / output).string()};
+    std::vector<std::string> a = {"render", (dir / "s.yaml").string(), "--backend", "reference",
+                                  "-o",     (dir / output).string()};
     if (quiet) a.push_back("--quiet");
     return a;
   };

@@ -66,7 +66,8 @@ BenchReport run_bench(const Scene& scene, const OpenClOptions& options, const Be
   r.ceiling_samples = ceiling.samples();
   r.ceiling_pixel_stride = ceiling.pixel_stride();
   // A scene whose rays all skip the march has no points to replay: no ceiling, ratio 0.
-  r.ceiling_evals_per_s = r.ceiling_ms > 0.0 ? static_cast<double>(ceiling.counted_evaluations()) / (r.ceiling_ms * 1e-3) : 0.0;
+  r.ceiling_evals_per_s =
+      r.ceiling_ms > 0.0 ? static_cast<double>(ceiling.counted_evaluations()) / (r.ceiling_ms * 1e-3) : 0.0;
   r.ceiling_ratio = r.ceiling_evals_per_s > 0.0 ? r.evals_per_s / r.ceiling_evals_per_s : 0.0;
 
   if (settings.reference) {
@@ -115,13 +116,16 @@ std::string BenchReport::to_text() const {
   out += fmt::format("  march steps        {:9.2f} per pixel\n", steps_per_pixel);
   out += fmt::format("  lane use           {:9.2f} of the lane-steps executed\n", lane_use);
   out += fmt::format("  distance evals     {:9.3g} /s  {:.2f} of the ceiling\n", evals_per_s, ceiling_ratio);
-  out += fmt::format("  ceiling            {:9.3g} /s  ({} evaluations of {} march points{} in {:.2f} ms)\n", ceiling_evals_per_s,
-                     ceiling_points, ceiling_samples,
-                     ceiling_pixel_stride > 1 ? fmt::format(", every {}th pixel's", ceiling_pixel_stride) : "", ceiling_ms);
-  out += fmt::format("  output floor       {:9.2f} ms   {:.2f} of the depth-only time (storing its {} planes, nothing else)\n",
-                     output_floor_ms, output_floor_share, output_floor_planes);
+  out += fmt::format("  ceiling            {:9.3g} /s  ({} evaluations of {} march points{} in {:.2f} ms)\n",
+                     ceiling_evals_per_s, ceiling_points, ceiling_samples,
+                     ceiling_pixel_stride > 1 ? fmt::format(", every {}th pixel's", ceiling_pixel_stride) : "",
+                     ceiling_ms);
+  out += fmt::format(
+      "  output floor       {:9.2f} ms   {:.2f} of the depth-only time (storing its {} planes, nothing else)\n",
+      output_floor_ms, output_floor_share, output_floor_planes);
   if (reference_ms) {
-    out += fmt::format("  CPU reference      {:9.1f} ms   OpenCL shaded takes {:.3f} of it\n", *reference_ms, *opencl_to_reference);
+    out += fmt::format("  CPU reference      {:9.1f} ms   OpenCL shaded takes {:.3f} of it\n", *reference_ms,
+                       *opencl_to_reference);
   }
   return out;
 }

@@ -46,19 +46,43 @@ std::string row_line(const std::string& scene, const SweepResult& result, const 
   const double pixels = std::max(e.pixels, 1);
   const auto [min_ms, max_ms] = std::minmax_element(row.kernel_ms_runs.begin(), row.kernel_ms_runs.end());
   const bool timed = !row.kernel_ms_runs.empty();
-  const std::vector<std::string> fields = {
-      quoted(scene), std::to_string(r.width), std::to_string(r.height), quoted(row.device),
-      quoted(combination_label(row.combination)), row.is_defaults ? "1" : "0", std::to_string(row.lanes),
-      kPrecisionNames[static_cast<int>(row.variant.precision)], row.variant.fast_math ? "on" : "off",
-      row.variant.native_math ? "on" : "off", number(r.epsilon), kHitThresholdNames[static_cast<int>(r.hit_threshold)],
-      number(r.cone_factor), std::to_string(r.max_steps), r.over_relaxation ? number(*r.over_relaxation) : "auto",
-      kNormalMethodNames[static_cast<int>(r.normal_method)], number(r.normal_epsilon), number(row.kernel_ms),
-      number(timed ? *min_ms : 0.0), number(timed ? *max_ms : 0.0), number(row.steps_per_pixel),
-      std::to_string(e.both_hit), number(e.depth_abs.rms), number(e.depth_abs.p99), number(e.depth_abs.max),
-      number(e.depth_rel.rms), number(e.depth_rel.p99), number(e.depth_rel.max),
-      number(e.mask_mismatch_silhouette / pixels), number(e.mask_mismatch_interior / pixels), number(e.normal_angle_p99),
-      number(e.color_psnr_db), number(row.reference_epsilon), std::to_string(result.reference_max_steps),
-      std::to_string(r.samples), r.adaptive ? "true" : "false", std::to_string(row.reference_samples)};
+  const std::vector<std::string> fields = {quoted(scene),
+                                           std::to_string(r.width),
+                                           std::to_string(r.height),
+                                           quoted(row.device),
+                                           quoted(combination_label(row.combination)),
+                                           row.is_defaults ? "1" : "0",
+                                           std::to_string(row.lanes),
+                                           kPrecisionNames[static_cast<int>(row.variant.precision)],
+                                           row.variant.fast_math ? "on" : "off",
+                                           row.variant.native_math ? "on" : "off",
+                                           number(r.epsilon),
+                                           kHitThresholdNames[static_cast<int>(r.hit_threshold)],
+                                           number(r.cone_factor),
+                                           std::to_string(r.max_steps),
+                                           r.over_relaxation ? number(*r.over_relaxation) : "auto",
+                                           kNormalMethodNames[static_cast<int>(r.normal_method)],
+                                           number(r.normal_epsilon),
+                                           number(row.kernel_ms),
+                                           number(timed ? *min_ms : 0.0),
+                                           number(timed ? *max_ms : 0.0),
+                                           number(row.steps_per_pixel),
+                                           std::to_string(e.both_hit),
+                                           number(e.depth_abs.rms),
+                                           number(e.depth_abs.p99),
+                                           number(e.depth_abs.max),
+                                           number(e.depth_rel.rms),
+                                           number(e.depth_rel.p99),
+                                           number(e.depth_rel.max),
+                                           number(e.mask_mismatch_silhouette / pixels),
+                                           number(e.mask_mismatch_interior / pixels),
+                                           number(e.normal_angle_p99),
+                                           number(e.color_psnr_db),
+                                           number(row.reference_epsilon),
+                                           std::to_string(result.reference_max_steps),
+                                           std::to_string(r.samples),
+                                           r.adaptive ? "true" : "false",
+                                           std::to_string(row.reference_samples)};
   return fmt::format("{}\n", fmt::join(fields, ","));
 }
 
@@ -84,7 +108,8 @@ std::string existing_rows(const std::string& path) {
   text << in.rdbuf();
   const std::string existing = text.str();
   if (!existing.empty() && existing.compare(0, header_line().size(), header_line()) != 0) {
-    throw InputError(fmt::format("--csv {}: cannot append, its header is not the sweep's (columns: docs/cli.md)", path));
+    throw InputError(
+        fmt::format("--csv {}: cannot append, its header is not the sweep's (columns: docs/cli.md)", path));
   }
   return existing;
 }

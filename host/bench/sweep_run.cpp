@@ -58,7 +58,8 @@ bool sweeps_antialiasing(const std::vector<SweepCase>& cases) {
 }  // namespace
 
 SweepResult run_sweep(const std::vector<SweepCase>& cases, SweepSettings settings) {
-  if (settings.reference_samples == 0 && sweeps_antialiasing(cases)) settings.reference_samples = kAntialiasedReferenceSamples;
+  if (settings.reference_samples == 0 && sweeps_antialiasing(cases))
+    settings.reference_samples = kAntialiasedReferenceSamples;
   SweepResult result;
   result.reference_max_steps = settings.reference_max_steps;
   // Cases that draw the same picture (the same keys outside render.*) share its reference.
@@ -69,7 +70,8 @@ SweepResult run_sweep(const std::vector<SweepCase>& cases, SweepSettings setting
     const Scene reference_scene = high_accuracy_scene(c.picture, settings);
     log_info(fmt::format("sweep: CPU reference{}, epsilon {:.3g}, max_steps {}, {} rays a pixel",
                          picture.empty() ? "" : fmt::format(" of {}", fmt::join(picture, " ")),
-                         reference_scene.render.epsilon, reference_scene.render.max_steps, reference_scene.render.samples));
+                         reference_scene.render.epsilon, reference_scene.render.max_steps,
+                         reference_scene.render.samples));
     references.emplace(picture, std::pair(render_reference(reference_scene), reference_scene.render));
   }
 

@@ -81,10 +81,10 @@ Scene high_accuracy_scene(const Scene& scene, const SweepSettings& settings);
 
 /// Renders the reference of each distinct picture once (one for a sweep of render.* and kernel keys
 /// alone; kAntialiasedReferenceSamples rays a pixel where render.samples or render.adaptive is
-/// swept, unless settings name a count), then every case: one untimed render whose buffers are compared with its picture's
-/// reference, then settings.repeat timed rounds over all cases. Step-count ambient occlusion is
-/// turned off in every render: it makes the color a function of the step count, which is what a
-/// sweep changes, so it would hide the errors being measured.
+/// swept, unless settings name a count), then every case: one untimed render whose buffers are compared with its
+/// picture's reference, then settings.repeat timed rounds over all cases. Step-count ambient occlusion is turned off in
+/// every render: it makes the color a function of the step count, which is what a sweep changes, so it would hide the
+/// errors being measured.
 SweepResult run_sweep(const std::vector<SweepCase>& cases, SweepSettings settings);
 
 }  // namespace clmarch

@@ -39,11 +39,12 @@ int index_of(const std::string& value, const char* const (&names)[N]) {
 
 void check_kernel_value(const std::string& key, const std::string& value) {
   const auto fail = [&](const std::string& expected) {
-    throw InputError(fmt::format("--sweep {}={}: '{}' is not a value of {} (expected one of: {})", key, value, value, key,
-                                 expected));
+    throw InputError(fmt::format("--sweep {}={}: '{}' is not a value of {} (expected one of: {})", key, value, value,
+                                 key, expected));
   };
   if (key == "lanes" && value != "1" && value != "4" && value != "8" && value != "16") fail("1, 4, 8, 16");
-  if (key == "precision" && index_of(value, kPrecisionNames) < 0) fail(fmt::format("{}", fmt::join(kPrecisionNames, ", ")));
+  if (key == "precision" && index_of(value, kPrecisionNames) < 0)
+    fail(fmt::format("{}", fmt::join(kPrecisionNames, ", ")));
   if ((key == "fast_math" || key == "native_math") && index_of(value, kSwitchNames) < 0) {
     fail(fmt::format("{}", fmt::join(kSwitchNames, ", ")));
   }
@@ -61,19 +62,22 @@ SweepAxis parse_sweep_axis(const std::string& text) {
   SweepAxis axis;
   axis.key = text.substr(0, equals);
   if (axis.key.find('.') == std::string::npos && !is_kernel_key(axis.key)) {
-    throw InputError(fmt::format("--sweep {}: unknown key '{}' (expected a scene key path such as render.epsilon, or one of: {})",
-                                 text, axis.key, fmt::join(kSweepKernelKeys, ", ")));
+    throw InputError(
+        fmt::format("--sweep {}: unknown key '{}' (expected a scene key path such as render.epsilon, or one of: {})",
+                    text, axis.key, fmt::join(kSweepKernelKeys, ", ")));
   }
   if (axis.key == "render.width" || axis.key == "render.height") {
-    throw InputError(fmt::format("--sweep {}: the image size is --size's, one for the whole sweep (every row is compared "
-                                 "pixel by pixel with a reference of that size)",
-                                 axis.key));
+    throw InputError(
+        fmt::format("--sweep {}: the image size is --size's, one for the whole sweep (every row is compared "
+                    "pixel by pixel with a reference of that size)",
+                    axis.key));
   }
   axis.values = split_values(text.substr(equals + 1));
   for (std::size_t i = 0; i < axis.values.size(); ++i) {
     const std::string& value = axis.values[i];
     if (value.empty()) throw InputError(fmt::format("--sweep {}: empty value ({})", text, kSyntax));
-    if (std::find(axis.values.begin(), axis.values.begin() + static_cast<std::ptrdiff_t>(i), value) != axis.values.begin() + static_cast<std::ptrdiff_t>(i)) {
+    if (std::find(axis.values.begin(), axis.values.begin() + static_cast<std::ptrdiff_t>(i), value) !=
+        axis.values.begin() + static_cast<std::ptrdiff_t>(i)) {
       throw InputError(fmt::format("--sweep {}: the value '{}' is given twice", text, value));
     }
     if (is_kernel_key(axis.key)) check_kernel_value(axis.key, value);
@@ -140,9 +144,10 @@ OpenClOptions with_kernel_settings(OpenClOptions options, const SweepCombination
     if (key == "native_math") options.variant.native_math = value == "on";
   }
   if (options.variant.native_math && options.variant.precision == Precision::Double) {
-    throw InputError(fmt::format("--sweep: native_math=on needs precision=float (OpenCL has no native_* functions for "
-                                 "double); sweep them in separate runs ({})",
-                                 combination_label(combination)));
+    throw InputError(
+        fmt::format("--sweep: native_math=on needs precision=float (OpenCL has no native_* functions for "
+                    "double); sweep them in separate runs ({})",
+                    combination_label(combination)));
   }
   return options;
 }

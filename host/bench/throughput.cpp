@@ -120,7 +120,8 @@ CeilingKernel::CeilingKernel(const Scene& scene, const OpenClOptions& options, i
 std::vector<glm::vec3> CeilingKernel::read_samples() {
   std::vector<float> planes(3 * plane_);
   with_device_errors(prepared_.program.device, [&] {
-    prepared_.program.queue.enqueueReadBuffer(samples_buffer_, CL_TRUE, 0, planes.size() * sizeof(float), planes.data());
+    prepared_.program.queue.enqueueReadBuffer(samples_buffer_, CL_TRUE, 0, planes.size() * sizeof(float),
+                                              planes.data());
   });
   std::vector<glm::vec3> points(samples_);
   for (std::size_t i = 0; i < points.size(); ++i) points[i] = {planes[i], planes[plane_ + i], planes[2 * plane_ + i]};
@@ -130,8 +131,8 @@ std::vector<glm::vec3> CeilingKernel::read_samples() {
 double CeilingKernel::run_ms() {
   return with_device_errors(prepared_.program.device, [&] {
     cl::Event done;
-    prepared_.program.queue.enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(global_items_), cl::NDRange(local_items_),
-                                        nullptr, &done);
+    prepared_.program.queue.enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(global_items_),
+                                                 cl::NDRange(local_items_), nullptr, &done);
     std::vector<cl_int> counts(plane_);
     prepared_.program.queue.enqueueReadBuffer(evaluations_, CL_TRUE, 0, plane_ * sizeof(cl_int), counts.data());
     counted_ = std::accumulate(counts.begin(), counts.end(), std::uint64_t{0},
@@ -141,7 +142,8 @@ double CeilingKernel::run_ms() {
 }
 
 std::size_t depth_frame_floats(const Scene& scene) {
-  return march_outputs(scene, KernelPurpose::DepthSteps, false).planes().size() * scene.render.width * scene.render.height;
+  return march_outputs(scene, KernelPurpose::DepthSteps, false).planes().size() * scene.render.width *
+         scene.render.height;
 }
 
 OutputFloorKernel::OutputFloorKernel(const OpenClOptions& options, std::size_t floats)
@@ -160,7 +162,8 @@ double OutputFloorKernel::run_ms() {
     kernel_.setArg(1, value_);
     cl::Event done;
     // The driver picks the work-group size: the floor is the fastest store, not the march's shape.
-    program_.queue.enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(floats_ / 16), cl::NullRange, nullptr, &done);
+    program_.queue.enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(floats_ / 16), cl::NullRange, nullptr,
+                                        &done);
     done.wait();
     return event_milliseconds(done);
   });

@@ -75,7 +75,9 @@ ErrorSummary summarise(std::vector<double> values) {
   ErrorSummary s;
   if (values.empty()) return s;
   std::sort(values.begin(), values.end());
-  const auto at = [&](double q) { return values[static_cast<std::size_t>(q * static_cast<double>(values.size() - 1))]; };
+  const auto at = [&](double q) {
+    return values[static_cast<std::size_t>(q * static_cast<double>(values.size() - 1))];
+  };
   s.p50 = at(0.5);
   s.p99 = at(kQuantile);
   s.max = values.back();
@@ -102,7 +104,9 @@ double angle_between(const glm::dvec3& a, const glm::dvec3& b) {
 }
 
 /// A light's radiance in its brightest channel, before its reach.
-double brightest_radiance(const Light& light) { return light.intensity * std::max({light.color.r, light.color.g, light.color.b}); }
+double brightest_radiance(const Light& light) {
+  return light.intensity * std::max({light.color.r, light.color.g, light.color.b});
+}
 
 /// The share of the light's radiance reaching the world point (light_reach; 1 for directional lights).
 double reach_at(const Light& light, const glm::dvec3& point) {
@@ -158,7 +162,8 @@ double pbr_color_per_radian(double roughness) {
 double lit_color_per_radian(const Scene& scene) {
   const Shading& s = scene.shading;
   if (s.model == ShadingModel::Pbr) return pbr_color_per_radian(least_roughness(scene.sdf));
-  const double specular_slope = s.model == ShadingModel::Lambert ? 0.0 : largest_specular_slope(scene.sdf, root_material(scene));
+  const double specular_slope =
+      s.model == ShadingModel::Lambert ? 0.0 : largest_specular_slope(scene.sdf, root_material(scene));
   return s.diffuse + specular_slope;
 }
 
@@ -215,7 +220,8 @@ double difference(float a, float b) {
 
 double max_color_difference(const FrameBuffers& a, const FrameBuffers& b, int i, int j) {
   double diff = 0.0;
-  for (Channel c : {Channel::R, Channel::G, Channel::B}) diff = std::max(diff, difference(a.at(c, i, j), b.at(c, i, j)));
+  for (Channel c : {Channel::R, Channel::G, Channel::B})
+    diff = std::max(diff, difference(a.at(c, i, j), b.at(c, i, j)));
   return diff;
 }
 
@@ -248,7 +254,8 @@ void limit_disagreements(CheckReport& r, const Disagreements& interior, const Di
     r.failures.push_back(fmt::format("{} {} (at most {})", interior.count, interior.what, interior.limit));
   }
   if (edge.count > edge.limit) {
-    r.failures.push_back(fmt::format("{} {} (at most {} of {} edge pixels)", edge.count, edge.what, edge.limit, edge_pixels));
+    r.failures.push_back(
+        fmt::format("{} {} (at most {} of {} edge pixels)", edge.count, edge.what, edge.limit, edge_pixels));
   }
 }
 
@@ -276,11 +283,14 @@ void compare_ids(CheckReport& r, const FrameBuffers& opencl, const FrameBuffers&
       ++r.ids_compared;
       const bool edge = next_to_another_id(opencl, i, j) || next_to_another_id(reference, i, j);
       edge_pixels += edge;
-      if (opencl.at(Channel::Id, i, j) != reference.at(Channel::Id, i, j)) (edge ? r.id_mismatch_edge : r.id_mismatch_interior) += 1;
+      if (opencl.at(Channel::Id, i, j) != reference.at(Channel::Id, i, j))
+        (edge ? r.id_mismatch_edge : r.id_mismatch_interior) += 1;
     }
   }
-  limit_disagreements(r, {r.id_mismatch_interior, r.tolerances.id_mismatch_interior, "pixels away from id edges hit different primitives"},
-                      {r.id_mismatch_edge, r.tolerances.id_mismatch_edge, "pixels at id edges hit different primitives"}, edge_pixels);
+  limit_disagreements(
+      r,
+      {r.id_mismatch_interior, r.tolerances.id_mismatch_interior, "pixels away from id edges hit different primitives"},
+      {r.id_mismatch_edge, r.tolerances.id_mismatch_edge, "pixels at id edges hit different primitives"}, edge_pixels);
 }
 
 }  // namespace
@@ -343,9 +353,8 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
         // number, up to the rounding of each step's t.
         if (edge || (glow_slope > 0.0 && step_diff != 0.0)) continue;
         const double steps = reference.at(Channel::Steps, i, j);
-        const double closest_rounding =
-            (kRoundingSteps + steps) * unit * (origin_size + scene.render.max_distance) +
-            literal_error * (1.0 + origin_size + scene.render.max_distance);
+        const double closest_rounding = (kRoundingSteps + steps) * unit * (origin_size + scene.render.max_distance) +
+                                        literal_error * (1.0 + origin_size + scene.render.max_distance);
         const double diff = max_color_difference(opencl, reference, i, j);
         miss_color_abs.push_back(diff);
         miss_color_tol.push_back(diff / (glow_slope * closest_rounding + kColorQuantum));
@@ -357,8 +366,8 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
       const glm::dvec3 dir = pixel_ray_direction(basis, i, j);
       const glm::dvec3 n_ref = normal_at(reference, i, j);
       const double cosine = std::max(std::abs(glm::dot(dir, n_ref)), kGrazingCosine);
-      const double rounding = kRoundingSteps * unit * (origin_size + t_ref) + literal_error * (1.0 + origin_size + t_ref) +
-                              kDepthBufferRounding * t_ref;
+      const double rounding = kRoundingSteps * unit * (origin_size + t_ref) +
+                              literal_error * (1.0 + origin_size + t_ref) + kDepthBufferRounding * t_ref;
       // Both marches stop within threshold / cos short of the surface; the threshold is epsilon, or
       // the pixel cone's radius at that depth, and never below float's spacing of t.
       const double threshold = std::max({eps, cone_slope * t_ref, spacing_of_t * t_ref});
@@ -384,7 +393,8 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
         const double diff = max_color_difference(opencl, reference, i, j);
         const LitColorSlopes slopes = lit_color_slopes(scene, color_per_radian, basis.origin + dir * t_ref);
         color_abs.push_back(diff);
-        color_tol.push_back(diff / (slopes.per_radian * normal_tolerance + slopes.per_unit_shift * (dt + rounding) + kColorQuantum));
+        color_tol.push_back(
+            diff / (slopes.per_radian * normal_tolerance + slopes.per_unit_shift * (dt + rounding) + kColorQuantum));
       }
     }
   }
@@ -421,38 +431,46 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
   t.normal_past_pi = past_pi_limit;
   if (r.normal_rounding_past_pi > past_pi_limit) {
     r.failures.push_back(fmt::format(
-        "the normal tolerance exceeds pi at {} of {} pixels both hit, so it checks nothing there: {}'s rounding of coordinates "
+        "the normal tolerance exceeds pi at {} of {} pixels both hit, so it checks nothing there: {}'s rounding of "
+        "coordinates "
         "of size {:.3g} is too coarse for render.normal_epsilon {:g}; the scene is beyond {}'s reach{}",
-        r.normal_tolerance_past_pi, r.both_hit, precision_name(scene), origin_size, normal_h,
-        precision_name(scene), scene.render.precision == Precision::Float ? " (render it with render.precision: double)" : ""));
+        r.normal_tolerance_past_pi, r.both_hit, precision_name(scene), origin_size, normal_h, precision_name(scene),
+        scene.render.precision == Precision::Float ? " (render it with render.precision: double)" : ""));
   } else if (r.normal_tolerance_past_pi > past_pi_limit) {
     r.failures.push_back(fmt::format(
-        "the normal tolerance exceeds pi at {} of {} pixels both hit, so it checks nothing there: the two renders' depths "
+        "the normal tolerance exceeds pi at {} of {} pixels both hit, so it checks nothing there: the two renders' "
+        "depths "
         "differ by up to {:.3g}, too much for normals estimated render.normal_epsilon {:g} apart to be compared",
         r.normal_tolerance_past_pi, r.both_hit, max_dt, normal_h));
   }
   if (r.non_finite_opencl + r.non_finite_reference > 0) {
-    r.failures.push_back(fmt::format("{} OpenCL and {} reference pixels hold a NaN or an infinity (color, a hit's "
-                                     "normal, or a NaN depth)", r.non_finite_opencl, r.non_finite_reference));
+    r.failures.push_back(
+        fmt::format("{} OpenCL and {} reference pixels hold a NaN or an infinity (color, a hit's "
+                    "normal, or a NaN depth)",
+                    r.non_finite_opencl, r.non_finite_reference));
   }
-  limit_disagreements(r, {r.mask_mismatch_interior, t.mask_mismatch_interior, "interior pixels hit on one side only"},
-                      {r.mask_mismatch_silhouette, t.mask_mismatch_silhouette, "silhouette pixels hit on one side only"},
-                      edge_pixels);
+  limit_disagreements(
+      r, {r.mask_mismatch_interior, t.mask_mismatch_interior, "interior pixels hit on one side only"},
+      {r.mask_mismatch_silhouette, t.mask_mismatch_silhouette, "silhouette pixels hit on one side only"}, edge_pixels);
   if (r.depth_in_tolerances.p99 > t.depth_in_tolerances_p99) {
-    r.failures.push_back(fmt::format("depth error p99 is {:.3g} times its per-pixel tolerance (epsilon / cos + rounding)",
-                                     r.depth_in_tolerances.p99));
+    r.failures.push_back(
+        fmt::format("depth error p99 is {:.3g} times its per-pixel tolerance (epsilon / cos + rounding)",
+                    r.depth_in_tolerances.p99));
   }
   if (r.steps_diff_mean > t.steps_diff_mean) {
-    r.failures.push_back(fmt::format("steps differ by {:.3g} on average (at most {})", r.steps_diff_mean, t.steps_diff_mean));
+    r.failures.push_back(
+        fmt::format("steps differ by {:.3g} on average (at most {})", r.steps_diff_mean, t.steps_diff_mean));
   }
   if (normal_ratio_p99 > 1.0) {
-    r.failures.push_back(fmt::format("normal angle error p99 is {:.3g} times its per-pixel tolerance", normal_ratio_p99));
+    r.failures.push_back(
+        fmt::format("normal angle error p99 is {:.3g} times its per-pixel tolerance", normal_ratio_p99));
   }
   if (color_ratio_p99 > 1.0) {
     r.failures.push_back(fmt::format("color error p99 is {:.3g} times its per-pixel tolerance", color_ratio_p99));
   }
   if (miss_color_ratio_p99 > 1.0) {
-    r.failures.push_back(fmt::format("color error of misses p99 is {:.3g} times its per-pixel tolerance", miss_color_ratio_p99));
+    r.failures.push_back(
+        fmt::format("color error of misses p99 is {:.3g} times its per-pixel tolerance", miss_color_ratio_p99));
   }
   if (!r.failures.empty()) return r;
   // Ratios at most 1 mean the tolerance in absolute units is at least the measured p99.
@@ -475,7 +493,8 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
   // which the 1 % the p99 leaves out allows for.
   const Shading& shading = scene.shading;
   const bool powered = shading.model == ShadingModel::Phong || shading.model == ShadingModel::BlinnPhong;
-  const double power_slope = powered ? kRoundingSteps * unit_roundoff(scene) * largest_specular_slope(scene.sdf, root_material(scene)) : 0.0;
+  const double power_slope =
+      powered ? kRoundingSteps * unit_roundoff(scene) * largest_specular_slope(scene.sdf, root_material(scene)) : 0.0;
   const CameraBasis basis = camera_basis(scene.camera, opencl.width, opencl.height);
   double power_rounding = 0.0;
   std::vector<double> diffs, ratios;
@@ -492,10 +511,11 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
       // An anti-aliased pixel's color is the mean of its rays, not its centre hit's shading.
       if (!is_hit(opencl, i, j) || opencl.at(Channel::Samples, i, j) > 1.0f) continue;
       ++pixels_compared;
-      const glm::dvec3 hit = basis.origin + pixel_ray_direction(basis, i, j) * static_cast<double>(opencl.at(Channel::Depth, i, j));
+      const glm::dvec3 hit =
+          basis.origin + pixel_ray_direction(basis, i, j) * static_cast<double>(opencl.at(Channel::Depth, i, j));
       power_rounding = power_slope * light_radiance_at(scene, hit);
       for (std::size_t t = 0; t < triples_compared; ++t) {
-        const Channel (&triple)[3] = triples[t];
+        const Channel(&triple)[3] = triples[t];
         double size = 1.0, diff = 0.0;
         for (Channel c : triple) {
           size = std::max(size, std::abs(static_cast<double>(reshaded.at(c, i, j))));
@@ -514,15 +534,21 @@ CheckReport cross_check(const Scene& scene, const FrameBuffers& opencl, const Fr
   r.ratios.shading_p99 = ratio_p99;
   r.tolerances.shading_p99_abs = ratio_p99 > 0.0 ? summary.p99 / ratio_p99 : kColorQuantum + power_rounding;
   if (ratio_p99 > 1.0) {
-    r.failures.push_back(fmt::format("shading error p99 is {:.3g} times its per-pixel tolerance (half a step of 8 bits "
-                                     "of the color's size; against the reference's color of the same hits)", ratio_p99));
+    r.failures.push_back(
+        fmt::format("shading error p99 is {:.3g} times its per-pixel tolerance (half a step of 8 bits "
+                    "of the color's size; against the reference's color of the same hits)",
+                    ratio_p99));
   }
   return r;
 }
 
 nlohmann::json CheckReport::to_json() const {
-  const auto summary = [](const ErrorSummary& s) { return nlohmann::json{{"p50", s.p50}, {"p99", s.p99}, {"max", s.max}, {"rms", s.rms}}; };
-  const auto or_null = [](const std::optional<std::uint64_t>& n) { return n ? nlohmann::json(*n) : nlohmann::json(nullptr); };
+  const auto summary = [](const ErrorSummary& s) {
+    return nlohmann::json{{"p50", s.p50}, {"p99", s.p99}, {"max", s.max}, {"rms", s.rms}};
+  };
+  const auto or_null = [](const std::optional<std::uint64_t>& n) {
+    return n ? nlohmann::json(*n) : nlohmann::json(nullptr);
+  };
   return {{"passed", passed()},
           {"pixels", pixels},
           {"both_hit", both_hit},
@@ -556,7 +582,9 @@ nlohmann::json CheckReport::to_json() const {
             {"id_mismatch_edge", tolerances.id_mismatch_edge},
             {"normal_past_pi", tolerances.normal_past_pi}}},
           {"ratios_p99",
-           {{"normal", ratios.normal_p99}, {"color", ratios.color_p99}, {"miss_color", ratios.miss_color_p99},
+           {{"normal", ratios.normal_p99},
+            {"color", ratios.color_p99},
+            {"miss_color", ratios.miss_color_p99},
             {"shading", ratios.shading_p99}}},
           {"failures", failures}};
 }
@@ -568,10 +596,11 @@ std::string CheckReport::to_text() const {
   const auto count = [](const std::optional<std::uint64_t>& n) { return n ? std::to_string(*n) : std::string("n/a"); };
   std::string out;
   out += fmt::format("{}pixels            {} ({} hit on both sides)\n", figure, pixels, both_hit);
-  out += fmt::format("{}out of steps      OpenCL {}, reference {} (rays neither hit nor past their end: reported, not checked)\n",
-                     figure, count(out_of_steps_opencl), count(out_of_steps_reference));
-  out += fmt::format("{}non-finite        OpenCL {}, reference {} pixels (max 0)\n", decided(non_finite_opencl + non_finite_reference == 0),
-                     non_finite_opencl, non_finite_reference);
+  out += fmt::format(
+      "{}out of steps      OpenCL {}, reference {} (rays neither hit nor past their end: reported, not checked)\n",
+      figure, count(out_of_steps_opencl), count(out_of_steps_reference));
+  out += fmt::format("{}non-finite        OpenCL {}, reference {} pixels (max 0)\n",
+                     decided(non_finite_opencl + non_finite_reference == 0), non_finite_opencl, non_finite_reference);
   out += fmt::format("{}hit-mask mismatch silhouette {} (max {}), interior {} (max {})\n",
                      decided(mask_mismatch_silhouette <= tolerances.mask_mismatch_silhouette &&
                              mask_mismatch_interior <= tolerances.mask_mismatch_interior),
@@ -580,32 +609,39 @@ std::string CheckReport::to_text() const {
   out += fmt::format("{}depth / tolerance p99 {:.3g} (max {:g})  p50 {:.3g}  max {:.3g}\n",
                      decided(depth_in_tolerances.p99 <= tolerances.depth_in_tolerances_p99), depth_in_tolerances.p99,
                      tolerances.depth_in_tolerances_p99, depth_in_tolerances.p50, depth_in_tolerances.max);
-  out += fmt::format("{}depth abs         p50 {:.3g}  p99 {:.3g}  max {:.3g}\n", figure, depth_abs.p50, depth_abs.p99, depth_abs.max);
-  out += fmt::format("{}depth rel         p50 {:.3g}  p99 {:.3g}  max {:.3g}\n", figure, depth_rel.p50, depth_rel.p99, depth_rel.max);
+  out += fmt::format("{}depth abs         p50 {:.3g}  p99 {:.3g}  max {:.3g}\n", figure, depth_abs.p50, depth_abs.p99,
+                     depth_abs.max);
+  out += fmt::format("{}depth rel         p50 {:.3g}  p99 {:.3g}  max {:.3g}\n", figure, depth_rel.p50, depth_rel.p99,
+                     depth_rel.max);
   out += fmt::format("{}depth / epsilon   p50 {:.3g}  p99 {:.3g}  max {:.3g}\n", figure, depth_in_epsilons.p50,
                      depth_in_epsilons.p99, depth_in_epsilons.max);
-  out += fmt::format("{}steps difference  mean {:.3g} (max {:g})  max {}{}\n", decided(steps_diff_mean <= tolerances.steps_diff_mean),
-                     steps_diff_mean, tolerances.steps_diff_mean, steps_diff_max,
-                     steps_one_sided ? "  (steps short of the reference's only: an operand grid bounds its union outside)" : "");
-  out += fmt::format("{}normal angle p99  {:.3g} deg: {:.3g} of its per-pixel tolerance (max 1)\n", decided(ratios.normal_p99 <= 1.0),
-                     normal_angle_p99, ratios.normal_p99);
+  out += fmt::format(
+      "{}steps difference  mean {:.3g} (max {:g})  max {}{}\n", decided(steps_diff_mean <= tolerances.steps_diff_mean),
+      steps_diff_mean, tolerances.steps_diff_mean, steps_diff_max,
+      steps_one_sided ? "  (steps short of the reference's only: an operand grid bounds its union outside)" : "");
+  out += fmt::format("{}normal angle p99  {:.3g} deg: {:.3g} of its per-pixel tolerance (max 1)\n",
+                     decided(ratios.normal_p99 <= 1.0), normal_angle_p99, ratios.normal_p99);
   out += fmt::format("{}normal tolerance  past pi at {} pixels both hit (max {:.0f}: there it would pass any normal)\n",
                      decided(normal_tolerance_past_pi <= tolerances.normal_past_pi), normal_tolerance_past_pi,
                      std::floor(tolerances.normal_past_pi));
-  out += fmt::format("{}color of hits     p99 abs {:.3g}: {:.3g} of its per-pixel tolerance (max 1)  max abs {:.3g}  PSNR {:.1f} dB\n",
-                     decided(ratios.color_p99 <= 1.0), color_p99_abs, ratios.color_p99, color_max_abs, color_psnr_db);
-  out += fmt::format("{}color of misses   p99 abs {:.3g}: {:.3g} of its per-pixel tolerance (max 1)  ({} misses compared)\n",
-                     decided(ratios.miss_color_p99 <= 1.0), miss_color_p99_abs, ratios.miss_color_p99, misses_compared);
+  out += fmt::format(
+      "{}color of hits     p99 abs {:.3g}: {:.3g} of its per-pixel tolerance (max 1)  max abs {:.3g}  PSNR {:.1f} dB\n",
+      decided(ratios.color_p99 <= 1.0), color_p99_abs, ratios.color_p99, color_max_abs, color_psnr_db);
+  out += fmt::format(
+      "{}color of misses   p99 abs {:.3g}: {:.3g} of its per-pixel tolerance (max 1)  ({} misses compared)\n",
+      decided(ratios.miss_color_p99 <= 1.0), miss_color_p99_abs, ratios.miss_color_p99, misses_compared);
   if (shading_compared > 0) {
-    out += fmt::format("{}shading           p99 abs {:.3g}: {:.3g} of its per-pixel tolerance (max 1)  max abs {:.3g}  "
-                       "({} hits shaded by both: color, ao, diffuse, specular)\n",
-                       decided(ratios.shading_p99 <= 1.0), shading_p99_abs, ratios.shading_p99, shading_max_abs, shading_compared);
+    out += fmt::format(
+        "{}shading           p99 abs {:.3g}: {:.3g} of its per-pixel tolerance (max 1)  max abs {:.3g}  "
+        "({} hits shaded by both: color, ao, diffuse, specular)\n",
+        decided(ratios.shading_p99 <= 1.0), shading_p99_abs, ratios.shading_p99, shading_max_abs, shading_compared);
   }
   if (ids_compared > 0) {
     out += fmt::format("{}id mismatch       edge {} (max {}), interior {} (max {})  ({} hits compared)\n",
-                       decided(id_mismatch_edge <= tolerances.id_mismatch_edge && id_mismatch_interior <= tolerances.id_mismatch_interior),
-                       id_mismatch_edge, tolerances.id_mismatch_edge, id_mismatch_interior, tolerances.id_mismatch_interior,
-                       ids_compared);
+                       decided(id_mismatch_edge <= tolerances.id_mismatch_edge &&
+                               id_mismatch_interior <= tolerances.id_mismatch_interior),
+                       id_mismatch_edge, tolerances.id_mismatch_edge, id_mismatch_interior,
+                       tolerances.id_mismatch_interior, ids_compared);
   }
   out += passed() ? "check passed\n" : "check FAILED:\n";
   for (const std::string& f : failures) out += "  " + f + "\n";

@@ -11,15 +11,24 @@ namespace {
 /// What a status usually means for a render, where that is more than its name says.
 const char* status_meaning(int status) {
   switch (status) {
-    case CL_MEM_OBJECT_ALLOCATION_FAILURE: return "the device ran out of memory";
-    case CL_OUT_OF_RESOURCES: return "the device ran out of memory or resources, or the kernel faulted";
-    case CL_OUT_OF_HOST_MEMORY: return "out of host memory";
-    case CL_INVALID_BUFFER_SIZE: return "a buffer exceeds the device's largest allocation";
-    case CL_DEVICE_NOT_AVAILABLE: return "the device is busy or switched off";
-    case CL_COMPILER_NOT_AVAILABLE: return "the driver has no OpenCL C compiler";
-    case CL_EXEC_STATUS_ERROR_FOR_EVENTS_IN_WAIT_LIST: return "an earlier command failed";
-    case kClPlatformNotFoundKhr: return "no OpenCL driver is installed";
-    default: return nullptr;
+    case CL_MEM_OBJECT_ALLOCATION_FAILURE:
+      return "the device ran out of memory";
+    case CL_OUT_OF_RESOURCES:
+      return "the device ran out of memory or resources, or the kernel faulted";
+    case CL_OUT_OF_HOST_MEMORY:
+      return "out of host memory";
+    case CL_INVALID_BUFFER_SIZE:
+      return "a buffer exceeds the device's largest allocation";
+    case CL_DEVICE_NOT_AVAILABLE:
+      return "the device is busy or switched off";
+    case CL_COMPILER_NOT_AVAILABLE:
+      return "the driver has no OpenCL C compiler";
+    case CL_EXEC_STATUS_ERROR_FOR_EVENTS_IN_WAIT_LIST:
+      return "an earlier command failed";
+    case kClPlatformNotFoundKhr:
+      return "no OpenCL driver is installed";
+    default:
+      return nullptr;
   }
 }
 
@@ -27,7 +36,9 @@ const char* status_meaning(int status) {
 
 std::string cl_status_name(int status) {
   switch (status) {
-#define CLMARCH_STATUS(name) case name: return #name;
+#define CLMARCH_STATUS(name) \
+  case name:                 \
+    return #name;
     CLMARCH_STATUS(CL_DEVICE_NOT_FOUND)
     CLMARCH_STATUS(CL_DEVICE_NOT_AVAILABLE)
     CLMARCH_STATUS(CL_COMPILER_NOT_AVAILABLE)
@@ -75,7 +86,8 @@ std::string cl_status_name(int status) {
     CLMARCH_STATUS(CL_INVALID_GLOBAL_WORK_SIZE)
     CLMARCH_STATUS(CL_INVALID_PROPERTY)
 #undef CLMARCH_STATUS
-    case kClPlatformNotFoundKhr: return "CL_PLATFORM_NOT_FOUND_KHR";
+    case kClPlatformNotFoundKhr:
+      return "CL_PLATFORM_NOT_FOUND_KHR";
     default:
       return fmt::format("OpenCL error {}", status);
   }

@@ -22,7 +22,10 @@ DeviceProgram build_device_program(const DeviceEntry& device, const std::string&
     out.queue = cl::CommandQueue(out.context, device.device, CL_QUEUE_PROFILING_ENABLE);
     out.program = cl::Program(out.context, source);
     log_verbose(fmt::format("device {}, {}, build options '{}'", device.label(),
-                            device.is_gpu ? "GPU" : device.is_cpu ? "CPU" : "other", options));
+                            device.is_gpu   ? "GPU"
+                            : device.is_cpu ? "CPU"
+                                            : "other",
+                            options));
     const bool probe_cache = verbosity() == Verbosity::Verbose;
     std::optional<BuildCacheProbe> probe;
     if (probe_cache) probe.emplace(device);

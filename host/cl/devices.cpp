@@ -52,8 +52,8 @@ DeviceEntry select_device(std::optional<int> index) {
   if (devices.empty()) throw DeviceError(no_device_message());
   if (index) {
     if (*index < 0 || *index >= static_cast<int>(devices.size())) {
-      throw InputError(fmt::format("--device {}: no such device (there are {}: see `clmarch devices`)", *index,
-                                   devices.size()));
+      throw InputError(
+          fmt::format("--device {}: no such device (there are {}: see `clmarch devices`)", *index, devices.size()));
     }
     return devices[static_cast<std::size_t>(*index)];
   }
@@ -70,7 +70,9 @@ int default_lanes(const DeviceEntry& device) { return device.is_gpu ? 1 : 16; }
 
 bool DeviceEntry::is_pocl() const { return platform_name == "Portable Computing Language"; }
 
-bool DeviceEntry::has_fp64() const { return device.getInfo<CL_DEVICE_EXTENSIONS>().find("cl_khr_fp64") != std::string::npos; }
+bool DeviceEntry::has_fp64() const {
+  return device.getInfo<CL_DEVICE_EXTENSIONS>().find("cl_khr_fp64") != std::string::npos;
+}
 
 bool allows_fp_contraction(const DeviceEntry& device) { return device.is_pocl(); }
 

@@ -26,11 +26,16 @@ CLI::App* add_bench_command(CLI::App& app, BenchCommandOptions& options) {
       "  clmarch bench scenes/mandelbulb.yaml --no-reference --device 0 --lanes 8\n"
       "  clmarch bench scenes/moving_shapes.yaml --time 1.5\n"
       "  clmarch bench scenes/torus.yaml --size 1280x720 --samples 16   # every anti-aliasing pass timed\n"
-      "  clmarch bench scenes/torus.yaml --size 320x180 --sweep render.epsilon=1e-2,1e-3,1e-4 --sweep lanes=1,16 --csv t.csv\n"
-      "  clmarch bench scenes/menger.yaml --one-at-a-time --sweep render.max_steps=64,128 --sweep precision=double --csv m.csv\n"
-      "  clmarch bench scenes/torus.yaml --set render.hit_threshold=pixel_cone --sweep render.cone_factor=0.5,1,2 --append --csv t.csv");
+      "  clmarch bench scenes/torus.yaml --size 320x180 --sweep render.epsilon=1e-2,1e-3,1e-4 --sweep lanes=1,16 --csv "
+      "t.csv\n"
+      "  clmarch bench scenes/menger.yaml --one-at-a-time --sweep render.max_steps=64,128 --sweep precision=double "
+      "--csv m.csv\n"
+      "  clmarch bench scenes/torus.yaml --set render.hit_threshold=pixel_cone --sweep render.cone_factor=0.5,1,2 "
+      "--append --csv t.csv");
   add_scene_options(*bench, options.scene);
-  bench->add_option("--repeat", options.repeat, "Timed runs of each kernel, after one untimed run (default 5; e.g. --repeat 9)")
+  bench
+      ->add_option("--repeat", options.repeat,
+                   "Timed runs of each kernel, after one untimed run (default 5; e.g. --repeat 9)")
       ->check(CLI::Validator(
           [](std::string& value) {
             int repeat = 0;
@@ -40,16 +45,20 @@ CLI::App* add_bench_command(CLI::App& app, BenchCommandOptions& options) {
           },
           "1..1000", "REPEAT"));
   bench->add_flag("--json", options.json, "Print the figures as one JSON object on stdout");
-  bench->add_flag("--no-reference", options.no_reference, "Skip the CPU reference render (slow for large or fractal scenes)");
-  bench->add_option("--sweep", options.sweeps,
-                    "Sweep a setting: KEY=V1,V2,... with KEY a scene key path or lanes, precision, fast_math, "
-                    "native_math; repeat for the Cartesian product (e.g. --sweep render.epsilon=1e-3,1e-4 "
-                    "--sweep precision=float,double)")
+  bench->add_flag("--no-reference", options.no_reference,
+                  "Skip the CPU reference render (slow for large or fractal scenes)");
+  bench
+      ->add_option("--sweep", options.sweeps,
+                   "Sweep a setting: KEY=V1,V2,... with KEY a scene key path or lanes, precision, fast_math, "
+                   "native_math; repeat for the Cartesian product (e.g. --sweep render.epsilon=1e-3,1e-4 "
+                   "--sweep precision=float,double)")
       ->take_all();
-  bench->add_option("--csv", options.csv, "With --sweep: the CSV file of the results, one row per combination (e.g. --csv torus.csv)");
+  bench->add_option("--csv", options.csv,
+                    "With --sweep: the CSV file of the results, one row per combination (e.g. --csv torus.csv)");
   bench->add_flag("--one-at-a-time", options.one_at_a_time,
                   "With --sweep: the scene as given, then each swept key alone (not every combination)");
-  bench->add_flag("--append", options.append, "With --sweep: add the rows to an existing --csv file with the same header");
+  bench->add_flag("--append", options.append,
+                  "With --sweep: add the rows to an existing --csv file with the same header");
   return bench;
 }
 

@@ -44,7 +44,8 @@ int run_bench_sweep(const BenchCommandOptions& options) {
   if (options.append) check_sweep_csv_appendable(options.csv);
   std::vector<SweepAxis> axes;
   for (const std::string& text : options.sweeps) axes.push_back(parse_sweep_axis(text));
-  const std::vector<SweepCombination> combinations = options.one_at_a_time ? expand_one_at_a_time(axes) : expand_sweep(axes);
+  const std::vector<SweepCombination> combinations =
+      options.one_at_a_time ? expand_one_at_a_time(axes) : expand_sweep(axes);
 
   const Scene base = load_scene_with_options(options.scene);
   const OpenClOptions base_options = opencl_options(options.scene);
@@ -70,15 +71,17 @@ int run_bench_sweep(const BenchCommandOptions& options) {
     SweepCase c{combination, with_sets(scene_sets(combination)), with_sets(picture_sets(combination)),
                 with_kernel_settings(base_options, combination), false};
     // One precision for the program and the check's tolerances: the swept one, else the scene's.
-    const bool sweeps_precision = std::any_of(combination.begin(), combination.end(), [](const auto& kv) { return kv.first == "precision"; });
+    const bool sweeps_precision =
+        std::any_of(combination.begin(), combination.end(), [](const auto& kv) { return kv.first == "precision"; });
     if (sweeps_precision) {
       c.scene.render.precision = c.options.variant.precision;
     } else {
       c.options.variant = scene_variant(c.scene, c.options.variant);
       if (c.options.variant.precision == Precision::Double && c.options.variant.native_math) {
-        throw InputError(fmt::format("--sweep {}: native_math=on needs float precision, but the scene has render.precision: "
-                                     "double (OpenCL has no native_* functions for double)",
-                                     combination_label(combination)));
+        throw InputError(
+            fmt::format("--sweep {}: native_math=on needs float precision, but the scene has render.precision: "
+                        "double (OpenCL has no native_* functions for double)",
+                        combination_label(combination)));
       }
     }
     if (options.one_at_a_time && !cases.empty() && repeats_base(c, base, base_options, device)) continue;
@@ -87,7 +90,8 @@ int run_bench_sweep(const BenchCommandOptions& options) {
   }
   for (const SweepCase& c : cases) {
     if (c.options.variant.precision != Precision::Double) continue;
-    if (!device.has_fp64()) throw InputError(fmt::format("--sweep precision=double: {} has no cl_khr_fp64", device.label()));
+    if (!device.has_fp64())
+      throw InputError(fmt::format("--sweep precision=double: {} has no cl_khr_fp64", device.label()));
   }
 
   SweepSettings settings;

@@ -16,7 +16,8 @@
 namespace clmarch {
 
 CLI::App* add_check_command(CLI::App& app, CheckCommandOptions& options) {
-  CLI::App* check = app.add_subcommand("check", "Render a scene with OpenCL and the CPU reference and compare them pixel by pixel");
+  CLI::App* check =
+      app.add_subcommand("check", "Render a scene with OpenCL and the CPU reference and compare them pixel by pixel");
   check->footer(
       "Exit code 0 when every figure is within its tolerance (docs/accuracy.md), 1 otherwise.\n"
       "Examples:\n"

@@ -14,7 +14,8 @@ namespace clmarch {
 namespace {
 
 /// The listing of this process's devices, the default marked; empty when there are none.
-std::string device_lines(const std::vector<DeviceEntry>& devices, std::optional<int> chosen, const std::string& indent) {
+std::string device_lines(const std::vector<DeviceEntry>& devices, std::optional<int> chosen,
+                         const std::string& indent) {
   std::string lines;
   for (const DeviceEntry& d : devices) {
     const char* type = d.is_gpu ? "GPU" : d.is_cpu ? "CPU" : "other";
@@ -47,7 +48,8 @@ int run_devices_command() {
   std::optional<int> chosen = rank_default_device(devices, world.local_rank);
   if (!chosen && !devices.empty()) chosen = select_device(std::nullopt).index;
   const std::string lines = devices.empty() ? "  " + no_device_message() + "\n" : device_lines(devices, chosen, "  ");
-  const std::string text = fmt::format("{} (local rank {}):\n{}", rank_label(world.rank, world.host), world.local_rank, lines);
+  const std::string text =
+      fmt::format("{} (local rank {}):\n{}", rank_label(world.rank, world.host), world.local_rank, lines);
   const std::vector<std::string> texts = gather_on_rank0(fmt::format("{}{}", devices.empty() ? 'x' : ' ', text));
   bool all_have_devices = true;
   for (const std::string& t : texts) {

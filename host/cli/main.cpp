@@ -32,8 +32,9 @@ namespace {
 /// An empty value (--size '', -o '') is a mistake, not the option left out, which is what CLI11
 /// would take it for.
 void reject_empty_values(CLI::App& command) {
-  const CLI::Validator non_empty([](std::string& value) { return value.empty() ? std::string("the value is empty") : std::string(); },
-                                 "", "NON_EMPTY");
+  const CLI::Validator non_empty(
+      [](std::string& value) { return value.empty() ? std::string("the value is empty") : std::string(); }, "",
+      "NON_EMPTY");
   for (CLI::Option* option : command.get_options()) {
     if (option->get_expected_max() > 0) option->check(non_empty);
   }
@@ -41,7 +42,8 @@ void reject_empty_values(CLI::App& command) {
 
 /// Options a user coming from other renderers tries for one clmarch spells otherwise.
 constexpr std::pair<std::string_view, std::string_view> kOptionSynonyms[] = {
-    {"width", "size"}, {"height", "size"}, {"resolution", "size"}, {"res", "size"}, {"out", "output"}, {"spp", "samples"}};
+    {"width", "size"}, {"height", "size"}, {"resolution", "size"},
+    {"res", "size"},   {"out", "output"},  {"spp", "samples"}};
 
 /// " (did you mean '--NAME'?)" for the first --option of the command line that its command does
 /// not know, or empty.
@@ -61,10 +63,12 @@ std::string option_suggestion(const CLI::App& app, int argc, char** argv) {
   }
   for (const std::string& word : words) {
     if (!word.starts_with("--")) continue;
-    const std::string name = word.substr(2, word.find('=') == std::string::npos ? std::string::npos : word.find('=') - 2);
+    const std::string name =
+        word.substr(2, word.find('=') == std::string::npos ? std::string::npos : word.find('=') - 2);
     if (std::find(names.begin(), names.end(), name) != names.end()) continue;
     for (const auto& [synonym, option] : kOptionSynonyms) {
-      if (name == synonym && std::find(names.begin(), names.end(), option) != names.end()) return fmt::format(" (did you mean '--{}'?)", option);
+      if (name == synonym && std::find(names.begin(), names.end(), option) != names.end())
+        return fmt::format(" (did you mean '--{}'?)", option);
     }
     const std::string nearest = clmarch::nearest_name(name, std::vector<std::string_view>(names.begin(), names.end()));
     return nearest.empty() ? std::string() : fmt::format(" (did you mean '--{}'?)", nearest);
@@ -120,7 +124,8 @@ int main(int argc, char** argv) {
       if (word.starts_with("-")) continue;
       const auto commands = app.get_subcommands([&](const CLI::App* command) { return command->get_name() == word; });
       if (commands.empty()) {
-        std::cerr << "clmarch: unknown command '" << one_line(word) << "' (expected render, check, bench or devices; see clmarch --help)\n";
+        std::cerr << "clmarch: unknown command '" << one_line(word)
+                  << "' (expected render, check, bench or devices; see clmarch --help)\n";
         return kExitBadInput;
       }
       break;

@@ -43,9 +43,10 @@ void render_units(WorkQueue& queue, const std::function<void(int unit)>& render,
   throw_if_cancelled();
   if (own_failure) throw RankFailure(*own_failure, "");
   if (failure) {
-    throw RankFailure(failure->exit_code,
-                      fmt::format("clmarch: {} failed at {} (exit code {}); the other ranks finished what they held and stopped",
-                                  rank_label(failure->rank, failure->host), describe(failure->unit), failure->exit_code));
+    throw RankFailure(
+        failure->exit_code,
+        fmt::format("clmarch: {} failed at {} (exit code {}); the other ranks finished what they held and stopped",
+                    rank_label(failure->rank, failure->host), describe(failure->unit), failure->exit_code));
   }
 }
 

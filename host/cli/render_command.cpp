@@ -50,7 +50,8 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& options) {
       "  clmarch render scenes/moving_shapes.yaml --time 1.5       # t = 1.5 in the scene's expressions\n"
       "  clmarch render scenes/torus.yaml --samples 16 --buffers torus.exr   # anti-aliased, coverage in A\n"
       "  clmarch render scenes/moving_shapes.yaml --frames 0:47 --fps 24 -o frames/shot_####.png\n"
-      "  mpirun -n 4 clmarch render scenes/moving_shapes.yaml --frames 0:47 -o frames/shot_####.png   # over 4 MPI ranks\n"
+      "  mpirun -n 4 clmarch render scenes/moving_shapes.yaml --frames 0:47 -o frames/shot_####.png   # over 4 MPI "
+      "ranks\n"
       "  clmarch render scenes/torus.yaml --quiet                  # nothing on stderr unless it fails\n"
       "  clmarch render scenes/torus.yaml --verbose                # device, build, cache, lanes, local size\n"
       "Ctrl-C stops the render and writes nothing (exit code 130). Options: docs/cli.md.");
@@ -59,21 +60,24 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& options) {
                      "Color image; the format follows the extension (exr, hdr: linear float; png, jpg, tif and the "
                      "other formats OpenImageIO writes: 8-bit sRGB). "
                      "Default: SCENE_NAME.png in the current folder (e.g. -o torus.exr)");
-  render->add_option("--buffers", options.buffers,
-                     "Write all buffers to one float EXR: R, G, B, depth, steps, N.x, N.y, N.z (e.g. --buffers torus.exr)");
-  render->add_option("--backend", options.backend,
-                     "opencl (default), or reference: the double-precision CPU renderer, which needs no OpenCL "
-                     "(e.g. --backend reference)")
+  render->add_option(
+      "--buffers", options.buffers,
+      "Write all buffers to one float EXR: R, G, B, depth, steps, N.x, N.y, N.z (e.g. --buffers torus.exr)");
+  render
+      ->add_option("--backend", options.backend,
+                   "opencl (default), or reference: the double-precision CPU renderer, which needs no OpenCL "
+                   "(e.g. --backend reference)")
       ->check(CLI::IsMember({"opencl", "reference"}));
   render->add_option("--dump-kernel", options.dump_kernel,
                      "Write the exact OpenCL C source that is built, before building it; without -o no image is "
                      "written, and without --buffers or --stats nothing renders (e.g. --dump-kernel torus.cl)");
   render->add_flag("--no-image", options.no_image,
                    "Write no color image: for --buffers, --stats or --dump-kernel alone (e.g. --no-image --stats)");
-  render->add_option("--frames", options.frames,
-                     "Render frames FIRST:LAST (both included) of an animation, frame n at t = n / fps, to numbered "
-                     "files: a run of # in -o/--buffers/--dump-kernel is the frame number (-o shot_####.png), else _NNNN goes "
-                     "before the extension (e.g. --frames 0:47 --fps 24)");
+  render->add_option(
+      "--frames", options.frames,
+      "Render frames FIRST:LAST (both included) of an animation, frame n at t = n / fps, to numbered "
+      "files: a run of # in -o/--buffers/--dump-kernel is the frame number (-o shot_####.png), else _NNNN goes "
+      "before the extension (e.g. --frames 0:47 --fps 24)");
   // Checked against --frames in check_render_options: CLI11's needs() would garble the help line.
   render->add_option("--fps", options.fps, "Frames per second of --frames (default 24; e.g. --fps 30)")
       ->check(finite_number([](double fps) { return fps > 0.0 && fps <= 1000.0; }, "frames per second in (0, 1000]"));
@@ -116,7 +120,8 @@ void check_render_options(const RenderCommandOptions& options, const std::string
   }
   if (!options.buffers.empty()) {
     std::string extension = std::filesystem::path(options.buffers).extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
     if (extension != ".exr") {
       throw InputError(fmt::format("--buffers {}: the buffers file must be an .exr", options.buffers));
     }
@@ -128,7 +133,8 @@ void check_render_options(const RenderCommandOptions& options, const std::string
     throw InputError("--time and --frames both set the time: --frames renders frame n at t = n / fps");
   }
   if (options.fps && options.frames.empty()) throw InputError("--fps requires --frames: it sets the frames' times");
-  if (options.no_image && !options.output.empty()) throw InputError("--no-image and --output both given: write an image or not");
+  if (options.no_image && !options.output.empty())
+    throw InputError("--no-image and --output both given: write an image or not");
   if (options.no_image && options.buffers.empty() && !options.stats && options.dump_kernel.empty()) {
     throw InputError("--no-image leaves nothing to write: add --buffers, --stats or --dump-kernel");
   }
@@ -203,7 +209,8 @@ std::string march_summary(const Scene& scene) {
   if (uses_cells_tiling(scene)) {
     where = "through the cells of the tiling";
   } else if (const std::optional<BoundingSphere> bounds = camera_ray_bounds(scene)) {
-    where = fmt::format("inside a bounding sphere of radius {:.4g}{}", bounds->radius, camera_ray_box(scene) ? " and a bounding box" : "");
+    where = fmt::format("inside a bounding sphere of radius {:.4g}{}", bounds->radius,
+                        camera_ray_box(scene) ? " and a bounding box" : "");
   }
   const RenderSettings chosen = resolved_render_settings(scene);
   return fmt::format("march: {}, coarse pass {}{}, over-relaxation {:g}{}", where,

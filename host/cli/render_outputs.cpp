@@ -18,14 +18,19 @@ namespace clmarch {
 
 KernelPurpose purpose_for(const Scene& scene, bool want_buffers) {
   switch (scene.shading.view) {
-    case View::Shaded: return want_buffers ? KernelPurpose::Buffers : KernelPurpose::Color;
+    case View::Shaded:
+      return want_buffers ? KernelPurpose::Buffers : KernelPurpose::Color;
     // The samples a pixel gets follow its color's edges: the shaded program decides them.
-    case View::Samples: return want_buffers ? KernelPurpose::Buffers : KernelPurpose::Color;
-    case View::Normals: return KernelPurpose::Normals;
+    case View::Samples:
+      return want_buffers ? KernelPurpose::Buffers : KernelPurpose::Color;
+    case View::Normals:
+      return KernelPurpose::Normals;
     // The status view's program writes the status plane (Normals does).
-    case View::Status: return KernelPurpose::Normals;
+    case View::Status:
+      return KernelPurpose::Normals;
     case View::Depth:
-    case View::Steps: return want_buffers ? KernelPurpose::Normals : KernelPurpose::DepthSteps;
+    case View::Steps:
+      return want_buffers ? KernelPurpose::Normals : KernelPurpose::DepthSteps;
   }
   return KernelPurpose::Shaded;
 }
@@ -51,11 +56,22 @@ void write_outputs(const FrameFiles& files, const Scene& scene, FrameBuffers& bu
 }
 
 nlohmann::json stats_json(const RenderCommandOptions& options, const Scene& scene, const RenderStats& s) {
-  return {{"backend", options.backend}, {"device", s.device},         {"lanes", s.lanes},
-          {"precision", options.backend == "reference" ? "double" : kPrecisionNames[static_cast<int>(s.precision)]}, {"width", scene.render.width}, {"height", scene.render.height}, {"build_ms", s.build_ms},
-          {"kernel_ms", s.kernel_ms},  {"steps", s.steps},            {"rays_per_s", s.rays_per_s},
-          {"chunks", s.chunks}, {"surface_steps", s.steps - s.wall_steps}, {"wall_steps", s.wall_steps},
-          {"coarse_steps", s.coarse_steps}, {"out_of_steps", s.out_of_steps}, {"out_of_distance", s.out_of_distance}};
+  return {{"backend", options.backend},
+          {"device", s.device},
+          {"lanes", s.lanes},
+          {"precision", options.backend == "reference" ? "double" : kPrecisionNames[static_cast<int>(s.precision)]},
+          {"width", scene.render.width},
+          {"height", scene.render.height},
+          {"build_ms", s.build_ms},
+          {"kernel_ms", s.kernel_ms},
+          {"steps", s.steps},
+          {"rays_per_s", s.rays_per_s},
+          {"chunks", s.chunks},
+          {"surface_steps", s.steps - s.wall_steps},
+          {"wall_steps", s.wall_steps},
+          {"coarse_steps", s.coarse_steps},
+          {"out_of_steps", s.out_of_steps},
+          {"out_of_distance", s.out_of_distance}};
 }
 
 void print_json_line(const nlohmann::json& json) {

@@ -16,14 +16,17 @@ namespace clmarch {
 void add_scene_options(CLI::App& command, SceneOptions& options) {
   command.add_option("scene", options.scene_path, "Scene file (YAML or JSON), e.g. scenes/torus.yaml")->required();
   command.add_option("--size", options.size, "Image size WxH, overriding render.width/height (e.g. --size 320x180)");
-  command.add_option("--set", options.sets,
-                     "Override any scene key: key.path=value, e.g. --set render.epsilon=1e-5 "
-                     "--set camera.position=[0,0,1e6] (list items by index: sdf.union.0.sphere.radius=2)")
+  command
+      .add_option("--set", options.sets,
+                  "Override any scene key: key.path=value, e.g. --set render.epsilon=1e-5 "
+                  "--set camera.position=[0,0,1e6] (list items by index: sdf.union.0.sphere.radius=2)")
       ->take_all();
-  command.add_option("--device", options.device,
-                     "OpenCL device index from `clmarch devices` (default: first GPU, else first CPU; e.g. --device 0)");
-  command.add_option("--lanes", options.lanes,
-                     "Pixels each work-item marches as one vector (default: 16 on CPUs, 1 on GPUs; e.g. --lanes 1)")
+  command.add_option(
+      "--device", options.device,
+      "OpenCL device index from `clmarch devices` (default: first GPU, else first CPU; e.g. --device 0)");
+  command
+      .add_option("--lanes", options.lanes,
+                  "Pixels each work-item marches as one vector (default: 16 on CPUs, 1 on GPUs; e.g. --lanes 1)")
       ->check(CLI::Validator(
           [](std::string& value) {
             return value == "1" || value == "4" || value == "8" || value == "16"
@@ -31,13 +34,17 @@ void add_scene_options(CLI::App& command, SceneOptions& options) {
                        : "must be 1, 4, 8 or 16 (got '" + value + "')";
           },
           "1|4|8|16", "LANES"));
-  command.add_option("--time", options.time, "Time t in seconds for expressions in the scene, e.g. center: [cos(t), sin(t), 0]")
+  command
+      .add_option("--time", options.time,
+                  "Time t in seconds for expressions in the scene, e.g. center: [cos(t), sin(t), 0]")
       ->check(finite_number([](double) { return true; }, "a finite number of seconds"));
-  command.add_option("--samples", options.samples,
-                     "Rays per pixel, anti-aliasing the image (render.samples, 1..1024; e.g. --samples 16)")
+  command
+      .add_option("--samples", options.samples,
+                  "Rays per pixel, anti-aliasing the image (render.samples, 1..1024; e.g. --samples 16)")
       ->check(CLI::Validator(
           [](std::string& value) {
-            const bool digits = !value.empty() && value.size() <= 4 && value.find_first_not_of("0123456789") == std::string::npos;
+            const bool digits =
+                !value.empty() && value.size() <= 4 && value.find_first_not_of("0123456789") == std::string::npos;
             const int n = digits ? std::stoi(value) : 0;
             return n >= 1 && n <= kMaxSamples ? std::string() : "must be an integer in [1, 1024] (got '" + value + "')";
           },
@@ -52,7 +59,8 @@ CLI::Validator finite_number(const std::function<bool(double)>& accept, const st
         const char* begin = text.data();
         if (text.size() > 1 && text[0] == '+' && text[1] != '-') ++begin;
         const auto [end, error] = std::from_chars(begin, text.data() + text.size(), value);
-        const bool ok = error == std::errc() && end == text.data() + text.size() && std::isfinite(value) && accept(value);
+        const bool ok =
+            error == std::errc() && end == text.data() + text.size() && std::isfinite(value) && accept(value);
         return ok ? std::string() : "must be " + expected + " (got '" + text + "')";
       },
       "", "NUMBER");
@@ -61,7 +69,8 @@ CLI::Validator finite_number(const std::function<bool(double)>& accept, const st
 void check_host_memory(const Scene& scene, const std::string& size_option) {
   const std::optional<AvailableMemory> available = available_host_memory();
   if (!available) return;
-  const std::string shortfall = host_memory_shortfall(scene.render.width, scene.render.height, *available, scene.render.samples);
+  const std::string shortfall =
+      host_memory_shortfall(scene.render.width, scene.render.height, *available, scene.render.samples);
   if (shortfall.empty()) return;
   if (!size_option.empty()) throw InputError(fmt::format("{}: {}", size_option, shortfall));
   const std::string where = scene.size_origin.empty() ? scene.source_name : scene.size_origin;
@@ -81,7 +90,8 @@ std::pair<int, int> parse_size(const std::string& text) {
   const int width = std::stoi(match[1].str());
   const int height = std::stoi(match[2].str());
   if (width < 1 || height < 1 || width > 65536 || height > 65536) {
-    throw InputError(fmt::format("--size {}: width and height must be in [1, 65536] (got {} x {})", text, width, height));
+    throw InputError(
+        fmt::format("--size {}: width and height must be in [1, 65536] (got {} x {})", text, width, height));
   }
   if (!image_size_fits(width, height)) {
     throw InputError(fmt::format("--size {}: too many pixels (got {}, expected at most {})", text,

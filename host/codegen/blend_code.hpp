@@ -23,6 +23,7 @@ std::string blend_distance_code(NodeKind kind, const std::string& a, const std::
 std::string blend_first_wins(NodeKind kind, const std::string& a, const std::string& b, const std::string& args);
 /// Above what bound of the next child the blend returns acc with acc's material (nothing: it
 /// always depends on the child).
-std::optional<std::string> blend_skip_limit(NodeKind kind, const std::string& acc, const std::vector<std::string>& args);
+std::optional<std::string> blend_skip_limit(NodeKind kind, const std::string& acc,
+                                            const std::vector<std::string>& args);
 
 }  // namespace clmarch

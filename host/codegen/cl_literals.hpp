@@ -12,6 +12,7 @@ std::string cl_float(double value);
 /// A float4 literal with w = 0: "(float4)(1.0f, 2.0f, 3.0f, 0.0f)".
 std::string cl_float4(const glm::dvec3& v);
 /// A float4 of spelled components, w = 0 unless given: "(float4)(x, y, z, 0.0f)".
-std::string cl_float4_of(const std::string& x, const std::string& y, const std::string& z, const std::string& w = "0.0f");
+std::string cl_float4_of(const std::string& x, const std::string& y, const std::string& z,
+                         const std::string& w = "0.0f");
 
 }  // namespace clmarch

@@ -20,15 +20,24 @@ class ExpressionCode {
   std::string operator()(const ExpressionTree& tree) {
     using Kind = ExpressionTree::Kind;
     switch (tree.kind) {
-      case Kind::Number: return fmt::format("(vfloat)({})", lit_.f(tree.number));
-      case Kind::Variable: return tree.name == "t" ? fmt::format("(vfloat)({})", lit_.f(time_)) : fmt::format("{}.{}", q_, tree.name);
-      case Kind::Negate: return fmt::format("(-{})", (*this)(tree.operands[0]));
-      case Kind::Add: return binary(tree, "+");
-      case Kind::Subtract: return binary(tree, "-");
-      case Kind::Multiply: return binary(tree, "*");
-      case Kind::Divide: return binary(tree, "/");
-      case Kind::Power: return fmt::format("pow({}, {})", (*this)(tree.operands[0]), (*this)(tree.operands[1]));
-      case Kind::Call: return call(tree);
+      case Kind::Number:
+        return fmt::format("(vfloat)({})", lit_.f(tree.number));
+      case Kind::Variable:
+        return tree.name == "t" ? fmt::format("(vfloat)({})", lit_.f(time_)) : fmt::format("{}.{}", q_, tree.name);
+      case Kind::Negate:
+        return fmt::format("(-{})", (*this)(tree.operands[0]));
+      case Kind::Add:
+        return binary(tree, "+");
+      case Kind::Subtract:
+        return binary(tree, "-");
+      case Kind::Multiply:
+        return binary(tree, "*");
+      case Kind::Divide:
+        return binary(tree, "/");
+      case Kind::Power:
+        return fmt::format("pow({}, {})", (*this)(tree.operands[0]), (*this)(tree.operands[1]));
+      case Kind::Call:
+        return call(tree);
     }
     throw std::logic_error("an expression tree of no kind");
   }
@@ -74,8 +83,8 @@ std::string pattern_color_code(const ColorPattern& pattern, const std::string& q
   const char* axes[] = {"x", "y", "z"};
   switch (pattern.kind) {
     case ColorPattern::Kind::Checker:
-      return fmt::format("pattern_checker({}, {}, {}, {})", q, lit.f(pattern.size), color_literal(pattern.colors[0], lit),
-                         color_literal(pattern.colors[1], lit));
+      return fmt::format("pattern_checker({}, {}, {}, {})", q, lit.f(pattern.size),
+                         color_literal(pattern.colors[0], lit), color_literal(pattern.colors[1], lit));
     case ColorPattern::Kind::Stripes:
       return fmt::format("pattern_stripes({}.{}, {}, {}, {})", q, axes[pattern.axis], lit.f(pattern.size),
                          color_literal(pattern.colors[0], lit), color_literal(pattern.colors[1], lit));
@@ -83,15 +92,17 @@ std::string pattern_color_code(const ColorPattern& pattern, const std::string& q
       const std::string size = lit.f(pattern.size), half_width = lit.f(0.5 * pattern.line_width);
       std::vector<std::string> near;
       for (int axis = 0; axis < 3; ++axis) {
-        if (pattern.grid_axes[axis]) near.push_back(fmt::format("near_grid_line({}.{}, {}, {})", q, axes[axis], size, half_width));
+        if (pattern.grid_axes[axis])
+          near.push_back(fmt::format("near_grid_line({}.{}, {}, {})", q, axes[axis], size, half_width));
       }
-      return fmt::format("v3_select({}, {}, {})", color_literal(pattern.colors[0], lit), color_literal(pattern.colors[1], lit),
-                         fmt::join(near, " | "));
+      return fmt::format("v3_select({}, {}, {})", color_literal(pattern.colors[0], lit),
+                         color_literal(pattern.colors[1], lit), fmt::join(near, " | "));
     }
     case ColorPattern::Kind::Expression: {
       ExpressionCode code(q, pattern.time, lit);
       std::vector<std::string> channels;
-      for (const std::string& text : pattern.expressions) channels.push_back(code(parse_expression_tree(text, {"x", "y", "z", "t"})));
+      for (const std::string& text : pattern.expressions)
+        channels.push_back(code(parse_expression_tree(text, {"x", "y", "z", "t"})));
       return fmt::format("v3({}, {}, {})", channels[0], channels[1], channels[2]);
     }
   }

@@ -23,8 +23,10 @@ namespace clmarch {
 namespace {
 
 /// The shadow modes' switch values, in ShadowMode's order.
-constexpr const char* kShadowModeSwitches[] = {"CLMARCH_SHADOW_HARD", "CLMARCH_SHADOW_SOFT", "CLMARCH_SHADOW_SOFT_IMPROVED"};
-static_assert(static_cast<int>(ShadowMode::Hard) == CLMARCH_SHADOW_HARD && static_cast<int>(ShadowMode::Soft) == CLMARCH_SHADOW_SOFT &&
+constexpr const char* kShadowModeSwitches[] = {"CLMARCH_SHADOW_HARD", "CLMARCH_SHADOW_SOFT",
+                                               "CLMARCH_SHADOW_SOFT_IMPROVED"};
+static_assert(static_cast<int>(ShadowMode::Hard) == CLMARCH_SHADOW_HARD &&
+                  static_cast<int>(ShadowMode::Soft) == CLMARCH_SHADOW_SOFT &&
                   static_cast<int>(ShadowMode::SoftImproved) == CLMARCH_SHADOW_SOFT_IMPROVED,
               "ShadowMode and the kernels' CLMARCH_SHADOW_* agree");
 
@@ -86,12 +88,14 @@ std::string feature_defines(const Scene& scene, const KernelOptions& options) {
 }
 
 /// How the scene's map_color returns its materials.
-MaterialLayout material_layout(const Scene& scene) { return {root_material(scene), scene.shading.model, uses_emission(scene.sdf)}; }
+MaterialLayout material_layout(const Scene& scene) {
+  return {root_material(scene), scene.shading.model, uses_emission(scene.sdf)};
+}
 
 /// The scene's code as eval_points has it: world points, every literal spelled.
 SdfCode eval_points_scene_code(const Scene& scene) {
-  return generate_sdf_code(scene.sdf, glm::dvec3(0.0), scene.render.subtree_bounds == SceneBounds::Sphere, grid_union(scene),
-                           true, material_layout(scene));
+  return generate_sdf_code(scene.sdf, glm::dvec3(0.0), scene.render.subtree_bounds == SceneBounds::Sphere,
+                           grid_union(scene), true, material_layout(scene));
 }
 
 /// The scene's code as a program built with options has it.
@@ -105,14 +109,15 @@ SdfCode program_scene_code(const Scene& scene, const KernelOptions& options) {
 /// compiled in only for the scenes that use them.
 bool uses_kind(const Node& node, std::initializer_list<NodeKind> kinds) {
   if (std::find(kinds.begin(), kinds.end(), node.kind) != kinds.end()) return true;
-  return std::any_of(node.children.begin(), node.children.end(), [&](const Node& child) { return uses_kind(child, kinds); });
+  return std::any_of(node.children.begin(), node.children.end(),
+                     [&](const Node& child) { return uses_kind(child, kinds); });
 }
 
 /// True if node or a descendant is of a kind of the group: profiles (kernels/profiles.cl), blend
 /// operators (kernels/blend_operators.cl).
 bool uses_group(const Node& node, bool (*in_group)(NodeKind)) {
-  return in_group(node.kind) ||
-         std::any_of(node.children.begin(), node.children.end(), [&](const Node& child) { return uses_group(child, in_group); });
+  return in_group(node.kind) || std::any_of(node.children.begin(), node.children.end(),
+                                            [&](const Node& child) { return uses_group(child, in_group); });
 }
 
 }  // namespace
@@ -160,9 +165,7 @@ MarchOutputs march_outputs(const Scene& scene, KernelPurpose purpose, bool ray_s
   return outputs;
 }
 
-int packets_per_item(const Scene& scene, int lanes) {
-  return lanes > 1 && !uses_cells_tiling(scene) ? 2 : 1;
-}
+int packets_per_item(const Scene& scene, int lanes) { return lanes > 1 && !uses_cells_tiling(scene) ? 2 : 1; }
 
 std::string generate_kernel_source(const Scene& scene, const KernelOptions& options) {
   if (options.variant.native_math && options.variant.precision == Precision::Double) {
@@ -173,7 +176,8 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
   src += kernel_file("device_types.h");
   src += kernel_file("lanes.cl");
   src += kernel_file("primitives.cl");
-  if (uses_kind(scene.sdf, {NodeKind::Mandelbulb, NodeKind::Menger, NodeKind::Sierpinski, NodeKind::Mandelbox, NodeKind::Julia})) {
+  if (uses_kind(scene.sdf,
+                {NodeKind::Mandelbulb, NodeKind::Menger, NodeKind::Sierpinski, NodeKind::Mandelbox, NodeKind::Julia})) {
     src += kernel_file("fractals.cl");
   }
   if (uses_group(scene.sdf, is_profile)) src += kernel_file("profiles.cl");
@@ -183,7 +187,8 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
   if (uses_patterns(scene.sdf)) src += kernel_file("patterns.cl");
   src += "#line 1 \"generated scene\"\n";
   if (options.purpose == KernelPurpose::EvalPoints) {
-    if (!options.value_slots.empty()) throw std::invalid_argument("value slots are for march programs, not eval_points");
+    if (!options.value_slots.empty())
+      throw std::invalid_argument("value slots are for march programs, not eval_points");
     // eval_points takes world points; the march's points are relative to map_frame_origin.
     src += spell_sdf_code(eval_points_scene_code(scene));
     src += kernel_file("eval_points.cl");
@@ -211,13 +216,15 @@ namespace {
 SdfCode scene_code(const Scene& scene, bool with_ids) {
   Literals literals;
   SdfCode code;
-  code.source = sdf_functions(scene.sdf, map_frame_origin(scene), scene.render.subtree_bounds == SceneBounds::Sphere, literals,
-                              grid_union(scene), code.data, with_ids, material_layout(scene));
+  code.source = sdf_functions(scene.sdf, map_frame_origin(scene), scene.render.subtree_bounds == SceneBounds::Sphere,
+                              literals, grid_union(scene), code.data, with_ids, material_layout(scene));
   code.literal_rounding = literals.distance_rounding();
   if (scene.tiling) {
     // The cell is the scene's geometry, like map()'s literals: an animation may vary it.
-    code.source += fmt::format("\n/* The tiling's cell (kernels/field.cl). */\nSDF_INLINE float4 tiling_cell(SceneValues values) {{ return {}; }}\n",
-                               literals.f4(scene.tiling->cell));
+    code.source += fmt::format(
+        "\n/* The tiling's cell (kernels/field.cl). */\nSDF_INLINE float4 tiling_cell(SceneValues values) {{ return "
+        "{}; }}\n",
+        literals.f4(scene.tiling->cell));
   }
   code.literals = literals.take();
   return code;

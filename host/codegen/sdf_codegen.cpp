@@ -40,7 +40,8 @@ namespace {
 /// A material's surface vector as map_color returns it: the shading model's two numbers (PBR:
 /// metallic, roughness; the others: specular, shininess), then reflectivity.
 glm::dvec3 surface_vector(const Material& m, ShadingModel model) {
-  return model == ShadingModel::Pbr ? glm::dvec3(m.metallic, m.roughness, m.reflectivity) : glm::dvec3(m.specular, m.shininess, m.reflectivity);
+  return model == ShadingModel::Pbr ? glm::dvec3(m.metallic, m.roughness, m.reflectivity)
+                                    : glm::dvec3(m.specular, m.shininess, m.reflectivity);
 }
 
 /// A parameter as an argument of its sd_ function. Positions are baked relative to offset, in
@@ -48,10 +49,14 @@ glm::dvec3 surface_vector(const Material& m, ShadingModel model) {
 std::string argument(const ParamSpec& spec, const glm::dvec3& value, const glm::dvec3& offset, Literals& lit) {
   return lit.f4(spec.type == ParamType::Point ? value - offset : value);
 }
-std::string argument(const ParamSpec&, const glm::dvec4& value, const glm::dvec3&, Literals& lit) { return lit.f4(value); }
+std::string argument(const ParamSpec&, const glm::dvec4& value, const glm::dvec3&, Literals& lit) {
+  return lit.f4(value);
+}
 std::string argument(const ParamSpec&, double value, const glm::dvec3&, Literals& lit) { return lit.f(value); }
 std::string argument(const ParamSpec&, int value, const glm::dvec3&, Literals&) { return std::to_string(value); }
-std::string argument(const ParamSpec&, std::uint32_t value, const glm::dvec3&, Literals&) { return fmt::format("{}u", value); }
+std::string argument(const ParamSpec&, std::uint32_t value, const glm::dvec3&, Literals&) {
+  return fmt::format("{}u", value);
+}
 
 /// sd_<name>(p, parameters...) at the point p + offset, the arguments in the order of the kind's
 /// declaration (scene/node_kinds.def). A choice is not an argument: it selects the function
@@ -77,20 +82,23 @@ std::string primitive_call(const Node& node, const std::string& p, const glm::dv
   const std::string_view name = node_kind_name(node.kind);
   if (const Plane* plane = std::get_if<Plane>(&node.params)) {
     // dot(n, p + offset) + c = dot(n, p) + (c + dot(n, offset))
-    return fmt::format("sd_plane({}, {}, {})", p, lit.f4(plane->normal), lit.f(plane->offset + glm::dot(plane->normal, offset)));
+    return fmt::format("sd_plane({}, {}, {})", p, lit.f4(plane->normal),
+                       lit.f(plane->offset + glm::dot(plane->normal, offset)));
   }
   if (const Mandelbulb* bulb = std::get_if<Mandelbulb>(&node.params); bulb && bulb->power == 8.0) {
     // Power 8 has a form without transcendentals in the loop (kernels/fractals.cl).
     return fmt::format("sd_mandelbulb8({}, {}, {}, {})", p, lit.f4(bulb->center - offset), bulb->iterations,
                        lit.f(bulb->bailout));
   }
-  return std::visit([&](const auto& params) -> std::string {
-    if constexpr (kIsPrimitiveParams<std::decay_t<decltype(params)>>) {
-      return declared_call(name, params, p, offset, lit);
-    } else {
-      throw std::logic_error("primitive_call() of an operator");
-    }
-  }, node.params);
+  return std::visit(
+      [&](const auto& params) -> std::string {
+        if constexpr (kIsPrimitiveParams<std::decay_t<decltype(params)>>) {
+          return declared_call(name, params, p, offset, lit);
+        } else {
+          throw std::logic_error("primitive_call() of an operator");
+        }
+      },
+      node.params);
 }
 
 /// The factor between a terrain's octaves' frequencies, as kernels/noise.cl steps them.
@@ -157,9 +165,13 @@ struct IdNumbering {
 /// is of.
 class SdfEmitter {
  public:
-  SdfEmitter(bool with_color, bool gate_subtrees, Literals& literals, GridEmission* grid = nullptr, IdNumbering ids = {},
-             MaterialLayout materials = {})
-      : with_color_(with_color), gate_subtrees_(gate_subtrees), lit_(literals), grid_(grid), ids_(std::move(ids)),
+  SdfEmitter(bool with_color, bool gate_subtrees, Literals& literals, GridEmission* grid = nullptr,
+             IdNumbering ids = {}, MaterialLayout materials = {})
+      : with_color_(with_color),
+        gate_subtrees_(gate_subtrees),
+        lit_(literals),
+        grid_(grid),
+        ids_(std::move(ids)),
         materials_(materials) {}
 
   struct Value {
@@ -208,7 +220,8 @@ class SdfEmitter {
       return;
     }
     pattern_frame_ = fresh("q");
-    line(fmt::format("vec3v {} = v3_add({}, v3_from({}));  /* the pattern's frame */", pattern_frame_, p, lit_.f4(offset)));
+    line(fmt::format("vec3v {} = v3_add({}, v3_from({}));  /* the pattern's frame */", pattern_frame_, p,
+                     lit_.f4(offset)));
   }
 
   /// The blend of the material of an operator's operands, as combine() writes it: {0} and {1} are
@@ -217,9 +230,12 @@ class SdfEmitter {
   static std::string blend_rule(NodeKind kind, const std::string& a, const std::string& b, const std::string& k,
                                 const BlendFunctions& f = kColorBlend) {
     switch (kind) {
-      case NodeKind::Union: return fmt::format("{}({}, {}, MASK({} <= {}))", f.select, "{1}", "{0}", a, b);
-      case NodeKind::Intersection: return fmt::format("{}({}, {}, MASK({} >= {}))", f.select, "{1}", "{0}", a, b);
-      case NodeKind::Subtraction: return fmt::format("{}({}, {}, MASK({} >= -{}))", f.select, "{1}", "{0}", a, b);
+      case NodeKind::Union:
+        return fmt::format("{}({}, {}, MASK({} <= {}))", f.select, "{1}", "{0}", a, b);
+      case NodeKind::Intersection:
+        return fmt::format("{}({}, {}, MASK({} >= {}))", f.select, "{1}", "{0}", a, b);
+      case NodeKind::Subtraction:
+        return fmt::format("{}({}, {}, MASK({} >= -{}))", f.select, "{1}", "{0}", a, b);
       case NodeKind::SmoothUnion:
         return fmt::format("{}({}, {}, smooth_union_blend({}, {}, {}))", f.mix, "{1}", "{0}", a, b, k);
       case NodeKind::SmoothIntersection:
@@ -240,12 +256,18 @@ class SdfEmitter {
   /// The distance of an operator's operands a and b, as combine() writes it.
   static std::string combine_rule(NodeKind kind, const std::string& a, const std::string& b, const std::string& k) {
     switch (kind) {
-      case NodeKind::Union: return fmt::format("op_union({}, {})", a, b);
-      case NodeKind::Intersection: return fmt::format("op_intersection({}, {})", a, b);
-      case NodeKind::Subtraction: return fmt::format("op_subtraction({}, {})", a, b);
-      case NodeKind::SmoothUnion: return fmt::format("op_smooth_union({}, {}, {})", a, b, k);
-      case NodeKind::SmoothIntersection: return fmt::format("op_smooth_intersection({}, {}, {})", a, b, k);
-      case NodeKind::SmoothSubtraction: return fmt::format("op_smooth_subtraction({}, {}, {})", a, b, k);
+      case NodeKind::Union:
+        return fmt::format("op_union({}, {})", a, b);
+      case NodeKind::Intersection:
+        return fmt::format("op_intersection({}, {})", a, b);
+      case NodeKind::Subtraction:
+        return fmt::format("op_subtraction({}, {})", a, b);
+      case NodeKind::SmoothUnion:
+        return fmt::format("op_smooth_union({}, {}, {})", a, b, k);
+      case NodeKind::SmoothIntersection:
+        return fmt::format("op_smooth_intersection({}, {}, {})", a, b, k);
+      case NodeKind::SmoothSubtraction:
+        return fmt::format("op_smooth_subtraction({}, {}, {})", a, b, k);
 #define CLMARCH_BLEND(Kind, name, min_children, params_list) case NodeKind::Kind:
 #include "scene/node_kinds.def"
         return blend_distance_code(kind, a, b, k);
@@ -260,7 +282,9 @@ class SdfEmitter {
  private:
   std::string fresh(const char* prefix) { return fmt::format("{}{}", prefix, counter_++); }
   /// The literal of a smooth operator's blend radius; nothing for the others.
-  std::string blend_radius(const Node& node) { return is_smooth_operator(node.kind) ? lit_.f(smooth_k(node)) : std::string(); }
+  std::string blend_radius(const Node& node) {
+    return is_smooth_operator(node.kind) ? lit_.f(smooth_k(node)) : std::string();
+  }
   /// The operator's arguments after a and b: a smooth one's blend radius, a blend's parameters.
   std::string operator_arguments(const Node& node) {
     if (!is_blend_operator(node.kind)) return blend_radius(node);
@@ -283,8 +307,8 @@ class SdfEmitter {
     const glm::dvec3 r0 = glm::row(local_from_world, 0), r1 = glm::row(local_from_world, 1),
                      r2 = glm::row(local_from_world, 2);
     const std::optional<BoundingSphere> bound = local_bounds(node);
-    const glm::dvec3 centre =
-        transform.translate + transform.world_from_local_rotation() * (transform.scale * (bound ? bound->center : glm::dvec3(0.0)));
+    const glm::dvec3 centre = transform.translate + transform.world_from_local_rotation() *
+                                                        (transform.scale * (bound ? bound->center : glm::dvec3(0.0)));
     // C - offset rounded to float, as the kernel holds it, and the pivot taken from that C: then the
     // kernel's subtraction is exact, and the rounding only moves the pivot, which the subtree's
     // positions, measured from it in double, follow.
@@ -338,12 +362,14 @@ class SdfEmitter {
 
   Value emit_primitive(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
     Value value{fresh("d"), "", "", "", ""};
-    const std::string call = node.kind == NodeKind::Terrain ? terrain_call(node, p, offset) : primitive_call(node, p, offset, lit_);
+    const std::string call =
+        node.kind == NodeKind::Terrain ? terrain_call(node, p, offset) : primitive_call(node, p, offset, lit_);
     line(fmt::format("vfloat {} = {};  /* {} */", value.distance, call, node_kind_name(node.kind)));
     if (with_color_) {
       value.color = fresh("c");
       if (color.pattern) {
-        line(fmt::format("vec3v {} = {};  /* color pattern */", value.color, pattern_color_code(*color.pattern, pattern_frame_, lit_)));
+        line(fmt::format("vec3v {} = {};  /* color pattern */", value.color,
+                         pattern_color_code(*color.pattern, pattern_frame_, lit_)));
       } else {
         line(fmt::format("vec3v {} = v3_from({});", value.color, lit_.f4(color.albedo)));
       }
@@ -397,9 +423,12 @@ class SdfEmitter {
   std::optional<std::string> sequential_skip_limit(const Node& node, const std::string& acc) {
     const std::string k = blend_radius(node);
     switch (node.kind) {
-      case NodeKind::SmoothUnion: return fmt::format("{} + {}", acc, k);
-      case NodeKind::Subtraction: return fmt::format("-{}", acc);
-      case NodeKind::SmoothSubtraction: return fmt::format("{} - {}", k, acc);
+      case NodeKind::SmoothUnion:
+        return fmt::format("{} + {}", acc, k);
+      case NodeKind::Subtraction:
+        return fmt::format("-{}", acc);
+      case NodeKind::SmoothSubtraction:
+        return fmt::format("{} - {}", k, acc);
 #define CLMARCH_BLEND(Kind, name, min_children, params_list) case NodeKind::Kind:
 #include "scene/node_kinds.def"
         return blend_skip_limit(node.kind, acc, blend_arguments(node, lit_));
@@ -420,7 +449,8 @@ class SdfEmitter {
   Value emit_union(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
     const std::vector<int> firsts = child_first_ids(node, first_id_);
     std::vector<std::size_t> gated, plain;
-    for (std::size_t i = 0; i < node.children.size(); ++i) (worth_a_bound(node.children[i]) ? gated : plain).push_back(i);
+    for (std::size_t i = 0; i < node.children.size(); ++i)
+      (worth_a_bound(node.children[i]) ? gated : plain).push_back(i);
     std::vector<std::optional<Value>> values(node.children.size());
     std::string least;  // the least distance of the children evaluated so far, while a gate needs it
     const auto fold = [&](const std::string& distance) {
@@ -496,7 +526,8 @@ class SdfEmitter {
       // Repetition forgets whole periods, so only the offset's remainder matters (floor-based).
       const double remainder = floor_mod(offset[i], period[i]);
       child_offset[i] = 0.0;
-      const std::string x = remainder == 0.0 ? fmt::format("{}.{}", p, c) : fmt::format("{}.{} + {}", p, c, lit_.f(remainder));
+      const std::string x =
+          remainder == 0.0 ? fmt::format("{}.{}", p, c) : fmt::format("{}.{} + {}", p, c, lit_.f(remainder));
       return fmt::format("op_repeat_axis({}, {})", x, lit_.f(period[i]));
     };
     const std::string q = fresh("p");
@@ -510,10 +541,11 @@ class SdfEmitter {
     // The texture of the absolute point p + offset: f (p + offset) = f p + phase, the phase reduced
     // mod 2 pi here in double, so the kernel's sines take only the small p in float.
     glm::dvec3 phase;
-    for (int axis = 0; axis < 3; ++axis) phase[axis] = std::fmod(displace.frequency * offset[axis], 2.0 * std::numbers::pi);
+    for (int axis = 0; axis < 3; ++axis)
+      phase[axis] = std::fmod(displace.frequency * offset[axis], 2.0 * std::numbers::pi);
     Value out{fresh("d"), child.color, child.surface, child.id, child.emission};
-    line(fmt::format("vfloat {} = ({} + displacement({}, {}, {}, {})) * {};  /* displace */", out.distance, child.distance, p,
-                     lit_.f4(phase), lit_.f(displace.amplitude), lit_.f(displace.frequency),
+    line(fmt::format("vfloat {} = ({} + displacement({}, {}, {}, {})) * {};  /* displace */", out.distance,
+                     child.distance, p, lit_.f4(phase), lit_.f(displace.amplitude), lit_.f(displace.frequency),
                      lit_.f(1.0 / displacement_lipschitz(node))));
     return out;
   }
@@ -537,8 +569,8 @@ class SdfEmitter {
                           const char* format, double amount) {
     const Value child = emit(node.children.front(), p, color, offset);
     Value out{fresh("d"), child.color, child.surface, child.id, child.emission};
-    line(fmt::format("vfloat {} = {};  /* {} */", out.distance, fmt::format(fmt::runtime(format), child.distance, lit_.f(amount)),
-                     node_kind_name(node.kind)));
+    line(fmt::format("vfloat {} = {};  /* {} */", out.distance,
+                     fmt::format(fmt::runtime(format), child.distance, lit_.f(amount)), node_kind_name(node.kind)));
     return out;
   }
 
@@ -557,7 +589,8 @@ class SdfEmitter {
     const auto axis = [&](const char* c, int i) {
       if (!axes[i]) return fmt::format("{}.{}", p, c);
       child_offset[i] = 0.0;
-      return offset[i] == 0.0 ? fmt::format("fabs({}.{})", p, c) : fmt::format("fabs({}.{} + {})", p, c, lit_.f(offset[i]));
+      return offset[i] == 0.0 ? fmt::format("fabs({}.{})", p, c)
+                              : fmt::format("fabs({}.{} + {})", p, c, lit_.f(offset[i]));
     };
     const std::string q = fresh("p");
     line(fmt::format("vec3v {} = v3({}, {}, {});  /* mirror */", q, axis("x", 0), axis("y", 1), axis("z", 2)));
@@ -582,8 +615,10 @@ class SdfEmitter {
     const auto axis = [&](const char* c, int i) {
       if (!(repeat.period[i] > 0.0)) return fmt::format("{}.{}", p, c);
       child_offset[i] = 0.0;
-      const std::string x = offset[i] == 0.0 ? fmt::format("{}.{}", p, c) : fmt::format("{}.{} + {}", p, c, lit_.f(offset[i]));
-      return fmt::format("op_repeat_limited_axis({}, {}, {}.0f, {}.0f)", x, lit_.f(repeat.period[i]), repeat.min[i], repeat.max[i]);
+      const std::string x =
+          offset[i] == 0.0 ? fmt::format("{}.{}", p, c) : fmt::format("{}.{} + {}", p, c, lit_.f(offset[i]));
+      return fmt::format("op_repeat_limited_axis({}, {}, {}.0f, {}.0f)", x, lit_.f(repeat.period[i]), repeat.min[i],
+                         repeat.max[i]);
     };
     const std::string q = fresh("p");
     line(fmt::format("vec3v {} = v3({}, {}, {});  /* repeat_limited */", q, axis("x", 0), axis("y", 1), axis("z", 2)));
@@ -595,8 +630,9 @@ class SdfEmitter {
   Value emit_revolve(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
     const std::string at = absolute_point(p, glm::dvec3(offset.x, 0.0, offset.z));
     const std::string q = fresh("p");
-    line(fmt::format("vec3v {0} = v3(vsqrt({1}.x * {1}.x + {1}.z * {1}.z) - {2}, {1}.y, (vfloat)(0.0f));  /* revolve */", q, at,
-                     lit_.f(params_of<Revolve>(node).offset)));
+    line(
+        fmt::format("vec3v {0} = v3(vsqrt({1}.x * {1}.x + {1}.z * {1}.z) - {2}, {1}.y, (vfloat)(0.0f));  /* revolve */",
+                    q, at, lit_.f(params_of<Revolve>(node).offset)));
     return emit(node.children.front(), q, color, glm::dvec3(0.0, offset.y, 0.0));
   }
 
@@ -623,13 +659,15 @@ class SdfEmitter {
     const BoundingSphere ball = turned_bounds(child_bounds, axis);
     const std::string at = absolute_point(p, offset);
     const std::string q = fresh("p");
-    line(fmt::format("vec3v {} = op_{}({}, {});  /* {} */", q, twist ? "twist" : "bend", at, lit_.f(rate), node_kind_name(node.kind)));
+    line(fmt::format("vec3v {} = op_{}({}, {});  /* {} */", q, twist ? "twist" : "bend", at, lit_.f(rate),
+                     node_kind_name(node.kind)));
     const Value child = emit(node.children.front(), q, color, glm::dvec3(0.0));
-    const std::string across = twist ? fmt::format("vsqrt({0}.x * {0}.x + {0}.z * {0}.z)", at) : fmt::format("vsqrt({0}.x * {0}.x + {0}.y * {0}.y)", at);
+    const std::string across = twist ? fmt::format("vsqrt({0}.x * {0}.x + {0}.z * {0}.z)", at)
+                                     : fmt::format("vsqrt({0}.x * {0}.x + {0}.y * {0}.y)", at);
     Value out{fresh("d"), child.color, child.surface, child.id, child.emission};
-    line(fmt::format("vfloat {} = fmax({} / op_{}_lipschitz({}, {}, {}), sd_bound({}, {}, {}, 1.0f));", out.distance, child.distance,
-                     twist ? "twist" : "bend", across, lit_.f(rate), lit_.f(turn_reach(child_bounds, axis)), p,
-                     lit_.f4(ball.center - offset), lit_.f(ball.radius)));
+    line(fmt::format("vfloat {} = fmax({} / op_{}_lipschitz({}, {}, {}), sd_bound({}, {}, {}, 1.0f));", out.distance,
+                     child.distance, twist ? "twist" : "bend", across, lit_.f(rate),
+                     lit_.f(turn_reach(child_bounds, axis)), p, lit_.f4(ball.center - offset), lit_.f(ball.radius)));
     return out;
   }
 
@@ -637,8 +675,8 @@ class SdfEmitter {
   Value emit_nonuniform_scale(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
     const glm::dvec3& f = params_of<NonuniformScale>(node).factors;
     const std::string q = fresh("p");
-    line(fmt::format("vec3v {0} = v3({1}.x * {2}, {1}.y * {3}, {1}.z * {4});  /* nonuniform_scale */", q, p, lit_.f(1.0 / f.x),
-                     lit_.f(1.0 / f.y), lit_.f(1.0 / f.z)));
+    line(fmt::format("vec3v {0} = v3({1}.x * {2}, {1}.y * {3}, {1}.z * {4});  /* nonuniform_scale */", q, p,
+                     lit_.f(1.0 / f.x), lit_.f(1.0 / f.y), lit_.f(1.0 / f.z)));
     const Value child = emit(node.children.front(), q, color, offset / f);
     Value out{fresh("d"), child.color, child.surface, child.id, child.emission};
     line(fmt::format("vfloat {} = {} * {};", out.distance, child.distance, lit_.f(std::min({f.x, f.y, f.z}))));
@@ -672,13 +710,15 @@ class SdfEmitter {
   Value emit_grid(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
     if (color.pattern && !node.color_pattern) {
       // Its operands' code sees the union's point only.
-      throw InputError(fmt::format("a color pattern set above a {} of {} operands evaluated from an operand grid: set it on the {} "
-                                   "or on its operands, or render.pruning: none",
-                                   node_kind_name(node.kind), node.children.size(), node_kind_name(node.kind)));
+      throw InputError(
+          fmt::format("a color pattern set above a {} of {} operands evaluated from an operand grid: set it on the {} "
+                      "or on its operands, or render.pruning: none",
+                      node_kind_name(node.kind), node.children.size(), node_kind_name(node.kind)));
     }
     if (!grid_->emitted) grid_->emit(node, first_id_, color, offset, gate_subtrees_, materials_, lit_);
     Value out{fresh("d"), "", "", "", ""};
-    const std::string what = fmt::format("{} of {} operands, from its operand grid", node_kind_name(node.kind), node.children.size());
+    const std::string what =
+        fmt::format("{} of {} operands, from its operand grid", node_kind_name(node.kind), node.children.size());
     if (with_color_) {
       out.color = fresh("c");
       out.surface = fresh("s");
@@ -688,8 +728,8 @@ class SdfEmitter {
       const std::string emission = fresh("e");
       line(fmt::format("vec3v {}, {}, {};", out.color, out.surface, emission));
       line(fmt::format("vfloat {};", id));
-      line(fmt::format("vfloat {} = grid_distance_color(values, {}, &{}, &{}, &{}, &{});  /* {} */", out.distance, p, out.color,
-                       out.surface, emission, id, what));
+      line(fmt::format("vfloat {} = grid_distance_color(values, {}, &{}, &{}, &{}, &{});  /* {} */", out.distance, p,
+                       out.color, out.surface, emission, id, what));
       if (materials_.emission) out.emission = emission;
       if (ids_.on) out.id = id;
     } else {
@@ -759,7 +799,8 @@ struct PackedGrid {
   std::size_t listed = 0;
 };
 
-PackedGrid pack_grid(const OperandGrid& grid, const std::vector<float>& records, const std::vector<std::uint32_t>& record_at) {
+PackedGrid pack_grid(const OperandGrid& grid, const std::vector<float>& records,
+                     const std::vector<std::uint32_t>& record_at) {
   const long long cells = grid.cell_count();
   const std::size_t cells_at = CLMARCH_GRID_HEADER_WORDS;
   const std::size_t list_at = cells_at + static_cast<std::size_t>(cells) + 1;
@@ -779,7 +820,8 @@ PackedGrid pack_grid(const OperandGrid& grid, const std::vector<float>& records,
   words[CLMARCH_GRID_LIST_AT] = int_word(static_cast<std::uint32_t>(list_at));
   words.reserve(records_at + records.size());
   for (std::uint32_t start : grid.cell_start) words.push_back(int_word(start));
-  for (std::uint32_t operand : grid.operands) words.push_back(int_word(static_cast<std::uint32_t>(records_at + record_at[operand])));
+  for (std::uint32_t operand : grid.operands)
+    words.push_back(int_word(static_cast<std::uint32_t>(records_at + record_at[operand])));
   words.insert(words.end(), records.begin(), records.end());
   return {std::move(data), grid.dims, cells, grid.operands.size()};
 }
@@ -808,9 +850,9 @@ PackedGrid packed_grid_for(const Node& union_node, const glm::dvec3& offset, std
   if (const std::optional<AvailableMemory> left = available_host_memory(kOpenClBuildAddressSpace)) {
     const std::string shortfall = memory_shortfall(packed_bytes, *left);
     if (!shortfall.empty()) {
-      throw InputError(fmt::format("the operand grid (render.pruning) of the {} of {} operands packs into {} of host memory, {}",
-                                   node_kind_name(union_node.kind), union_node.children.size(), bytes_and_gibibytes(packed_bytes),
-                                   shortfall));
+      throw InputError(fmt::format(
+          "the operand grid (render.pruning) of the {} of {} operands packs into {} of host memory, {}",
+          node_kind_name(union_node.kind), union_node.children.size(), bytes_and_gibibytes(packed_bytes), shortfall));
     }
   }
   PackedGrid packed = pack_grid(grid, records, record_at);
@@ -825,7 +867,8 @@ void GridEmission::emit(const Node& union_node, int first_id, const Material& co
   // Each operand's code, its literals left open: operands whose code reads alike share a shape.
   std::map<std::string, std::uint32_t> distance_ids, color_ids;
   std::vector<std::string> distance_shapes, color_shapes;
-  const auto shape_of = [](std::map<std::string, std::uint32_t>& ids, std::vector<std::string>& shapes, std::string code) {
+  const auto shape_of = [](std::map<std::string, std::uint32_t>& ids, std::vector<std::string>& shapes,
+                           std::string code) {
     const auto [it, added] = ids.emplace(std::move(code), static_cast<std::uint32_t>(shapes.size()));
     if (added) shapes.push_back(it->first);
     return it->second;
@@ -848,8 +891,8 @@ void GridEmission::emit(const Node& union_node, int first_id, const Material& co
     const std::uint32_t color_shape = shape_of(
         color_ids, color_shapes,
         colored.body() +
-            fmt::format("  *albedo = {};\n  *surface = {};\n  *emission = {};\n  *id = {};\n  return {};\n", c.color, c.surface,
-                        c.emission.empty() ? "v3_splat(0.0f)" : c.emission, c.id, c.distance));
+            fmt::format("  *albedo = {};\n  *surface = {};\n  *emission = {};\n  *id = {};\n  return {};\n", c.color,
+                        c.surface, c.emission.empty() ? "v3_splat(0.0f)" : c.emission, c.id, c.distance));
     const std::vector<float> distance_values = distance_literals.take(), color_values = color_literals.take();
     record_at.push_back(static_cast<std::uint32_t>(records.size()));
     records.push_back(int_word(distance_shape));
@@ -875,16 +918,19 @@ void GridEmission::emit(const Node& union_node, int first_id, const Material& co
       " * shape's code ({} shapes). */\n",
       node_kind_name(union_node.kind), union_node.children.size(), grid.dims.x, grid.dims.y, grid.dims.z,
       static_cast<double>(grid.listed) / static_cast<double>(grid.cells), distance_shapes.size());
-  functions += fmt::format("#define GRID_COMBINE(a, b) {}\n", SdfEmitter::combine_rule(union_node.kind, "(a)", "(b)", k));
-  functions += fmt::format("#define GRID_BLEND(first, second, a, b) {}\n",
-                           fmt::format(fmt::runtime(SdfEmitter::blend_rule(union_node.kind, "(a)", "(b)", k)), "(first)", "(second)"));
+  functions +=
+      fmt::format("#define GRID_COMBINE(a, b) {}\n", SdfEmitter::combine_rule(union_node.kind, "(a)", "(b)", k));
   functions += fmt::format(
-      "#define GRID_ID_BLEND(first, second, a, b) {}\n",
-      fmt::format(fmt::runtime(SdfEmitter::blend_rule(union_node.kind, "(a)", "(b)", k, kIdBlend)), "(first)", "(second)"));
+      "#define GRID_BLEND(first, second, a, b) {}\n",
+      fmt::format(fmt::runtime(SdfEmitter::blend_rule(union_node.kind, "(a)", "(b)", k)), "(first)", "(second)"));
+  functions += fmt::format("#define GRID_ID_BLEND(first, second, a, b) {}\n",
+                           fmt::format(fmt::runtime(SdfEmitter::blend_rule(union_node.kind, "(a)", "(b)", k, kIdBlend)),
+                                       "(first)", "(second)"));
   functions += shape_function("SDF_INLINE vfloat grid_operand_distance(SceneValues values, int at, vec3v p)",
                               "at + CLMARCH_GRID_RECORD_WORDS", "SCENE_DATA[at]", distance_shapes);
   functions += shape_function(
-      "SDF_INLINE vfloat grid_operand_color(SceneValues values, int at, vec3v p, vec3v* albedo, vec3v* surface, vec3v* emission,\n"
+      "SDF_INLINE vfloat grid_operand_color(SceneValues values, int at, vec3v p, vec3v* albedo, vec3v* surface, vec3v* "
+      "emission,\n"
       "                                     vfloat* id)",
       "at + as_int(SCENE_DATA[at + 2])", "SCENE_DATA[at + 1]", color_shapes);
   functions += kernel_file("operand_grid.cl");
@@ -912,9 +958,10 @@ std::string Literals::f(double value) {
   // Each value of the file is a float, but numbers made from them (a position relative to the
   // camera's map frame) can pass float's range; OpenCL C would see "inff".
   if (!std::isfinite(static_cast<float>(value))) {
-    throw InputError(fmt::format("the scene needs the number {:g} in its OpenCL program, beyond float's range (+-{:g}): "
-                                 "positions too far apart; the CPU reference renders it (--backend reference)",
-                                 value, std::numeric_limits<float>::max()));
+    throw InputError(
+        fmt::format("the scene needs the number {:g} in its OpenCL program, beyond float's range (+-{:g}): "
+                    "positions too far apart; the CPU reference renders it (--backend reference)",
+                    value, std::numeric_limits<float>::max()));
   }
   values_.push_back(static_cast<float>(value));
   rounding_ = std::max(rounding_, std::abs(static_cast<double>(values_.back()) - value));
@@ -944,37 +991,42 @@ std::string sdf_functions(const Node& root, const glm::dvec3& frame_origin, bool
   SdfEmitter with_color(true, gate_subtrees, literals, &grid, IdNumbering{with_ids, ""}, materials);
   const SdfEmitter::Value dc = with_color.emit(root, "p", materials.root, frame_origin);
   data = std::move(grid.data);
-  const std::string frame = frame_origin == glm::dvec3(0.0)
-                                ? std::string()
-                                : fmt::format("/* p is relative to the world point ({}, {}, {}) (map_frame_origin). */\n",
-                                              frame_origin.x, frame_origin.y, frame_origin.z);
+  const std::string frame =
+      frame_origin == glm::dvec3(0.0)
+          ? std::string()
+          : fmt::format("/* p is relative to the world point ({}, {}, {}) (map_frame_origin). */\n", frame_origin.x,
+                        frame_origin.y, frame_origin.z);
   // The operand grid's data can pass the 64 KiB of constant memory that every device has.
-  const std::string values_type = grid.emitted
-                                      ? "/* Literals of the scene that change between the frames of an animation are read from the\n"
-                                        " * kernel's values buffer (values[j]) instead, so that those frames share this program; the\n"
-                                        " * operand grid's data follows them (SCENE_DATA), in global memory for its size. */\n"
-                                        "typedef __global const float* SceneValues;\n\n"
-                                      : "/* Literals of the scene that change between the frames of an animation are read from the\n"
-                                        " * kernel's values buffer (values[j]) instead, so that those frames share this program. */\n"
-                                        "typedef __constant const float* SceneValues;\n\n";
-  return frame + values_type + grid.functions + fmt::format(
-      "/* Distance to the scene. */\n"
-      "SDF_INLINE vfloat map(SceneValues values, vec3v p) {{\n{}  return {};\n}}\n\n"
-      "/* Distance to the scene and the material there: albedo, surface = ({}, reflectivity), the\n"
-      " * light it emits{}. */\n"
-      "SDF_INLINE vfloat map_color(SceneValues values, vec3v p, vec3v* albedo, vec3v* surface, vec3v* emission{}) {{\n{}"
-      "  *albedo = {};\n  *surface = {};\n  *emission = {};\n{}  return {};\n}}\n",
-      distance_only.body(), d.distance, materials.model == ShadingModel::Pbr ? "metallic, roughness" : "specular, shininess",
-      with_ids ? ", and id, the number of the primitive it is of" : "", with_ids ? ", vfloat* id" : "", with_color.body(), dc.color,
-      dc.surface, dc.emission.empty() ? "v3_splat(0.0f)" : dc.emission, with_ids ? fmt::format("  *id = {};\n", dc.id) : std::string(),
-      dc.distance);
+  const std::string values_type =
+      grid.emitted ? "/* Literals of the scene that change between the frames of an animation are read from the\n"
+                     " * kernel's values buffer (values[j]) instead, so that those frames share this program; the\n"
+                     " * operand grid's data follows them (SCENE_DATA), in global memory for its size. */\n"
+                     "typedef __global const float* SceneValues;\n\n"
+                   : "/* Literals of the scene that change between the frames of an animation are read from the\n"
+                     " * kernel's values buffer (values[j]) instead, so that those frames share this program. */\n"
+                     "typedef __constant const float* SceneValues;\n\n";
+  return frame + values_type + grid.functions +
+         fmt::format(
+             "/* Distance to the scene. */\n"
+             "SDF_INLINE vfloat map(SceneValues values, vec3v p) {{\n{}  return {};\n}}\n\n"
+             "/* Distance to the scene and the material there: albedo, surface = ({}, reflectivity), the\n"
+             " * light it emits{}. */\n"
+             "SDF_INLINE vfloat map_color(SceneValues values, vec3v p, vec3v* albedo, vec3v* surface, vec3v* "
+             "emission{}) {{\n{}"
+             "  *albedo = {};\n  *surface = {};\n  *emission = {};\n{}  return {};\n}}\n",
+             distance_only.body(), d.distance,
+             materials.model == ShadingModel::Pbr ? "metallic, roughness" : "specular, shininess",
+             with_ids ? ", and id, the number of the primitive it is of" : "", with_ids ? ", vfloat* id" : "",
+             with_color.body(), dc.color, dc.surface, dc.emission.empty() ? "v3_splat(0.0f)" : dc.emission,
+             with_ids ? fmt::format("  *id = {};\n", dc.id) : std::string(), dc.distance);
 }
 
 bool takes_absolute_points(const Node& root, const glm::dvec3& frame_origin) {
   if (root.kind == NodeKind::Terrain) {
     // terrain_call's test, on the largest octave's lattice point of the frame origin.
     const Terrain& terrain = params_of<Terrain>(root);
-    if (terrain.frequency * glm::length(frame_origin) * std::pow(terrain_lacunarity(terrain), terrain.octaves - 1) >= 0x1p24) {
+    if (terrain.frequency * glm::length(frame_origin) * std::pow(terrain_lacunarity(terrain), terrain.octaves - 1) >=
+        0x1p24) {
       return true;
     }
   }

@@ -19,7 +19,8 @@ ValueSlots VaryingLiterals::add(const Scene& frame) {
     return {};
   }
   for (std::size_t k = 0; k < shape.first.size(); ++k) {
-    if (std::bit_cast<std::uint32_t>(shape.first[k]) != std::bit_cast<std::uint32_t>(code.literals[k])) shape.varies[k] = true;
+    if (std::bit_cast<std::uint32_t>(shape.first[k]) != std::bit_cast<std::uint32_t>(code.literals[k]))
+      shape.varies[k] = true;
   }
   return shape.slots();
 }

@@ -94,7 +94,8 @@ std::optional<AvailableMemory> available_host_memory(std::uint64_t driver_still_
   if (!physical) {
     const long pages = sysconf(_SC_AVPHYS_PAGES);
     const long page_size = sysconf(_SC_PAGESIZE);
-    if (pages > 0 && page_size > 0) physical = static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page_size);
+    if (pages > 0 && page_size > 0)
+      physical = static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page_size);
     physical_source = "free physical memory";
   }
   consider(physical, physical_source);

@@ -51,7 +51,8 @@ class OutputError : public std::runtime_error {
 /// failed. An empty message prints nothing more.
 class RankFailure : public std::runtime_error {
  public:
-  RankFailure(int exit_code, std::string_view message) : std::runtime_error(std::string(message)), exit_code(exit_code) {}
+  RankFailure(int exit_code, std::string_view message)
+      : std::runtime_error(std::string(message)), exit_code(exit_code) {}
   int exit_code;
 };
 

@@ -24,8 +24,12 @@ bool progress_enabled() { return verbosity() != Verbosity::Quiet && (g_draw_anyw
 void draw_progress_anyway() { g_draw_anyway = true; }
 
 ProgressLine::ProgressLine(std::string label, long long total, double rays_per_unit)
-    : label_(std::move(label)), total_(total), rays_per_unit_(rays_per_unit), enabled_(progress_enabled()),
-      start_(std::chrono::steady_clock::now()), last_draw_(start_) {
+    : label_(std::move(label)),
+      total_(total),
+      rays_per_unit_(rays_per_unit),
+      enabled_(progress_enabled()),
+      start_(std::chrono::steady_clock::now()),
+      last_draw_(start_) {
   const bool nested = g_live_lines.fetch_add(1) > 0;
   if (g_draw_anyway && nested) enabled_ = false;
 }
@@ -54,7 +58,8 @@ void ProgressLine::count(long long done) {
   const double fraction = static_cast<double>(now_done) / static_cast<double>(total_);
   const double left = fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
   const std::string rate =
-      rays_per_unit_ > 0.0 ? fmt::format(", {:.3g} rays/s", rays_per_unit_ * static_cast<double>(now_done) / elapsed) : "";
+      rays_per_unit_ > 0.0 ? fmt::format(", {:.3g} rays/s", rays_per_unit_ * static_cast<double>(now_done) / elapsed)
+                           : "";
   const std::string line =
       fmt::format("{}: {:.0f}% ({}/{}){}, {:.1f} s left", label_, 100.0 * fraction, now_done, total_, rate, left);
   // Through mpirun's pipe, whole lines: the other ranks' lines come between them.

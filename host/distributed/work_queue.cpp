@@ -149,7 +149,8 @@ void wait_for(MPI_Request& request) {
 /// other ranks as their reports come in.
 class CoordinatorQueue final : public WorkQueue {
  public:
-  CoordinatorQueue(int count, UnitSink sink, UnitName name) : count_(count), sink_(std::move(sink)), name_(std::move(name)) {
+  CoordinatorQueue(int count, UnitSink sink, UnitName name)
+      : count_(count), sink_(std::move(sink)), name_(std::move(name)) {
     in_flight_.assign(static_cast<std::size_t>(mpi_world().size), -1);
     hosts_.assign(static_cast<std::size_t>(mpi_world().size), "");
     hosts_[0] = mpi_world().host;
@@ -199,8 +200,8 @@ class CoordinatorQueue final : public WorkQueue {
     std::string note;
     for (std::size_t r = 0; r < in_flight_.size(); ++r) {
       if (in_flight_[r] < 0) continue;
-      note += fmt::format("{}{}: {}", note.empty() ? "in progress: " : "; ",
-                          rank_label(static_cast<int>(r), hosts_[r]), name_(in_flight_[r]));
+      note += fmt::format("{}{}: {}", note.empty() ? "in progress: " : "; ", rank_label(static_cast<int>(r), hosts_[r]),
+                          name_(in_flight_[r]));
     }
     set_interrupt_note(note);
   }

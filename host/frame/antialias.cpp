@@ -50,7 +50,8 @@ glm::dvec2 sample_point(int index, int count) {
   return {shifted(static_cast<double>(index) / count), shifted(radical_inverse_2(static_cast<unsigned>(index)))};
 }
 
-std::vector<std::uint8_t> pixels_to_refine(const FrameBuffers& centre, bool adaptive, const EdgeThresholds& thresholds) {
+std::vector<std::uint8_t> pixels_to_refine(const FrameBuffers& centre, bool adaptive,
+                                           const EdgeThresholds& thresholds) {
   const int width = centre.width, height = centre.height;
   std::vector<std::uint8_t> refine(static_cast<std::size_t>(width) * height, adaptive ? 0 : 1);
   if (!adaptive) return refine;

@@ -32,7 +32,8 @@ struct EdgeThresholds {
 /// One byte per pixel of centre (row-major), 1 where the pixel gets all its samples: with adaptive,
 /// a pixel that differs from one of its 4 neighbours (within centre) by a hit against a miss or
 /// a jump over a threshold; without, every pixel.
-std::vector<std::uint8_t> pixels_to_refine(const FrameBuffers& centre, bool adaptive, const EdgeThresholds& thresholds = {});
+std::vector<std::uint8_t> pixels_to_refine(const FrameBuffers& centre, bool adaptive,
+                                           const EdgeThresholds& thresholds = {});
 
 /// Sums of the samples of the refined pixels, which finish turns into their means.
 class SampleSums {

@@ -16,19 +16,39 @@ namespace clmarch {
 /// Output channels; the order up to WallSteps is also the plane order of the OpenCL output buffer.
 /// WallSteps (the part of steps spent stepping to cell walls under tiling) is not an EXR channel of
 /// the contract. Id is the number of the primitive the centre ray hit (scene/scene.hpp,
-/// primitive_count; kMissId on a miss), written with the normals. A (coverage: the share of the pixel's samples that hit) and Samples (how many it
-/// got) are filled on the host (host/frame/antialias.hpp).
+/// primitive_count; kMissId on a miss), written with the normals. A (coverage: the share of the pixel's samples that
+/// hit) and Samples (how many it got) are filled on the host (host/frame/antialias.hpp).
 enum class Channel {
-  R, G, B, Depth, Steps, NX, NY, NZ, WallSteps, Id,
-  AoR, AoG, AoB, DiffuseR, DiffuseG, DiffuseB, SpecularR, SpecularG, SpecularB, DepthLo, Status,
-  A, Samples
+  R,
+  G,
+  B,
+  Depth,
+  Steps,
+  NX,
+  NY,
+  NZ,
+  WallSteps,
+  Id,
+  AoR,
+  AoG,
+  AoB,
+  DiffuseR,
+  DiffuseG,
+  DiffuseB,
+  SpecularR,
+  SpecularG,
+  SpecularB,
+  DepthLo,
+  Status,
+  A,
+  Samples
 };
 inline constexpr int kChannelCount = 23;
 /// Channel names (the EXR's, but for wall_steps), indexed by Channel.
 inline constexpr const char* kChannelNames[kChannelCount] = {
-    "R",    "G",    "B",    "depth",     "steps",     "N.x",       "N.y",        "N.z",        "wall_steps", "id",
-    "ao.R", "ao.G", "ao.B", "diffuse.R", "diffuse.G", "diffuse.B", "specular.R", "specular.G", "specular.B", "depth.lo",
-    "status", "A",  "samples"};
+    "R",          "G",          "B",          "depth",    "steps",  "N.x",       "N.y",       "N.z",
+    "wall_steps", "id",         "ao.R",       "ao.G",     "ao.B",   "diffuse.R", "diffuse.G", "diffuse.B",
+    "specular.R", "specular.G", "specular.B", "depth.lo", "status", "A",         "samples"};
 /// How a centre ray ended, the status channel's values (CLMARCH_RAY_* in kernels/device_types.h).
 enum class RayStatus {
   Miss = CLMARCH_RAY_MISS,
@@ -40,8 +60,8 @@ inline constexpr const char* kRayStatusNames[] = {"miss", "hit", "out_of_steps",
 
 /// The shading's layers (ao, diffuse, specular; r, g, b each): the terms of a hit's lit color
 /// (kernels/shading.cl, LightTerms), written by shaded renders with the normals, 0 elsewhere.
-inline constexpr Channel kLayerChannels[] = {Channel::AoR,      Channel::AoG,      Channel::AoB,
-                                             Channel::DiffuseR, Channel::DiffuseG, Channel::DiffuseB,
+inline constexpr Channel kLayerChannels[] = {Channel::AoR,       Channel::AoG,       Channel::AoB,
+                                             Channel::DiffuseR,  Channel::DiffuseG,  Channel::DiffuseB,
                                              Channel::SpecularR, Channel::SpecularG, Channel::SpecularB};
 
 /// Row-major planes, pixel (i, j) at j * width + i, j = 0 the top row. Linear color, depth +inf on

@@ -18,10 +18,14 @@ void set_gray(FrameBuffers& b, std::size_t i, float v) {
 
 std::array<float, 3> status_color(RayStatus status) {
   switch (status) {
-    case RayStatus::Miss: return {0.0f, 0.0f, 0.0f};
-    case RayStatus::Hit: return {0.5f, 0.5f, 0.5f};
-    case RayStatus::OutOfSteps: return {1.0f, 0.0f, 1.0f};
-    case RayStatus::OutOfDistance: return {0.0f, 0.0f, 0.5f};
+    case RayStatus::Miss:
+      return {0.0f, 0.0f, 0.0f};
+    case RayStatus::Hit:
+      return {0.5f, 0.5f, 0.5f};
+    case RayStatus::OutOfSteps:
+      return {1.0f, 0.0f, 1.0f};
+    case RayStatus::OutOfDistance:
+      return {0.0f, 0.0f, 0.5f};
   }
   return {0.0f, 0.0f, 0.0f};
 }

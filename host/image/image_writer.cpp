@@ -30,11 +30,13 @@ bool is_float_format(const std::filesystem::path& path) {
 }
 
 /// Fails with OutputError unless file reads back as a whole image of spec's size.
-void expect_reads_back(const std::filesystem::path& file, const OIIO::ImageSpec& spec, const std::filesystem::path& target) {
+void expect_reads_back(const std::filesystem::path& file, const OIIO::ImageSpec& spec,
+                       const std::filesystem::path& target) {
   auto in = OIIO::ImageInput::open(file.string());
   std::vector<float> pixels(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
   const bool ok = in && in->spec().width == spec.width && in->spec().height == spec.height &&
-                  in->spec().nchannels == spec.nchannels && in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data());
+                  in->spec().nchannels == spec.nchannels &&
+                  in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data());
   if (!ok) {
     const std::string why = in ? in->geterror() : OIIO::geterror();
     throw OutputError(fmt::format("{}: cannot write: the written file does not read back{}", target.string(),
@@ -90,10 +92,11 @@ void write_interleaved(StagedFiles& files, const std::filesystem::path& path, co
     const bool in_memory = out->supports("ioproxy");
     if (in_memory) {
       encoded.reserve(interleaved.size() * (format == OIIO::TypeDesc::FLOAT ? sizeof(float) : 1) + 65536);
-      if (!out->set_ioproxy(&memory)) throw OutputError(fmt::format("{}: cannot write: {}", path.string(), joined_lines(out->geterror())));
+      if (!out->set_ioproxy(&memory))
+        throw OutputError(fmt::format("{}: cannot write: {}", path.string(), joined_lines(out->geterror())));
     }
-    const bool ok = out->open(temp.string(), spec) && out->write_image(OIIO::TypeDesc::FLOAT, interleaved.data()) &&
-                    out->close();
+    const bool ok =
+        out->open(temp.string(), spec) && out->write_image(OIIO::TypeDesc::FLOAT, interleaved.data()) && out->close();
     if (!ok) throw OutputError(fmt::format("{}: cannot write: {}", path.string(), joined_lines(out->geterror())));
     if (in_memory) {
       write_bytes(temp, memory.buffer().data(), memory.buffer().size(), path);
@@ -114,8 +117,8 @@ void check_image_path(const std::filesystem::path& path, const std::string& opti
   check_output_folder(path, option);
   auto out = OIIO::ImageOutput::create(path.string());
   if (!out) {
-    throw InputError(fmt::format("{} {}: cannot write images with extension '{}' (try .png, .exr, .tif or .jpg)", option,
-                                 path.string(), path.extension().string()));
+    throw InputError(fmt::format("{} {}: cannot write images with extension '{}' (try .png, .exr, .tif or .jpg)",
+                                 option, path.string(), path.extension().string()));
   }
 }
 
@@ -140,7 +143,8 @@ std::vector<NamedPlane> buffer_planes(const FrameBuffers& buffers) {
   planes.push_back({&buffers.plane(Channel::Samples), "samples"});
   planes.push_back({&buffers.plane(Channel::Id), "id"});
   planes.push_back({&buffers.plane(Channel::Status), "status"});
-  for (Channel layer : kLayerChannels) planes.push_back({&buffers.plane(layer), kChannelNames[static_cast<int>(layer)]});
+  for (Channel layer : kLayerChannels)
+    planes.push_back({&buffers.plane(layer), kChannelNames[static_cast<int>(layer)]});
   if (buffers.has_depth_lo) planes.push_back({&buffers.plane(Channel::DepthLo), "depth.lo"});
   return planes;
 }
@@ -151,7 +155,8 @@ std::string vec3_text(const glm::dvec3& v) { return fmt::format("[{}, {}, {}]", 
 std::array<float, 16> imath_matrix(const glm::dvec4 (&rows)[4]) {
   std::array<float, 16> m{};
   for (int column = 0; column < 4; ++column) {
-    for (int row = 0; row < 4; ++row) m[static_cast<std::size_t>(row * 4 + column)] = static_cast<float>(rows[column][row]);
+    for (int row = 0; row < 4; ++row)
+      m[static_cast<std::size_t>(row * 4 + column)] = static_cast<float>(rows[column][row]);
   }
   return m;
 }
@@ -165,7 +170,8 @@ HeaderAttributes camera_attributes(const Scene& scene, const CameraBasis& basis)
   const glm::dvec3 sx = basis.right_extent / glm::dot(basis.right_extent, basis.right_extent);
   const glm::dvec3 sy = basis.up_extent / glm::dot(basis.up_extent, basis.up_extent);
   const glm::dvec4 camera[4] = {{r, -glm::dot(r, o)}, {u, -glm::dot(u, o)}, {-f, glm::dot(f, o)}, {0.0, 0.0, 0.0, 1.0}};
-  const glm::dvec4 ndc[4] = {{sx, -glm::dot(sx, o)}, {sy, -glm::dot(sy, o)}, {0.0, 0.0, 0.0, 1.0}, {f, -glm::dot(f, o)}};
+  const glm::dvec4 ndc[4] = {
+      {sx, -glm::dot(sx, o)}, {sy, -glm::dot(sy, o)}, {0.0, 0.0, 0.0, 1.0}, {f, -glm::dot(f, o)}};
   HeaderAttributes header;
   header.matrices = {{"worldToCamera", imath_matrix(camera)}, {"worldToNDC", imath_matrix(ndc)}};
   header.strings = {{"clmarch:camera.position", vec3_text(scene.camera.position)},
@@ -181,7 +187,8 @@ void write_buffers_exr(StagedFiles& files, const std::filesystem::path& path, co
   write_interleaved(files, path, buffers, buffer_planes(buffers), OIIO::TypeDesc::FLOAT, false);
 }
 
-void write_buffers_exr(StagedFiles& files, const std::filesystem::path& path, const FrameBuffers& buffers, const Scene& scene) {
+void write_buffers_exr(StagedFiles& files, const std::filesystem::path& path, const FrameBuffers& buffers,
+                       const Scene& scene) {
   const CameraBasis basis = camera_basis(scene.camera, buffers.width, buffers.height);
   const std::size_t pixels = static_cast<std::size_t>(buffers.width) * buffers.height;
   std::array<std::vector<float>, 3> position;
@@ -191,7 +198,8 @@ void write_buffers_exr(StagedFiles& files, const std::filesystem::path& path, co
     for (int i = 0; i < buffers.width; ++i) {
       const std::size_t at = static_cast<std::size_t>(j) * buffers.width + i;
       if (!std::isfinite(depth[at])) continue;
-      const double t = static_cast<double>(depth[at]) + (buffers.has_depth_lo ? buffers.plane(Channel::DepthLo)[at] : 0.0);
+      const double t =
+          static_cast<double>(depth[at]) + (buffers.has_depth_lo ? buffers.plane(Channel::DepthLo)[at] : 0.0);
       const glm::dvec3 p = basis.origin + t * pixel_ray_direction(basis, i, j);
       for (int axis = 0; axis < 3; ++axis) position[axis][at] = static_cast<float>(p[axis]);
     }

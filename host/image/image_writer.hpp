@@ -25,7 +25,8 @@ void write_buffers_exr(StagedFiles& files, const std::filesystem::path& path, co
 /// The same with what the scene's camera adds (docs/scene-format.md, "Buffers"): the channels
 /// P.x, P.y, P.z (world position of the centre ray's hit, 0 on a miss) and the header attributes
 /// worldToCamera and worldToNDC (OpenEXR's standard M44f) and clmarch:camera.* (the camera keys).
-void write_buffers_exr(StagedFiles& files, const std::filesystem::path& path, const FrameBuffers& buffers, const Scene& scene);
+void write_buffers_exr(StagedFiles& files, const std::filesystem::path& path, const FrameBuffers& buffers,
+                       const Scene& scene);
 
 /// The sRGB transfer function of a linear value, clamped to [0, 1].
 float linear_to_srgb(float linear);

@@ -49,8 +49,9 @@ std::uint32_t OperandBvh::build(std::uint32_t begin, std::uint32_t end) {
   const glm::dvec3 extent = centre_upper - centre_lower;
   const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
   const std::uint32_t middle = begin + (end - begin) / 2;
-  std::nth_element(order_.begin() + begin, order_.begin() + middle, order_.begin() + end,
-                   [&](std::uint32_t a, std::uint32_t b) { return operands_[a].center[axis] < operands_[b].center[axis]; });
+  std::nth_element(
+      order_.begin() + begin, order_.begin() + middle, order_.begin() + end,
+      [&](std::uint32_t a, std::uint32_t b) { return operands_[a].center[axis] < operands_[b].center[axis]; });
   // The first child follows its parent (at + 1); the second's index is kept in first.
   build(begin, middle);
   node.first = build(middle, end);

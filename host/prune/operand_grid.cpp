@@ -29,7 +29,8 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 /// an estimate.
 bool is_one_lipschitz(const Node& node) {
   if (is_primitive(node.kind)) return field_quality(node.kind) != FieldQuality::Estimate;
-  if (node.kind == NodeKind::Repeat || node.kind == NodeKind::RepeatPolar || node.kind == NodeKind::RepeatLimited) return false;
+  if (node.kind == NodeKind::Repeat || node.kind == NodeKind::RepeatPolar || node.kind == NodeKind::RepeatLimited)
+    return false;
   // The chamfer, round, columns, pipe and engrave blends: up to sqrt(children) steeper.
   if (operator_lipschitz(node) > 1.0) return false;
   return std::all_of(node.children.begin(), node.children.end(), is_one_lipschitz);
@@ -56,7 +57,10 @@ double max_component(const glm::dvec3& v) { return std::max({v.x, v.y, v.z}); }
 class CellPruner {
  public:
   CellPruner(const Node& union_node, const glm::dvec3& offset, const OperandBvh& bvh, double rounding)
-      : node_(union_node), offset_(offset), bvh_(bvh), rounding_(rounding),
+      : node_(union_node),
+        offset_(offset),
+        bvh_(bvh),
+        rounding_(rounding),
         k_(union_node.kind == NodeKind::SmoothUnion ? smooth_k(union_node) : 0.0) {
     lipschitz_.reserve(union_node.children.size());
     for (const Node& child : union_node.children) {
@@ -159,7 +163,8 @@ glm::dvec3 OperandGrid::cell_center(int x, int y, int z) const {
 bool grid_can_prune(const Node& node) {
   if (node.kind != NodeKind::Union && node.kind != NodeKind::SmoothUnion) return false;
   if (node.children.size() < 2) return false;
-  return std::all_of(node.children.begin(), node.children.end(), [](const Node& child) { return node_bounds(child).has_value(); });
+  return std::all_of(node.children.begin(), node.children.end(),
+                     [](const Node& child) { return node_bounds(child).has_value(); });
 }
 
 const Node* grid_union(const Scene& scene) {
@@ -167,7 +172,8 @@ const Node* grid_union(const Scene& scene) {
   const std::size_t least = scene.render.pruning == Pruning::Grid ? 2 : kAutoGridOperands;
   const Node* best = nullptr;
   const auto visit = [&](const Node& node, const auto& self) -> void {
-    if (grid_can_prune(node) && node.children.size() >= least && (!best || node.children.size() > best->children.size())) {
+    if (grid_can_prune(node) && node.children.size() >= least &&
+        (!best || node.children.size() > best->children.size())) {
       best = &node;
     }
     for (const Node& child : node.children) self(child, self);
@@ -180,7 +186,8 @@ std::uint64_t grid_host_bytes(long long cells, std::uint64_t listed) {
   return 4 * (3 * static_cast<std::uint64_t>(cells) + 2 * listed);
 }
 
-OperandGrid build_operand_grid(const Node& union_node, const glm::dvec3& offset, const std::optional<AvailableMemory>& memory) {
+OperandGrid build_operand_grid(const Node& union_node, const glm::dvec3& offset,
+                               const std::optional<AvailableMemory>& memory) {
   std::vector<OperandBounds> bounds;
   bounds.reserve(union_node.children.size());
   glm::dvec3 lower(kInfinity), upper(-kInfinity);
@@ -225,10 +232,11 @@ OperandGrid build_operand_grid(const Node& union_node, const glm::dvec3& offset,
     const std::uint64_t needed = grid_host_bytes(cells, listed_at_least);
     const std::string shortfall = memory_shortfall(needed, *memory);
     if (shortfall.empty()) return;
-    throw InputError(fmt::format("the {} of {} operands needs an operand grid (render.pruning) of {} x {} x {} cells "
-                                 "listing at least {} operands: {} of host memory, {}",
-                                 node_kind_name(union_node.kind), n, grid.dims.x, grid.dims.y, grid.dims.z, listed_at_least,
-                                 bytes_and_gibibytes(needed), shortfall));
+    throw InputError(
+        fmt::format("the {} of {} operands needs an operand grid (render.pruning) of {} x {} x {} cells "
+                    "listing at least {} operands: {} of host memory, {}",
+                    node_kind_name(union_node.kind), n, grid.dims.x, grid.dims.y, grid.dims.z, listed_at_least,
+                    bytes_and_gibibytes(needed), shortfall));
   };
   require_memory(listed);
 

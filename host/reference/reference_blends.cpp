@@ -72,7 +72,9 @@ double param(const Node& node, std::string_view key) {
         });
       },
       node.params);
-  if (!found) throw std::logic_error("reference_blends: " + std::string(node_kind_name(node.kind)) + " has no " + std::string(key));
+  if (!found)
+    throw std::logic_error("reference_blends: " + std::string(node_kind_name(node.kind)) + " has no " +
+                           std::string(key));
   return *found;
 }
 
@@ -87,24 +89,41 @@ double tongue_part(double a, double b, double ra, double rb) { return std::max(a
 
 double blend_distance(const Node& node, double a, double b) {
   switch (node.kind) {
-    case NodeKind::UnionChamfer: return union_chamfer(a, b, radius(node));
-    case NodeKind::IntersectionChamfer: return intersection_chamfer(a, b, radius(node));
-    case NodeKind::DifferenceChamfer: return intersection_chamfer(a, -b, radius(node));
-    case NodeKind::UnionRound: return union_round(a, b, radius(node));
-    case NodeKind::IntersectionRound: return intersection_round(a, b, radius(node));
-    case NodeKind::DifferenceRound: return intersection_round(a, -b, radius(node));
-    case NodeKind::UnionStairs: return union_stairs(a, b, radius(node), steps(node));
-    case NodeKind::IntersectionStairs: return -union_stairs(-a, -b, radius(node), steps(node));
-    case NodeKind::DifferenceStairs: return -union_stairs(-a, b, radius(node), steps(node));
-    case NodeKind::UnionColumns: return union_columns(a, b, radius(node), steps(node));
-    case NodeKind::IntersectionColumns: return -union_columns(-a, -b, radius(node), steps(node));
-    case NodeKind::DifferenceColumns: return -union_columns(-a, b, radius(node), steps(node));
-    case NodeKind::Xor: return std::max(std::min(a, b), -std::max(a, b));
-    case NodeKind::Pipe: return std::hypot(a, b) - radius(node);
-    case NodeKind::Engrave: return std::max(a, engrave_cut(a, b, radius(node)));
-    case NodeKind::Groove: return std::max(a, groove_cut(a, b, param(node, "ra"), param(node, "rb")));
-    case NodeKind::Tongue: return std::min(a, tongue_part(a, b, param(node, "ra"), param(node, "rb")));
-    // Every kind that is not a blend.
+    case NodeKind::UnionChamfer:
+      return union_chamfer(a, b, radius(node));
+    case NodeKind::IntersectionChamfer:
+      return intersection_chamfer(a, b, radius(node));
+    case NodeKind::DifferenceChamfer:
+      return intersection_chamfer(a, -b, radius(node));
+    case NodeKind::UnionRound:
+      return union_round(a, b, radius(node));
+    case NodeKind::IntersectionRound:
+      return intersection_round(a, b, radius(node));
+    case NodeKind::DifferenceRound:
+      return intersection_round(a, -b, radius(node));
+    case NodeKind::UnionStairs:
+      return union_stairs(a, b, radius(node), steps(node));
+    case NodeKind::IntersectionStairs:
+      return -union_stairs(-a, -b, radius(node), steps(node));
+    case NodeKind::DifferenceStairs:
+      return -union_stairs(-a, b, radius(node), steps(node));
+    case NodeKind::UnionColumns:
+      return union_columns(a, b, radius(node), steps(node));
+    case NodeKind::IntersectionColumns:
+      return -union_columns(-a, -b, radius(node), steps(node));
+    case NodeKind::DifferenceColumns:
+      return -union_columns(-a, b, radius(node), steps(node));
+    case NodeKind::Xor:
+      return std::max(std::min(a, b), -std::max(a, b));
+    case NodeKind::Pipe:
+      return std::hypot(a, b) - radius(node);
+    case NodeKind::Engrave:
+      return std::max(a, engrave_cut(a, b, radius(node)));
+    case NodeKind::Groove:
+      return std::max(a, groove_cut(a, b, param(node, "ra"), param(node, "rb")));
+    case NodeKind::Tongue:
+      return std::min(a, tongue_part(a, b, param(node, "ra"), param(node, "rb")));
+      // Every kind that is not a blend.
 #define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind:
 #define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) case NodeKind::Kind:
 #define CLMARCH_BLEND(Kind, name, min_children, params_list)
@@ -121,21 +140,35 @@ SdfSample blend_sample(const Node& node, const SdfSample& a, const SdfSample& b)
     case NodeKind::UnionChamfer:
     case NodeKind::UnionRound:
     case NodeKind::UnionStairs:
-    case NodeKind::UnionColumns: first = !(db < da); break;
+    case NodeKind::UnionColumns:
+      first = !(db < da);
+      break;
     case NodeKind::IntersectionChamfer:
     case NodeKind::IntersectionRound:
     case NodeKind::IntersectionStairs:
-    case NodeKind::IntersectionColumns: first = !(db > da); break;
+    case NodeKind::IntersectionColumns:
+      first = !(db > da);
+      break;
     case NodeKind::DifferenceChamfer:
     case NodeKind::DifferenceRound:
     case NodeKind::DifferenceStairs:
-    case NodeKind::DifferenceColumns: first = da >= -db; break;
+    case NodeKind::DifferenceColumns:
+      first = da >= -db;
+      break;
     case NodeKind::Xor:
-    case NodeKind::Pipe: first = std::abs(da) <= std::abs(db); break;
-    case NodeKind::Engrave: first = da >= engrave_cut(da, db, radius(node)); break;
-    case NodeKind::Groove: first = da >= groove_cut(da, db, param(node, "ra"), param(node, "rb")); break;
-    case NodeKind::Tongue: first = da <= tongue_part(da, db, param(node, "ra"), param(node, "rb")); break;
-    // Every kind that is not a blend.
+    case NodeKind::Pipe:
+      first = std::abs(da) <= std::abs(db);
+      break;
+    case NodeKind::Engrave:
+      first = da >= engrave_cut(da, db, radius(node));
+      break;
+    case NodeKind::Groove:
+      first = da >= groove_cut(da, db, param(node, "ra"), param(node, "rb"));
+      break;
+    case NodeKind::Tongue:
+      first = da <= tongue_part(da, db, param(node, "ra"), param(node, "rb"));
+      break;
+      // Every kind that is not a blend.
 #define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind:
 #define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) case NodeKind::Kind:
 #define CLMARCH_BLEND(Kind, name, min_children, params_list)

@@ -72,9 +72,9 @@ double sd_rounded_cylinder(const glm::dvec3& p, const RoundedCylinder& cylinder)
   const glm::dvec2 q(r.x, std::abs(r.y));
   const double radius = cylinder.radius, h = cylinder.half_height, e = cylinder.edge_radius;
   const glm::dvec2 corner(radius - e, h - e);
-  const double nearest = std::min({distance_to_segment(q, {0.0, h}, {radius - e, h}),
-                                   distance_to_segment(q, {radius, 0.0}, {radius, h - e}),
-                                   distance_to_arc(q, corner, e, 0.0, 0.5 * kPi)});
+  const double nearest =
+      std::min({distance_to_segment(q, {0.0, h}, {radius - e, h}),
+                distance_to_segment(q, {radius, 0.0}, {radius, h - e}), distance_to_arc(q, corner, e, 0.0, 0.5 * kPi)});
   const bool in_box = q.x <= radius && q.y <= h;
   const bool in_corner_square = q.x > corner.x && q.y > corner.y;
   const bool inside = in_box && (!in_corner_square || glm::length(q - corner) <= e);
@@ -96,8 +96,9 @@ double sd_round_cone(const glm::dvec3& p, const RoundCone& cone) {
   const glm::dvec2 n(std::sqrt(1.0 - ny * ny), ny);
   const glm::dvec2 ta = ca + ra * n, tb = cb + rb * n;
   const double tangent_angle = std::atan2(n.y, n.x);
-  const double nearest = std::min({distance_to_arc(q, ca, ra, -0.5 * kPi, tangent_angle), distance_to_segment(q, ta, tb),
-                                   distance_to_arc(q, cb, rb, tangent_angle, 0.5 * kPi)});
+  const double nearest =
+      std::min({distance_to_arc(q, ca, ra, -0.5 * kPi, tangent_angle), distance_to_segment(q, ta, tb),
+                distance_to_arc(q, cb, rb, tangent_angle, 0.5 * kPi)});
   // The hull is both discs and the trapezoid ca, ta, tb, cb between them.
   const auto left_of = [&](const glm::dvec2& from, const glm::dvec2& to) {
     const glm::dvec2 e = to - from;
@@ -129,7 +130,8 @@ double sd_link(const glm::dvec3& p, const Link& link) {
   // radius R about (0, +-half_length) beyond them, measured in space.
   const glm::dvec3 l = p - link.center;
   const double r = link.major_radius, h = link.half_length;
-  double spine = std::min(distance_to_segment(l, {r, -h, 0.0}, {r, h, 0.0}), distance_to_segment(l, {-r, -h, 0.0}, {-r, h, 0.0}));
+  double spine =
+      std::min(distance_to_segment(l, {r, -h, 0.0}, {r, h, 0.0}), distance_to_segment(l, {-r, -h, 0.0}, {-r, h, 0.0}));
   for (const double side : {1.0, -1.0}) {
     // Beyond the end (the half plane away from the centre), the nearest point of the half
     // circle is in p's direction about the end's centre; elsewhere it is a bar's end.
@@ -145,7 +147,8 @@ double sd_cut_sphere(const glm::dvec3& p, const CutSphere& cut) {
   const glm::dvec2 q = profile_point(p, cut.center);
   const double r = cut.radius, h = cut.cut_height;
   const double w = std::sqrt(r * r - h * h);
-  const double nearest = std::min(distance_to_segment(q, {0.0, h}, {w, h}), distance_to_arc(q, {0.0, 0.0}, r, std::atan2(h, w), 0.5 * kPi));
+  const double nearest = std::min(distance_to_segment(q, {0.0, h}, {w, h}),
+                                  distance_to_arc(q, {0.0, 0.0}, r, std::atan2(h, w), 0.5 * kPi));
   const bool inside = glm::length(q) <= r && q.y >= h;
   return inside ? -nearest : nearest;
 }
@@ -156,7 +159,8 @@ double sd_pyramid(const glm::dvec3& p, const Pyramid& pyramid) {
   const double s = pyramid.half_width;
   const glm::dvec3 apex(0.0, pyramid.height, 0.0);
   const glm::dvec3 corners[4] = {{s, 0.0, s}, {-s, 0.0, s}, {-s, 0.0, -s}, {s, 0.0, -s}};
-  double nearest = std::min(triangle_distance(l, corners[0], corners[1], corners[2]), triangle_distance(l, corners[0], corners[2], corners[3]));
+  double nearest = std::min(triangle_distance(l, corners[0], corners[1], corners[2]),
+                            triangle_distance(l, corners[0], corners[2], corners[3]));
   bool inside = l.y >= 0.0;
   for (int i = 0; i < 4; ++i) {
     const glm::dvec3& u = corners[i];
@@ -176,7 +180,8 @@ double sd_triangle(const glm::dvec3& p, const Triangle& triangle) {
 
 double sd_quad(const glm::dvec3& p, const Quad& quad) {
   // Split along the diagonal a-c into two triangles.
-  return std::min(triangle_distance(p, quad.a, quad.b, quad.c), triangle_distance(p, quad.a, quad.c, quad.d)) - quad.thickness;
+  return std::min(triangle_distance(p, quad.a, quad.b, quad.c), triangle_distance(p, quad.a, quad.c, quad.d)) -
+         quad.thickness;
 }
 
 double sd_triangular_prism(const glm::dvec3& p, const TriangularPrism& prism) {
@@ -202,7 +207,8 @@ double sd_solid_angle(const glm::dvec3& p, const SolidAngle& sector) {
   const glm::dvec2 q = profile_point(p, sector.center);
   const double a = radians(sector.angle), r = sector.radius;
   const glm::dvec2 edge = r * glm::dvec2(std::sin(a), std::cos(a));
-  const double nearest = std::min(distance_to_segment(q, {0.0, 0.0}, edge), distance_to_arc(q, {0.0, 0.0}, r, 0.5 * kPi - a, 0.5 * kPi));
+  const double nearest =
+      std::min(distance_to_segment(q, {0.0, 0.0}, edge), distance_to_arc(q, {0.0, 0.0}, r, 0.5 * kPi - a, 0.5 * kPi));
   const bool inside = glm::length(q) <= r && std::atan2(q.x, q.y) <= a;
   return inside ? -nearest : nearest;
 }

@@ -31,7 +31,8 @@ BlockCone block_cone(const CameraBasis& basis, int x0, int y0, int x1, int y1) {
   cone.axis = camera_ray_direction(basis, 0.5 * (x0 + x1) + 0.5, 0.5 * (y0 + y1) + 0.5);
   double chord = 0.0;
   for (int x : {x0, x1}) {
-    for (int y : {y0, y1}) chord = std::max(chord, glm::length(camera_ray_direction(basis, x + 0.5, y + 0.5) - cone.axis));
+    for (int y : {y0, y1})
+      chord = std::max(chord, glm::length(camera_ray_direction(basis, x + 0.5, y + 0.5) - cone.axis));
   }
   // The same growth as the kernel's, which covers its float directions.
   cone.spread = chord * 1.001 + 1e-6;
@@ -63,7 +64,8 @@ ConeStarts reference_cone_starts(const Scene& scene) {
   cones.steps.assign(cones.start.size(), 0);
   tbb::parallel_for(0, static_cast<int>(cones.start.size()), [&](int b) {
     const int x0 = (b % cones.blocks_x) * kBlock, y0 = (b / cones.blocks_x) * kBlock;
-    const BlockCone cone = block_cone(basis, x0, y0, std::min(x0 + kBlock, width) - 1, std::min(y0 + kBlock, height) - 1);
+    const BlockCone cone =
+        block_cone(basis, x0, y0, std::min(x0 + kBlock, width) - 1, std::min(y0 + kBlock, height) - 1);
     const double k = cone.spread, slope = limits.hit_cone_slope;
     double t = t_first;
     int steps = 0;
@@ -72,7 +74,8 @@ ConeStarts reference_cone_starts(const Scene& scene) {
       ++steps;
       // Each ray's field up to depth t + s stays >= d - k (t + s) - s; keep it above the hit
       // threshold there, max(epsilon, slope (t + s)), plus the glow radius.
-      const double s = std::min((d - limits.epsilon - margin - k * t) / (1.0 + k), (d - margin - (k + slope) * t) / (1.0 + k + slope));
+      const double s = std::min((d - limits.epsilon - margin - k * t) / (1.0 + k),
+                                (d - margin - (k + slope) * t) / (1.0 + k + slope));
       if (!(s >= kStopFraction * d)) break;
       t = std::min(t + s, t_last);
     }

@@ -100,7 +100,8 @@ double sd_julia(const glm::dvec3& p, const Julia& julia) {
   }
   // An orbit that stays is on or in the set; one through 0 (at the centre) has dz = 0 and is capped.
   const double r = glm::length(z);
-  const double estimate = r <= kBailout ? 0.0 : std::min(0.5 * r * std::log(r) / std::max(dz, kTinyRadius), kEstimateCap);
+  const double estimate =
+      r <= kBailout ? 0.0 : std::min(0.5 * r * std::log(r) / std::max(dz, kTinyRadius), kEstimateCap);
   return std::max(glm::length(q) - julia_radius(julia.c), estimate);
 }
 

@@ -1,5 +1,6 @@
 // Reference distance estimators of the fractal primitives, in double: the Mandelbulb, Inigo
-// Quilez's Menger sponge, the Sierpinski tetrahedron, the Mandelbox and the quaternion Julia set. Written apart from kernels/fractals.cl; the two are compared in tests.
+// Quilez's Menger sponge, the Sierpinski tetrahedron, the Mandelbox and the quaternion Julia set. Written apart from
+// kernels/fractals.cl; the two are compared in tests.
 #pragma once
 
 #include "scene/scene.hpp"

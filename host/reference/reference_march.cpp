@@ -36,8 +36,8 @@ double hit_threshold(const MarchLimits& limits, double t) {
 // t - d <= safe = t_prev + d_prev (where plain sphere tracing would be). A sample that fails this
 // may lie past the surface: it is discarded without a hit test, t goes back to safe and the ray
 // marches plainly from there (omega = 1 for the rest of the ray).
-MarchEnd march_plain(const Field& field, const glm::dvec3& origin, const glm::dvec3& direction, double t_start, double t_end,
-                     const MarchLimits& limits) {
+MarchEnd march_plain(const Field& field, const glm::dvec3& origin, const glm::dvec3& direction, double t_start,
+                     double t_end, const MarchLimits& limits) {
   MarchEnd end;
   double t = t_start;
   double previous = 1e20;

@@ -87,8 +87,7 @@ NoiseSample value_noise(const glm::dvec2& q, std::uint32_t seed) {
   const double c = noise_hash01(ix, iz + 1u, seed);
   const double d = noise_hash01(ix + 1u, iz + 1u, seed);
   const double k = a - b - c + d;
-  return {a + (b - a) * u.x + (c - a) * u.y + k * u.x * u.y,
-          du * glm::dvec2((b - a) + k * u.y, (c - a) + k * u.x)};
+  return {a + (b - a) * u.x + (c - a) * u.y + k * u.x * u.y, du * glm::dvec2((b - a) + k * u.y, (c - a) + k * u.x)};
 }
 
 double perlin_noise(const glm::dvec2& q, std::uint32_t seed) {

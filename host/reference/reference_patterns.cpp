@@ -22,7 +22,8 @@ double cell_of(double v, double size) { return std::floor(v / size); }
 double expression_at(const std::string& text, const glm::dvec3& q, double time) {
   thread_local std::unordered_map<std::string, std::unique_ptr<CompiledExpression>> compiled;
   std::unique_ptr<CompiledExpression>& expression = compiled[text];
-  if (!expression) expression = std::make_unique<CompiledExpression>(text, std::vector<std::string>{"x", "y", "z", "t"});
+  if (!expression)
+    expression = std::make_unique<CompiledExpression>(text, std::vector<std::string>{"x", "y", "z", "t"});
   return (*expression)({q.x, q.y, q.z, time});
 }
 
@@ -33,12 +34,14 @@ glm::dvec3 reference_pattern_color(const ColorPattern& pattern, const glm::dvec3
   switch (pattern.kind) {
     case ColorPattern::Kind::Checker:
       return pattern.colors[is_odd(cell_of(q.x, s) + cell_of(q.y, s) + cell_of(q.z, s)) ? 1 : 0];
-    case ColorPattern::Kind::Stripes: return pattern.colors[is_odd(cell_of(q[pattern.axis], s)) ? 1 : 0];
+    case ColorPattern::Kind::Stripes:
+      return pattern.colors[is_odd(cell_of(q[pattern.axis], s)) ? 1 : 0];
     case ColorPattern::Kind::Grid: {
       bool line = false;
       for (int axis = 0; axis < 3; ++axis) {
         const double c = q[axis];
-        line = line || (pattern.grid_axes[axis] && std::abs(c - s * std::floor(c / s + 0.5)) < 0.5 * pattern.line_width);
+        line =
+            line || (pattern.grid_axes[axis] && std::abs(c - s * std::floor(c / s + 0.5)) < 0.5 * pattern.line_width);
       }
       return pattern.colors[line ? 1 : 0];
     }

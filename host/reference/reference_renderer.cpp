@@ -42,9 +42,12 @@ glm::dvec3 forward_normal(const Field& f, const glm::dvec3& p, double h) {
 
 glm::dvec3 normal_of(const Field& f, const glm::dvec3& p, NormalMethod method, double h) {
   switch (method) {
-    case NormalMethod::Central: return central_normal(f, p, h);
-    case NormalMethod::Tetrahedral: return tetrahedral_normal(f, p, h);
-    case NormalMethod::Forward: return forward_normal(f, p, h);
+    case NormalMethod::Central:
+      return central_normal(f, p, h);
+    case NormalMethod::Tetrahedral:
+      return tetrahedral_normal(f, p, h);
+    case NormalMethod::Forward:
+      return forward_normal(f, p, h);
   }
   return glm::dvec3(0.0);
 }
@@ -63,7 +66,8 @@ void set_material(const Scene& scene, SurfacePoint& s) {
 }
 
 /// The surface where a march from world point world_origin along direction ended with a hit.
-SurfacePoint surface_at(const Scene& scene, const MarchEnd& end, const glm::dvec3& world_origin, const glm::dvec3& direction) {
+SurfacePoint surface_at(const Scene& scene, const MarchEnd& end, const glm::dvec3& world_origin,
+                        const glm::dvec3& direction) {
   SurfacePoint s;
   s.local = end.local;
   s.world = world_origin + end.depth * direction;
@@ -181,8 +185,8 @@ RayResult trace_within(const Scene& scene, const RayClip& bounds, const glm::dve
   RayResult r;
   r.steps = end.steps;
   r.wall_steps = end.wall_steps;
-  r.status = end.hit         ? RayStatus::Hit
-             : end.exhausted ? RayStatus::OutOfSteps
+  r.status = end.hit                                  ? RayStatus::Hit
+             : end.exhausted                          ? RayStatus::OutOfSteps
              : end.depth >= scene.render.max_distance ? RayStatus::OutOfDistance
                                                       : RayStatus::Miss;
   if (!end.hit) {
@@ -208,9 +212,7 @@ RayResult reference_trace(const Scene& scene, const glm::dvec3& origin, const gl
   return trace_within(scene, ray_clip(scene), origin, direction);
 }
 
-FrameBuffers render_reference(const Scene& scene) {
-  return render_reference(scene, reference_cones_if_used(scene));
-}
+FrameBuffers render_reference(const Scene& scene) { return render_reference(scene, reference_cones_if_used(scene)); }
 
 FrameBuffers render_reference(const Scene& scene, const std::optional<ConeStarts>& cones) {
   const int width = scene.render.width;
@@ -228,12 +230,14 @@ FrameBuffers render_reference(const Scene& scene, const std::optional<ConeStarts
       // after its row; keep both).
       throw_if_cancelled();
       for (int i = 0; i < width; ++i) {
-        const RayResult r = trace_within(scene, bounds, basis.origin, pixel_ray_direction(basis, i, j), cones ? cones->at_pixel(i, j) : 0.0);
+        const RayResult r = trace_within(scene, bounds, basis.origin, pixel_ray_direction(basis, i, j),
+                                         cones ? cones->at_pixel(i, j) : 0.0);
         fb.at(Channel::R, i, j) = static_cast<float>(r.color.r);
         fb.at(Channel::G, i, j) = static_cast<float>(r.color.g);
         fb.at(Channel::B, i, j) = static_cast<float>(r.color.b);
         fb.at(Channel::Depth, i, j) = static_cast<float>(r.depth);
-        if (fb.has_depth_lo && r.hit) fb.at(Channel::DepthLo, i, j) = static_cast<float>(r.depth - static_cast<float>(r.depth));
+        if (fb.has_depth_lo && r.hit)
+          fb.at(Channel::DepthLo, i, j) = static_cast<float>(r.depth - static_cast<float>(r.depth));
         fb.at(Channel::Steps, i, j) = static_cast<float>(r.steps);
         fb.at(Channel::Status, i, j) = static_cast<float>(r.status);
         fb.at(Channel::NX, i, j) = static_cast<float>(r.normal.x);
@@ -262,10 +266,11 @@ FrameBuffers render_reference(const Scene& scene, const std::optional<ConeStarts
         if (!sums.refine()[at]) continue;
         for (int k = 1; k < count; ++k) {
           const glm::dvec2 point = sample_point(k, count);
-          const RayResult r = trace_within(scene, bounds, basis.origin, camera_ray_direction(basis, i + point.x, j + point.y));
+          const RayResult r =
+              trace_within(scene, bounds, basis.origin, camera_ray_direction(basis, i + point.x, j + point.y));
           const glm::dvec3 terms[3] = {r.layers.ambient, r.layers.diffuse, r.layers.specular};
-          float values[13] = {static_cast<float>(r.color.r), static_cast<float>(r.color.g), static_cast<float>(r.color.b),
-                              r.hit ? 1.0f : 0.0f};
+          float values[13] = {static_cast<float>(r.color.r), static_cast<float>(r.color.g),
+                              static_cast<float>(r.color.b), r.hit ? 1.0f : 0.0f};
           for (int k = 0; k < 9; ++k) values[4 + k] = static_cast<float>(terms[k / 3][k % 3]);
           sums.add(at, values);
         }
@@ -293,7 +298,8 @@ FrameBuffers reshade_hits(const Scene& scene, const FrameBuffers& render) {
         hit.world = basis.origin + depth * direction;
         // The float normal is unit only to float's rounding, which 1 - (n.h)^2 in the GGX
         // distribution would turn into its whole value at a low roughness (a^2 ~ 1e-7).
-        hit.normal = normalize_or_zero(glm::dvec3(render.at(Channel::NX, i, j), render.at(Channel::NY, i, j), render.at(Channel::NZ, i, j)));
+        hit.normal = normalize_or_zero(
+            glm::dvec3(render.at(Channel::NX, i, j), render.at(Channel::NY, i, j), render.at(Channel::NZ, i, j)));
         set_material(scene, hit);
         hit.steps = static_cast<int>(render.at(Channel::Steps, i, j));
         const HitColor seen = hit_color(scene, hit, direction, depth);

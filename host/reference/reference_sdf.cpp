@@ -36,20 +36,14 @@ glm::dvec3 mix(const glm::dvec3& x, const glm::dvec3& y, double h) { return x + 
 double max_component(const glm::dvec3& v) { return std::max(v.x, std::max(v.y, v.z)); }
 
 // Shared by sd_box and sd_round_box: the box of half size h (already subtracted) in q.
-double box_from_q(const glm::dvec3& q) {
-  return glm::length(glm::max(q, 0.0)) + std::min(max_component(q), 0.0);
-}
+double box_from_q(const glm::dvec3& q) { return glm::length(glm::max(q, 0.0)) + std::min(max_component(q), 0.0); }
 
 // Blend weights of the smooth operators; the sample overloads reuse them for colors.
-double smooth_union_weight(double a, double b, double k) {
-  return std::clamp(0.5 + 0.5 * (b - a) / k, 0.0, 1.0);
-}
+double smooth_union_weight(double a, double b, double k) { return std::clamp(0.5 + 0.5 * (b - a) / k, 0.0, 1.0); }
 double smooth_intersection_weight(double a, double b, double k) {
   return std::clamp(0.5 - 0.5 * (b - a) / k, 0.0, 1.0);
 }
-double smooth_subtraction_weight(double a, double b, double k) {
-  return std::clamp(0.5 - 0.5 * (a + b) / k, 0.0, 1.0);
-}
+double smooth_subtraction_weight(double a, double b, double k) { return std::clamp(0.5 - 0.5 * (a + b) / k, 0.0, 1.0); }
 
 [[noreturn]] void malformed(const Node& node, const std::string& what) {
   throw std::invalid_argument("reference_sdf: " + std::string(node_kind_name(node.kind)) + " node " + what);
@@ -121,7 +115,8 @@ SdfSample sample_local(const Node& node, const glm::dvec3& p, const Material& ma
   // One switch over every kind, without default, so -Wswitch flags a kind added to the list.
   switch (node.kind) {
 #define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) \
-  case NodeKind::Kind: return S{sd_##name(p, params<Kind>(node)), color};
+  case NodeKind::Kind:                                            \
+    return S{sd_##name(p, params<Kind>(node)), color};
 #include "scene/node_kinds.def"
     case NodeKind::Union:
       return fold_children(node, p, material, colored, [](const S& a, const S& b) { return op_union(a, b); });
@@ -140,7 +135,8 @@ SdfSample sample_local(const Node& node, const glm::dvec3& p, const Material& ma
                          [](const S& a, const S& b, double k) { return op_smooth_subtraction(a, b, k); });
 #define CLMARCH_BLEND(Kind, name, min_children, params_list) case NodeKind::Kind:
 #include "scene/node_kinds.def"
-      return fold_children(node, p, material, colored, [&](const S& a, const S& b) { return blend_sample(node, a, b); });
+      return fold_children(node, p, material, colored,
+                           [&](const S& a, const S& b) { return blend_sample(node, a, b); });
     case NodeKind::Repeat: {
       glm::dvec3 q = p;
       for (int a = 0; a < 3; ++a) {
@@ -199,7 +195,8 @@ SdfSample sample_local(const Node& node, const glm::dvec3& p, const Material& ma
       return s;
     }
     case NodeKind::Twist:
-    case NodeKind::Bend: return sample_turned(node, p, material, colored);
+    case NodeKind::Bend:
+      return sample_turned(node, p, material, colored);
     case NodeKind::NonuniformScale: {
       const glm::dvec3& f = params<NonuniformScale>(node).factors;
       S s = only_child(node, p / f, material, colored);
@@ -292,8 +289,8 @@ double sd_capsule(const glm::dvec3& p, const Capsule& capsule) {
 
 double sd_cylinder(const glm::dvec3& p, const Cylinder& cylinder) {
   const glm::dvec3 q = p - cylinder.center;
-  const glm::dvec2 d = glm::abs(glm::dvec2(glm::length(glm::dvec2(q.x, q.z)), q.y)) -
-                       glm::dvec2(cylinder.radius, cylinder.half_height);
+  const glm::dvec2 d =
+      glm::abs(glm::dvec2(glm::length(glm::dvec2(q.x, q.z)), q.y)) - glm::dvec2(cylinder.radius, cylinder.half_height);
   return std::min(std::max(d.x, d.y), 0.0) + glm::length(glm::max(d, 0.0));
 }
 
@@ -333,20 +330,23 @@ namespace {
 /// The rectangle's corners about centre, counter-clockwise.
 std::vector<glm::dvec2> rectangle_corners(const glm::dvec3& center, double half_width, double half_height) {
   const glm::dvec2 c(center);
-  return {c + glm::dvec2(-half_width, -half_height), c + glm::dvec2(half_width, -half_height), c + glm::dvec2(half_width, half_height),
-          c + glm::dvec2(-half_width, half_height)};
+  return {c + glm::dvec2(-half_width, -half_height), c + glm::dvec2(half_width, -half_height),
+          c + glm::dvec2(half_width, half_height), c + glm::dvec2(-half_width, half_height)};
 }
 
 }  // namespace
 
 double sd_rectangle(const glm::dvec3& p, const Rectangle& rectangle) {
-  return convex_polygon_distance(glm::dvec2(p), rectangle_corners(rectangle.center, rectangle.half_width, rectangle.half_height));
+  return convex_polygon_distance(glm::dvec2(p),
+                                 rectangle_corners(rectangle.center, rectangle.half_width, rectangle.half_height));
 }
 
 double sd_rounded_rectangle(const glm::dvec3& p, const RoundedRectangle& rectangle) {
   // The points within radius of the rectangle shrunk by radius.
   const double r = rectangle.radius;
-  return convex_polygon_distance(glm::dvec2(p), rectangle_corners(rectangle.center, rectangle.half_width - r, rectangle.half_height - r)) - r;
+  return convex_polygon_distance(
+             glm::dvec2(p), rectangle_corners(rectangle.center, rectangle.half_width - r, rectangle.half_height - r)) -
+         r;
 }
 
 double sd_segment(const glm::dvec3& p, const Segment& segment) {
@@ -368,9 +368,11 @@ double sd_capped_cone(const glm::dvec3& p, const CappedCone& cone) {
   const glm::dvec3 l = p - cone.center;
   const glm::dvec2 q(glm::length(glm::dvec2(l.x, l.z)), l.y);
   const double h = cone.half_height;
-  const glm::dvec2 bottom_axis(0.0, -h), bottom_rim(cone.bottom_radius, -h), top_rim(cone.top_radius, h), top_axis(0.0, h);
-  const double nearest = std::min({distance_to_segment(q, bottom_axis, bottom_rim), distance_to_segment(q, bottom_rim, top_rim),
-                                   distance_to_segment(q, top_rim, top_axis)});
+  const glm::dvec2 bottom_axis(0.0, -h), bottom_rim(cone.bottom_radius, -h), top_rim(cone.top_radius, h),
+      top_axis(0.0, h);
+  const double nearest =
+      std::min({distance_to_segment(q, bottom_axis, bottom_rim), distance_to_segment(q, bottom_rim, top_rim),
+                distance_to_segment(q, top_rim, top_axis)});
   const double radius_at_y = cone.bottom_radius + (cone.top_radius - cone.bottom_radius) * (q.y + h) / (2.0 * h);
   const bool inside = std::abs(q.y) <= h && q.x <= radius_at_y;
   return inside ? -nearest : nearest;
@@ -413,20 +415,28 @@ SdfSample op_subtraction(const SdfSample& a, const SdfSample& b) {
 
 SdfSample op_smooth_union(const SdfSample& a, const SdfSample& b, double k) {
   const double h = smooth_union_weight(a.distance, b.distance, k);
-  return {op_smooth_union(a.distance, b.distance, k), mix(b.color, a.color, h), mix(b.surface, a.surface, h),
-          h >= 0.5 ? a.primitive : b.primitive, mix(b.finish, a.finish, h), mix(b.emission, a.emission, h)};
+  return {op_smooth_union(a.distance, b.distance, k), mix(b.color, a.color, h),   mix(b.surface, a.surface, h),
+          h >= 0.5 ? a.primitive : b.primitive,       mix(b.finish, a.finish, h), mix(b.emission, a.emission, h)};
 }
 
 SdfSample op_smooth_intersection(const SdfSample& a, const SdfSample& b, double k) {
   const double h = smooth_intersection_weight(a.distance, b.distance, k);
-  return {op_smooth_intersection(a.distance, b.distance, k), mix(b.color, a.color, h), mix(b.surface, a.surface, h),
-          h >= 0.5 ? a.primitive : b.primitive, mix(b.finish, a.finish, h), mix(b.emission, a.emission, h)};
+  return {op_smooth_intersection(a.distance, b.distance, k),
+          mix(b.color, a.color, h),
+          mix(b.surface, a.surface, h),
+          h >= 0.5 ? a.primitive : b.primitive,
+          mix(b.finish, a.finish, h),
+          mix(b.emission, a.emission, h)};
 }
 
 SdfSample op_smooth_subtraction(const SdfSample& a, const SdfSample& b, double k) {
   const double h = smooth_subtraction_weight(a.distance, b.distance, k);
-  return {op_smooth_subtraction(a.distance, b.distance, k), mix(a.color, b.color, h), mix(a.surface, b.surface, h),
-          h >= 0.5 ? b.primitive : a.primitive, mix(a.finish, b.finish, h), mix(a.emission, b.emission, h)};
+  return {op_smooth_subtraction(a.distance, b.distance, k),
+          mix(a.color, b.color, h),
+          mix(a.surface, b.surface, h),
+          h >= 0.5 ? b.primitive : a.primitive,
+          mix(a.finish, b.finish, h),
+          mix(a.emission, b.emission, h)};
 }
 
 }  // namespace clmarch

@@ -32,7 +32,8 @@ SdfSample reference_sample(const Node& root, const glm::dvec3& p, const Material
 
 // Primitives, p in the primitive's local frame: sd_<name>(p, parameters) for each primitive of
 // scene/node_kinds.def, which says whether it is exact.
-#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) double sd_##name(const glm::dvec3& p, const Kind& params);
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) \
+  double sd_##name(const glm::dvec3& p, const Kind& params);
 #include "scene/node_kinds.def"
 
 // Operators on distances. Union of exact distances is exact outside and a bound inside;

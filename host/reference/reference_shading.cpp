@@ -9,12 +9,16 @@
 namespace clmarch {
 namespace {
 
-double specular_term(ShadingModel model, const glm::dvec3& n, const glm::dvec3& l, const glm::dvec3& v, double shininess) {
+double specular_term(ShadingModel model, const glm::dvec3& n, const glm::dvec3& l, const glm::dvec3& v,
+                     double shininess) {
   switch (model) {
-    case ShadingModel::Phong: return std::pow(std::max(glm::dot(glm::reflect(-l, n), v), 0.0), shininess);
-    case ShadingModel::BlinnPhong: return std::pow(std::max(glm::dot(n, normalize_or_zero(l + v)), 0.0), shininess);
+    case ShadingModel::Phong:
+      return std::pow(std::max(glm::dot(glm::reflect(-l, n), v), 0.0), shininess);
+    case ShadingModel::BlinnPhong:
+      return std::pow(std::max(glm::dot(n, normalize_or_zero(l + v)), 0.0), shininess);
     case ShadingModel::Lambert:
-    case ShadingModel::Pbr: return 0.0;
+    case ShadingModel::Pbr:
+      return 0.0;
   }
   return 0.0;
 }
@@ -45,7 +49,8 @@ Reflection pbr_light(const glm::dvec3& n, const glm::dvec3& l, const glm::dvec3&
   return {diffuse * n_dot_l, fresnel * specular * n_dot_l};
 }
 
-Reflection classic_light(const Shading& sh, const glm::dvec3& n, const glm::dvec3& l, const glm::dvec3& v, const Material& m) {
+Reflection classic_light(const Shading& sh, const glm::dvec3& n, const glm::dvec3& l, const glm::dvec3& v,
+                         const Material& m) {
   const double n_dot_l = std::max(glm::dot(n, l), 0.0);
   const double specular = n_dot_l > 0.0 ? specular_term(sh.model, n, l, v, m.shininess) : 0.0;
   return {m.albedo * (sh.diffuse * n_dot_l), glm::dvec3(m.specular * specular)};
@@ -86,7 +91,8 @@ double light_reach(const Light& light, const glm::dvec3& l, double distance) {
   }
   if (light.kind == LightKind::Spot) {
     const double cos_angle = glm::dot(-l, light.axis);
-    const double cos_inner = std::cos(light.inner_angle * M_PI / 180.0), cos_outer = std::cos(light.outer_angle * M_PI / 180.0);
+    const double cos_inner = std::cos(light.inner_angle * M_PI / 180.0),
+                 cos_outer = std::cos(light.outer_angle * M_PI / 180.0);
     if (cos_inner > cos_outer) {
       const double s = std::clamp((cos_angle - cos_outer) / (cos_inner - cos_outer), 0.0, 1.0);
       reach *= s * s * (3.0 - 2.0 * s);
@@ -112,7 +118,8 @@ LightTerms reference_light_terms(const Scene& scene, const SurfacePoint& s, cons
   for (const Light& light : scene.lights) {
     const bool positional = light.kind != LightKind::Directional;
     const glm::dvec3 l = positional ? normalize_or_zero(light.position - s.world) : light.direction;
-    const Reflection lit = sh.model == ShadingModel::Pbr ? pbr_light(s.normal, l, v, s.material) : classic_light(sh, s.normal, l, v, s.material);
+    const Reflection lit = sh.model == ShadingModel::Pbr ? pbr_light(s.normal, l, v, s.material)
+                                                         : classic_light(sh, s.normal, l, v, s.material);
     const double distance = positional ? glm::length(light.position - s.world) : 0.0;
     glm::dvec3 reaching = light.color * light.intensity * light_reach(light, l, distance);
     if (sh.shadows && light.shadows && glm::dot(s.normal, l) > 0.0) {
@@ -161,8 +168,8 @@ glm::dvec3 reference_fog(const Scene& scene, const glm::dvec3& color_in, const g
     // The density a exp(-b y) integrated along the ray from height y0 to y1 = y0 + t dy:
     // (a / (b dy)) (exp(-b y0) - exp(-b y1)), whose limit for a level ray is a exp(-b y0) t.
     const double y1 = y0 + depth * d.y;
-    const double amount = std::abs(d.y) < 1e-5 ? a * std::exp(-y0 * b) * depth
-                                                : a / (b * d.y) * (std::exp(-b * y0) - std::exp(-b * y1));
+    const double amount =
+        std::abs(d.y) < 1e-5 ? a * std::exp(-y0 * b) * depth : a / (b * d.y) * (std::exp(-b * y0) - std::exp(-b * y1));
     const double sun = std::pow(std::max(glm::dot(d, f.sun_direction), 0.0), f.sun_power);
     const glm::dvec3 fog = f.color + (f.sun_color - f.color) * sun;
     color = color + (fog - color) * std::clamp(amount, 0.0, 1.0);

@@ -11,7 +11,8 @@ std::optional<ConePass> make_cone_pass(const PreparedProgram& program, const Sce
   if (!uses_cone_pass(scene)) return std::nullopt;
   const DeviceProgram& dp = program.program;
   ConePass cones;
-  cones.blocks = static_cast<std::size_t>(CLMARCH_COARSE_BLOCKS(scene.render.width)) * CLMARCH_COARSE_BLOCKS(scene.render.height);
+  cones.blocks =
+      static_cast<std::size_t>(CLMARCH_COARSE_BLOCKS(scene.render.width)) * CLMARCH_COARSE_BLOCKS(scene.render.height);
   cones.dispatch = plan_point_dispatch(dp.device, cones.blocks, program.lanes);
   // The kernel stores whole vectors of lanes, padding included.
   const std::size_t bytes = cones.dispatch.plane_stride * sizeof(float);

@@ -162,7 +162,8 @@ std::vector<LightParams> light_data(const Scene& scene) {
   for (const Light& light : scene.lights) {
     LightParams params{};
     params.kind = static_cast<cl_int>(light.kind);
-    params.where = light.kind == LightKind::Directional ? to_cl(light.direction) : to_cl(light.position - scene.camera.position);
+    params.where =
+        light.kind == LightKind::Directional ? to_cl(light.direction) : to_cl(light.position - scene.camera.position);
     params.radiance = to_cl(light.color * light.intensity);
     params.spot_axis = to_cl(light.axis);
     params.falloff = static_cast<cl_int>(light.falloff);
@@ -178,7 +179,8 @@ std::vector<LightParams> light_data(const Scene& scene) {
 
 cl::Buffer make_light_buffer(const cl::Context& context, const Scene& scene) {
   std::vector<LightParams> lights = light_data(scene);
-  return cl::Buffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, lights.size() * sizeof(LightParams), lights.data());
+  return cl::Buffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, lights.size() * sizeof(LightParams),
+                    lights.data());
 }
 
 void write_lights(const cl::CommandQueue& queue, const cl::Context& context, const Scene& scene, cl::Buffer& lights) {
@@ -212,17 +214,18 @@ DeviceMemoryLimits device_memory_limits(const DeviceEntry& device) {
 std::string values_buffer_shortfall(std::uint64_t bytes, bool has_grid, const DeviceMemoryLimits& limits) {
   const std::uint64_t limit = has_grid ? limits.max_alloc : limits.max_constant;
   if (bytes <= limit) return {};
-  return fmt::format("the scene's values buffer ({}) needs {}, but the device {} allows at most {} bytes ({})",
-                     has_grid ? "its changing literals and its operand grid" : "its changing literals, in __constant memory",
-                     bytes_and_gibibytes(bytes), limits.device, limit,
-                     has_grid ? "CL_DEVICE_MAX_MEM_ALLOC_SIZE" : "CL_DEVICE_MAX_CONSTANT_BUFFER_SIZE");
+  return fmt::format(
+      "the scene's values buffer ({}) needs {}, but the device {} allows at most {} bytes ({})",
+      has_grid ? "its changing literals and its operand grid" : "its changing literals, in __constant memory",
+      bytes_and_gibibytes(bytes), limits.device, limit,
+      has_grid ? "CL_DEVICE_MAX_MEM_ALLOC_SIZE" : "CL_DEVICE_MAX_CONSTANT_BUFFER_SIZE");
 }
 
 std::optional<cl::Buffer> make_scene_values(const PreparedProgram& program, const Scene& scene) {
   const ProgramValues values = scene_values(scene, program.kernel_options);
   if (values.size() == 0) return std::nullopt;
-  const std::string shortfall =
-      values_buffer_shortfall(values.size() * sizeof(float), values.data != nullptr, device_memory_limits(program.program.device));
+  const std::string shortfall = values_buffer_shortfall(values.size() * sizeof(float), values.data != nullptr,
+                                                        device_memory_limits(program.program.device));
   if (!shortfall.empty()) throw InputError(fmt::format("{}: {}", scene.source_name, shortfall));
   cl::Buffer buffer(program.program.context, CL_MEM_READ_ONLY, values.size() * sizeof(float));
   write_program_values(program.program.queue, buffer, values);

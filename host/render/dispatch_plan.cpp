@@ -21,7 +21,8 @@ Dispatch plan_tile_dispatch(const PreparedProgram& program, int width, int heigh
   const std::size_t tile_width = packet_width(program.lanes);
   const std::size_t tile_height = packet_height(program.lanes);
   const std::size_t row_pixels = static_cast<std::size_t>(width);
-  const std::size_t rows_allowed = std::max<std::size_t>(tile_height, max_pixels / row_pixels / tile_height * tile_height);
+  const std::size_t rows_allowed =
+      std::max<std::size_t>(tile_height, max_pixels / row_pixels / tile_height * tile_height);
   const std::size_t rows = std::min(round_up(static_cast<std::size_t>(height), tile_height), rows_allowed);
   Dispatch d;
   d.local_items = default_local_size(program.program.device);
@@ -55,8 +56,8 @@ std::size_t march_output_bytes(const Dispatch& dispatch) {
   return dispatch.plane_stride * CLMARCH_CHANNEL_COUNT * sizeof(float);
 }
 
-void for_each_chunk(cl::CommandQueue& queue, cl::Kernel& kernel, MarchParams params, const Dispatch& dispatch, int height,
-                    const std::function<void(int first_row, int rows, const cl::Event& event)>& done) {
+void for_each_chunk(cl::CommandQueue& queue, cl::Kernel& kernel, MarchParams params, const Dispatch& dispatch,
+                    int height, const std::function<void(int first_row, int rows, const cl::Event& event)>& done) {
   for_each_chunk(queue, kernel, params, dispatch, 0, height, done);
 }
 
@@ -72,8 +73,8 @@ void for_each_chunk(cl::CommandQueue& queue, cl::Kernel& kernel, MarchParams par
     params.first_row = first_row;
     kernel.setArg(0, sizeof(MarchParams), &params);
     cl::Event event;
-    queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(dispatch.global_items), cl::NDRange(dispatch.local_items),
-                               nullptr, &event);
+    queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(dispatch.global_items),
+                               cl::NDRange(dispatch.local_items), nullptr, &event);
     done(first_row, std::min(dispatch.chunk_rows, end_row - first_row), event);
   }
 }

@@ -45,8 +45,8 @@ std::size_t march_output_bytes(const Dispatch& dispatch);
 /// Enqueues kernel (its argument 0 is params) once per chunk of rows and calls done(first_row, rows,
 /// event) after each dispatch was enqueued. Each dispatch writes the program's planes (PreparedProgram::
 /// planes) for every pixel of its rows. Polls cancellation between chunks.
-void for_each_chunk(cl::CommandQueue& queue, cl::Kernel& kernel, MarchParams params, const Dispatch& dispatch, int height,
-                    const std::function<void(int first_row, int rows, const cl::Event& event)>& done);
+void for_each_chunk(cl::CommandQueue& queue, cl::Kernel& kernel, MarchParams params, const Dispatch& dispatch,
+                    int height, const std::function<void(int first_row, int rows, const cl::Event& event)>& done);
 /// The same for image rows first_row .. end_row - 1 only (a band of a distributed render): first_row
 /// must be a multiple of the dispatch's tile height, so that every packet covers the pixels it
 /// covers in the whole image.

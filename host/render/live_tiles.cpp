@@ -44,7 +44,8 @@ TileRange live_tiles(const CameraBasis& basis, const glm::dvec3& c, double reach
       const double root = std::sqrt(discriminant);
       // The tiles whose centre lies between the roots, and one more on each side.
       first = std::max(0, static_cast<int>(std::ceil(tile_position((-b - root) / (2.0 * a), tile_width, columns))) - 1);
-      last = std::min(columns - 1, static_cast<int>(std::floor(tile_position((-b + root) / (2.0 * a), tile_width, columns))) + 1);
+      last = std::min(columns - 1,
+                      static_cast<int>(std::floor(tile_position((-b + root) / (2.0 * a), tile_width, columns))) + 1);
       if (first > last) continue;
     }  // a <= 0: g <= 0 beyond some x on a side, or everywhere; the whole row, which is safe
     live.first_column = std::min(live.first_column, first);

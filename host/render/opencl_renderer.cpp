@@ -93,10 +93,10 @@ OpenClRenderer::OpenClRenderer(const Scene& scene, const OpenClOptions& options)
       static_assert(kMaxSamples + 16 <= CLMARCH_SAMPLE_POINT_STRIDE, "every sample point and a vector's lanes past it");
       const bool layers = s.outputs.layers;
       const int float4s = CLMARCH_REFINED_FLOAT4S(layers);
-      s.antialias = AntialiasBuffers{cl::Buffer(dp.context, CL_MEM_READ_ONLY, kRefinePairs * sizeof(cl_int)),
-                                     cl::Buffer(dp.context, CL_MEM_READ_ONLY, 2 * CLMARCH_SAMPLE_POINT_STRIDE * sizeof(float)),
-                                     cl::Buffer(dp.context, CL_MEM_WRITE_ONLY, kRefinePairs * float4s * sizeof(cl_float4)),
-                                     float4s, layers};
+      s.antialias = AntialiasBuffers{
+          cl::Buffer(dp.context, CL_MEM_READ_ONLY, kRefinePairs * sizeof(cl_int)),
+          cl::Buffer(dp.context, CL_MEM_READ_ONLY, 2 * CLMARCH_SAMPLE_POINT_STRIDE * sizeof(float)),
+          cl::Buffer(dp.context, CL_MEM_WRITE_ONLY, kRefinePairs * float4s * sizeof(cl_float4)), float4s, layers};
       s.kernel.setArg(next_arg, s.antialias->refine_pixels);
       s.kernel.setArg(next_arg + 1, s.antialias->sample_points);
       s.kernel.setArg(next_arg + 2, s.antialias->refined_samples);
@@ -112,7 +112,8 @@ bool OpenClRenderer::can_render(const Scene& scene, const OpenClOptions& options
   if (scene.render.width != s.render.width || scene.render.height != s.render.height) return false;
   if (options.device != mine.device || options.lanes != mine.lanes || options.purpose != mine.purpose ||
       !(options.variant == mine.variant) || options.max_chunk_pixels != mine.max_chunk_pixels ||
-      options.value_slots != mine.value_slots || options.ray_status != mine.ray_status || !(scene_variant(scene, options.variant) == s.prepared.kernel_options.variant)) {
+      options.value_slots != mine.value_slots || options.ray_status != mine.ray_status ||
+      !(scene_variant(scene, options.variant) == s.prepared.kernel_options.variant)) {
     return false;
   }
   return program_key(scene, s.prepared.kernel_options) == s.prepared.key;
@@ -142,8 +143,8 @@ namespace {
 /// pair a lane (kernels/march.cl, sample_packet), at most kRefinePairs a dispatch; their means are
 /// written into buffers. Returns its kernel time.
 double refine_samples(const RenderSettings& render, PreparedProgram& prepared, cl::Kernel& kernel,
-                      const AntialiasBuffers& antialias, MarchParams params, const Dispatch& dispatch, int band_first_row,
-                      int end_row, FrameBuffers& buffers) {
+                      const AntialiasBuffers& antialias, MarchParams params, const Dispatch& dispatch,
+                      int band_first_row, int end_row, FrameBuffers& buffers) {
   const int count = render.samples;
   SampleSums sums(buffers, pixels_to_refine(buffers, render.adaptive), antialias.layers);
   const std::vector<std::uint8_t>& refine = sums.refine();
@@ -178,8 +179,10 @@ double refine_samples(const RenderSettings& render, PreparedProgram& prepared, c
     const std::size_t items = (packets + prepared.packets_per_item - 1) / prepared.packets_per_item;
     const std::size_t global = (items + dispatch.local_items - 1) / dispatch.local_items * dispatch.local_items;
     cl::Event done;
-    dp.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global), cl::NDRange(dispatch.local_items), nullptr, &done);
-    dp.queue.enqueueReadBuffer(antialias.refined_samples, CL_FALSE, 0, pairs * float4s * sizeof(cl_float4), samples.data());
+    dp.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global), cl::NDRange(dispatch.local_items),
+                                  nullptr, &done);
+    dp.queue.enqueueReadBuffer(antialias.refined_samples, CL_FALSE, 0, pairs * float4s * sizeof(cl_float4),
+                               samples.data());
     {
       const BlockingCall uninterruptible_wait;
       dp.queue.finish();
@@ -191,7 +194,8 @@ double refine_samples(const RenderSettings& render, PreparedProgram& prepared, c
       if (pair % lanes != 0 && pair % per_pixel != 0) continue;
       const cl_float4* sum = &samples[pair * float4s];
       std::copy(sum[0].s, sum[0].s + 4, values.begin());
-      for (std::size_t layer = 1; layer < float4s; ++layer) std::copy(sum[layer].s, sum[layer].s + 3, values.begin() + 1 + 3 * layer);
+      for (std::size_t layer = 1; layer < float4s; ++layer)
+        std::copy(sum[layer].s, sum[layer].s + 3, values.begin() + 1 + 3 * layer);
       sums.add(static_cast<std::size_t>(pixels[pair / per_pixel]), values.data());
     }
     pixels.clear();
@@ -221,10 +225,10 @@ RenderResult OpenClRenderer::render_rows(int band_first_row, int band_rows) {
   const int end_row = band_first_row + band_rows;
   const std::size_t pixels = static_cast<std::size_t>(width) * band_rows;
   static_assert(kBandRowAlignment % CLMARCH_COARSE_BLOCK == 0, "a band starts at a row of coarse blocks");
-  if (band_first_row < 0 || band_rows <= 0 || end_row > s.render.height ||
-      band_first_row % kBandRowAlignment != 0) {
-    throw std::logic_error(fmt::format("render_rows: rows {} .. {} of an image of {} rows, not starting at a multiple of {}",
-                                       band_first_row, end_row - 1, s.render.height, kBandRowAlignment));
+  if (band_first_row < 0 || band_rows <= 0 || end_row > s.render.height || band_first_row % kBandRowAlignment != 0) {
+    throw std::logic_error(
+        fmt::format("render_rows: rows {} .. {} of an image of {} rows, not starting at a multiple of {}",
+                    band_first_row, end_row - 1, s.render.height, kBandRowAlignment));
   }
   // A band smaller than the whole image gets a dispatch of its own size (the output buffer, made
   // for the whole image's chunks, holds it); the parameters keep the whole image's camera and tiles.
@@ -255,35 +259,38 @@ RenderResult OpenClRenderer::render_rows(int band_first_row, int band_rows) {
     if (s.cones && !s.cones_run) cones_done = enqueue_cone_pass(dp.queue, *s.cones, s.params);
     s.cones_run = true;
     // Planes the program does not write stay as FrameBuffers made them: 0.
-    for_each_chunk(dp.queue, s.kernel, params, dispatch, band_first_row, end_row,
-                   [&](int first_row, int rows, const cl::Event& done) {
-      const std::size_t first = static_cast<std::size_t>(first_row - band_first_row) * width;
-      const std::size_t count = static_cast<std::size_t>(rows) * width;
-      for (int c : s.prepared.planes) {
-        dp.queue.enqueueReadBuffer(s.out, CL_FALSE, c * dispatch.plane_stride * sizeof(float), count * sizeof(float),
-                                   result.buffers.planes[c].data() + first);
-      }
-      {
-        // The first chunk's wait holds PoCL's compile of the kernel for the work-group size, as
-        // long as the build itself for a large scene.
-        const BlockingCall uninterruptible_wait;
-        dp.queue.finish();
-      }
-      kernel_ms += event_milliseconds(done);
-      if (!first_enqueue_ms) {
-        const double waited = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - enqueued).count();
-        const double cones_ms = cones_done ? event_milliseconds(*cones_done) : 0.0;
-        first_enqueue_ms = std::max(0.0, waited - kernel_ms - cones_ms);
-      }
-      progress.advance();
-    });
+    for_each_chunk(
+        dp.queue, s.kernel, params, dispatch, band_first_row, end_row,
+        [&](int first_row, int rows, const cl::Event& done) {
+          const std::size_t first = static_cast<std::size_t>(first_row - band_first_row) * width;
+          const std::size_t count = static_cast<std::size_t>(rows) * width;
+          for (int c : s.prepared.planes) {
+            dp.queue.enqueueReadBuffer(s.out, CL_FALSE, c * dispatch.plane_stride * sizeof(float),
+                                       count * sizeof(float), result.buffers.planes[c].data() + first);
+          }
+          {
+            // The first chunk's wait holds PoCL's compile of the kernel for the work-group size, as
+            // long as the build itself for a large scene.
+            const BlockingCall uninterruptible_wait;
+            dp.queue.finish();
+          }
+          kernel_ms += event_milliseconds(done);
+          if (!first_enqueue_ms) {
+            const double waited =
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - enqueued).count();
+            const double cones_ms = cones_done ? event_milliseconds(*cones_done) : 0.0;
+            first_enqueue_ms = std::max(0.0, waited - kernel_ms - cones_ms);
+          }
+          progress.advance();
+        });
     if (cones_done) {
-      for (float steps : read_cone_plane(dp.queue, *s.cones, s.cones->steps)) coarse_steps += static_cast<std::uint64_t>(steps);
+      for (float steps : read_cone_plane(dp.queue, *s.cones, s.cones->steps))
+        coarse_steps += static_cast<std::uint64_t>(steps);
       kernel_ms += event_milliseconds(*cones_done);
     }
     if (s.antialias) {
-      kernel_ms += refine_samples(s.render, s.prepared, s.kernel, *s.antialias, params, dispatch, band_first_row, end_row,
-                                  result.buffers);
+      kernel_ms += refine_samples(s.render, s.prepared, s.kernel, *s.antialias, params, dispatch, band_first_row,
+                                  end_row, result.buffers);
     } else {
       set_single_sample_coverage(result.buffers);
     }
@@ -295,8 +302,10 @@ RenderResult OpenClRenderer::render_rows(int band_first_row, int band_rows) {
   stats.precision = s.prepared.kernel_options.variant.precision;
   if (!s.rendered) {
     stats.build_ms = dp.build_ms + first_enqueue_ms.value_or(0.0);
-    log_verbose(fmt::format("first dispatch waited {:.0f} ms beyond its kernels (the driver's compile for the "
-                            "work-group size), counted in build_ms", first_enqueue_ms.value_or(0.0)));
+    log_verbose(
+        fmt::format("first dispatch waited {:.0f} ms beyond its kernels (the driver's compile for the "
+                    "work-group size), counted in build_ms",
+                    first_enqueue_ms.value_or(0.0)));
   }
   s.rendered = true;
   stats.kernel_ms = kernel_ms;
@@ -312,9 +321,12 @@ RenderResult OpenClRenderer::render_rows(int band_first_row, int band_rows) {
   return result;
 }
 
-RenderResult render_opencl(const Scene& scene, const OpenClOptions& options) { return OpenClRenderer(scene, options).render(); }
+RenderResult render_opencl(const Scene& scene, const OpenClOptions& options) {
+  return OpenClRenderer(scene, options).render();
+}
 
-PointSamples eval_points_opencl(const Scene& scene, const std::vector<glm::dvec3>& points, const OpenClOptions& options) {
+PointSamples eval_points_opencl(const Scene& scene, const std::vector<glm::dvec3>& points,
+                                const OpenClOptions& options) {
   PreparedProgram prepared = prepare_program(scene, options, KernelPurpose::EvalPoints);
   DeviceProgram& dp = prepared.program;
   const Dispatch dispatch = plan_point_dispatch(dp.device, points.size(), prepared.lanes);
@@ -346,12 +358,14 @@ PointSamples eval_points_opencl(const Scene& scene, const std::vector<glm::dvec3
     set_scene_values_arg(kernel, 3 + kOutputs, values);
     dp.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(dispatch.global_items),
                                   cl::NDRange(dispatch.local_items));
-    for (int i = 0; i < kOutputs; ++i) dp.queue.enqueueReadBuffer(out_buffers[i], CL_TRUE, 0, n * sizeof(float), outputs[i].data());
+    for (int i = 0; i < kOutputs; ++i)
+      dp.queue.enqueueReadBuffer(out_buffers[i], CL_TRUE, 0, n * sizeof(float), outputs[i].data());
   });
   PointSamples samples;
   samples.distance.assign(outputs[0].begin(), outputs[0].begin() + static_cast<std::ptrdiff_t>(points.size()));
   samples.color_distance.assign(outputs[1].begin(), outputs[1].begin() + static_cast<std::ptrdiff_t>(points.size()));
-  for (std::size_t i = 0; i < points.size(); ++i) samples.albedo.emplace_back(outputs[2][i], outputs[3][i], outputs[4][i]);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    samples.albedo.emplace_back(outputs[2][i], outputs[3][i], outputs[4][i]);
   samples.primitive.assign(outputs[5].begin(), outputs[5].begin() + static_cast<std::ptrdiff_t>(points.size()));
   return samples;
 }

@@ -117,6 +117,7 @@ struct PointSamples {
   /// The number of the primitive whose material map_color() gives (the id channel's).
   std::vector<float> primitive;
 };
-PointSamples eval_points_opencl(const Scene& scene, const std::vector<glm::dvec3>& points, const OpenClOptions& options);
+PointSamples eval_points_opencl(const Scene& scene, const std::vector<glm::dvec3>& points,
+                                const OpenClOptions& options);
 
 }  // namespace clmarch

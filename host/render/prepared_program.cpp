@@ -13,13 +13,15 @@ KernelVariant scene_variant(const Scene& scene, KernelVariant variant) {
   return variant;
 }
 
-void check_precision_support(const Scene& scene, const KernelVariant& variant, const std::string& device, bool has_fp64) {
+void check_precision_support(const Scene& scene, const KernelVariant& variant, const std::string& device,
+                             bool has_fp64) {
   if (variant.precision != Precision::Double) return;
   const char* asked_by = scene.render.precision == Precision::Double ? "render.precision: double" : "precision=double";
   if (!has_fp64) {
-    throw InputError(fmt::format("{}: {} needs a device with cl_khr_fp64 (double arithmetic), which {} lacks; choose another "
-                                 "device (clmarch devices) or render.precision: float",
-                                 scene.source_name, asked_by, device));
+    throw InputError(
+        fmt::format("{}: {} needs a device with cl_khr_fp64 (double arithmetic), which {} lacks; choose another "
+                    "device (clmarch devices) or render.precision: float",
+                    scene.source_name, asked_by, device));
   }
 }
 
@@ -34,9 +36,12 @@ PreparedProgram prepare_program(const Scene& scene, const OpenClOptions& options
   if (march) kernel_options.value_slots = options.value_slots;
   const std::string source = generate_kernel_source(scene, kernel_options);
   if (options.before_build) options.before_build(source);
-  return {build_device_program(device, source, kernel_build_options(variant)), kernel_options.lanes,
+  return {build_device_program(device, source, kernel_build_options(variant)),
+          kernel_options.lanes,
           march ? packets_per_item(scene, kernel_options.lanes) : 1,
-          march ? march_outputs(scene, purpose, options.ray_status).planes() : std::vector<int>{}, source, kernel_options,
+          march ? march_outputs(scene, purpose, options.ray_status).planes() : std::vector<int>{},
+          source,
+          kernel_options,
           program_key(scene, kernel_options)};
 }
 

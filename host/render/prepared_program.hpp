@@ -31,7 +31,8 @@ KernelVariant scene_variant(const Scene& scene, KernelVariant variant);
 
 /// Throws InputError naming the scene file and the device where a double program cannot run: the
 /// device lacks cl_khr_fp64.
-void check_precision_support(const Scene& scene, const KernelVariant& variant, const std::string& device, bool has_fp64);
+void check_precision_support(const Scene& scene, const KernelVariant& variant, const std::string& device,
+                             bool has_fp64);
 
 /// Generates and builds the scene's program for purpose (handing the source to
 /// options.before_build first when set).

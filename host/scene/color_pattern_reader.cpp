@@ -25,13 +25,15 @@ void read_pair(const YamlReader& yaml, const YAML::Node& params, const std::stri
   const YAML::Node colors = params["colors"];
   if (!colors) return;
   if (!colors.IsSequence() || colors.size() != 2) {
-    yaml.fail(colors, fmt::format("{}.colors must be a list of 2 colors [a, b] (got {})", what,
-                                  colors.IsSequence() ? fmt::format("{} items", colors.size()) : describe_yaml(colors)));
+    yaml.fail(colors,
+              fmt::format("{}.colors must be a list of 2 colors [a, b] (got {})", what,
+                          colors.IsSequence() ? fmt::format("{} items", colors.size()) : describe_yaml(colors)));
   }
   for (std::size_t i = 0; i < 2; ++i) pattern.colors[i] = yaml.color(colors[i], fmt::format("{}.colors[{}]", what, i));
 }
 
-ColorPattern read_cells(const YamlReader& yaml, const std::string& kind, const YAML::Node& params, const std::string& what) {
+ColorPattern read_cells(const YamlReader& yaml, const std::string& kind, const YAML::Node& params,
+                        const std::string& what) {
   ColorPattern pattern;
   if (kind == "checker") {
     pattern.kind = ColorPattern::Kind::Checker;
@@ -47,17 +49,20 @@ ColorPattern read_cells(const YamlReader& yaml, const std::string& kind, const Y
     yaml.expect_map(params, what, {"size", "colors", "line_width", "axes"});
     if (const YAML::Node axes = params["axes"]) {
       if (!axes.IsSequence() || axes.size() == 0 || axes.size() > 3) {
-        yaml.fail(axes, fmt::format("{}.axes must be a list of 1 to 3 axes, e.g. [x, z] (got {})", what, describe_yaml(axes)));
+        yaml.fail(axes, fmt::format("{}.axes must be a list of 1 to 3 axes, e.g. [x, z] (got {})", what,
+                                    describe_yaml(axes)));
       }
       for (bool& on : pattern.grid_axes) on = false;
-      for (std::size_t i = 0; i < axes.size(); ++i) pattern.grid_axes[yaml.choice(axes[i], fmt::format("{}.axes[{}]", what, i), kAxisNames)] = true;
+      for (std::size_t i = 0; i < axes.size(); ++i)
+        pattern.grid_axes[yaml.choice(axes[i], fmt::format("{}.axes[{}]", what, i), kAxisNames)] = true;
     }
   }
   yaml.optional_number(params, "size", what + ".size", pattern.size, Range::positive());
   read_pair(yaml, params, what, pattern);
   if (pattern.kind == ColorPattern::Kind::Grid) {
     pattern.line_width = 0.05 * pattern.size;
-    yaml.optional_number(params, "line_width", what + ".line_width", pattern.line_width, Range{0.0, pattern.size, true, true});
+    yaml.optional_number(params, "line_width", what + ".line_width", pattern.line_width,
+                         Range{0.0, pattern.size, true, true});
   }
   return pattern;
 }
@@ -69,14 +74,16 @@ ColorPattern read_expressions(const YamlReader& yaml, const YAML::Node& value, c
   for (std::size_t i = 0; i < 3; ++i) {
     const YAML::Node component = value[i];
     const std::string where = fmt::format("{}[{}]", what, i);
-    if (!component.IsScalar()) yaml.fail(component, fmt::format("{} must be a number or an expression of x, y, z and t (got {})", where, describe_yaml(component)));
+    if (!component.IsScalar())
+      yaml.fail(component, fmt::format("{} must be a number or an expression of x, y, z and t (got {})", where,
+                                       describe_yaml(component)));
     pattern.expressions[i] = component.Scalar();
     try {
       evaluate_expression(pattern.expressions[i], {{"x", 0.0}, {"y", 0.0}, {"z", 0.0}, {"t", yaml.time()}});
       parse_expression_tree(pattern.expressions[i], kPointVariables);
     } catch (const ExpressionError& e) {
-      yaml.fail(component, fmt::format("{} must be an expression of the point x, y, z and the time t (got '{}': {})", where,
-                                       pattern.expressions[i], e.what()));
+      yaml.fail(component, fmt::format("{} must be an expression of the point x, y, z and the time t (got '{}': {})",
+                                       where, pattern.expressions[i], e.what()));
     }
   }
   return pattern;
@@ -93,7 +100,8 @@ void read_node_color(const YamlReader& yaml, const YAML::Node& value, const std:
     node.color_pattern = read_cells(yaml, kind, entry->second, what + "." + kind);
     return;
   }
-  if (value.IsSequence() && value.size() == 3 && (names_the_point(value[0]) || names_the_point(value[1]) || names_the_point(value[2]))) {
+  if (value.IsSequence() && value.size() == 3 &&
+      (names_the_point(value[0]) || names_the_point(value[1]) || names_the_point(value[2]))) {
     node.color_pattern = read_expressions(yaml, value, what);
     return;
   }

@@ -83,7 +83,8 @@ double evaluate_expression(const std::string& text, const std::vector<Expression
     return parser.Eval();
   } catch (const mu::Parser::exception_type& e) {
     // A name it does not know: say which exist.
-    if (e.GetCode() == mu::ecUNASSIGNABLE_TOKEN) throw ExpressionError(fmt::format("{}; {}", e.GetMsg(), expression_vocabulary(variables)));
+    if (e.GetCode() == mu::ecUNASSIGNABLE_TOKEN)
+      throw ExpressionError(fmt::format("{}; {}", e.GetMsg(), expression_vocabulary(variables)));
     throw ExpressionError(e.GetMsg());
   }
 }
@@ -98,7 +99,8 @@ CompiledExpression::CompiledExpression(const std::string& text, const std::vecto
   parser_->values.resize(variable_names.size());
   try {
     add_glsl_functions(parser_->parser);
-    for (std::size_t i = 0; i < variable_names.size(); ++i) parser_->parser.DefineVar(variable_names[i], &parser_->values[i]);
+    for (std::size_t i = 0; i < variable_names.size(); ++i)
+      parser_->parser.DefineVar(variable_names[i], &parser_->values[i]);
     parser_->parser.SetExpr(text);
   } catch (const mu::Parser::exception_type& e) {
     throw ExpressionError(e.GetMsg());
@@ -132,10 +134,10 @@ struct TreeFunction {
   int most;
 };
 constexpr TreeFunction kTreeFunctions[] = {
-    {"abs", 1, 1},   {"sign", 1, 1},  {"floor", 1, 1}, {"ceil", 1, 1}, {"fract", 1, 1}, {"mod", 2, 2},   {"min", 2, 2},
-    {"max", 2, 2},   {"clamp", 3, 3}, {"mix", 3, 3},   {"step", 2, 2}, {"smoothstep", 3, 3}, {"pow", 2, 2}, {"sqrt", 1, 1},
-    {"exp", 1, 1},   {"log", 1, 1},   {"sin", 1, 1},   {"cos", 1, 1},  {"tan", 1, 1},  {"asin", 1, 1},  {"acos", 1, 1},
-    {"atan", 1, 2},  {"length", 1, 3},
+    {"abs", 1, 1}, {"sign", 1, 1}, {"floor", 1, 1}, {"ceil", 1, 1}, {"fract", 1, 1},  {"mod", 2, 2},
+    {"min", 2, 2}, {"max", 2, 2},  {"clamp", 3, 3}, {"mix", 3, 3},  {"step", 2, 2},   {"smoothstep", 3, 3},
+    {"pow", 2, 2}, {"sqrt", 1, 1}, {"exp", 1, 1},   {"log", 1, 1},  {"sin", 1, 1},    {"cos", 1, 1},
+    {"tan", 1, 1}, {"asin", 1, 1}, {"acos", 1, 1},  {"atan", 1, 2}, {"length", 1, 3},
 };
 
 /// Recursive descent with muparser's precedence: unary minus binds looser than ^ (-2^2 = -4), ^ is
@@ -153,9 +155,10 @@ class TreeParser {
 
  private:
   [[noreturn]] void fail(const std::string& what) const {
-    throw ExpressionError(fmt::format("{} at character {} (a color expression takes numbers, the variables {}, pi, + - * / ^, "
-                                      "parentheses and GLSL's functions)",
-                                      what, at_ + 1, fmt::join(variables_, ", ")));
+    throw ExpressionError(
+        fmt::format("{} at character {} (a color expression takes numbers, the variables {}, pi, + - * / ^, "
+                    "parentheses and GLSL's functions)",
+                    what, at_ + 1, fmt::join(variables_, ", ")));
   }
 
   void skip_space() {
@@ -233,7 +236,9 @@ class TreeParser {
     }
     const std::size_t start = at_;
     while (at_ < text_.size() && (std::isalnum(static_cast<unsigned char>(text_[at_])) || text_[at_] == '_')) ++at_;
-    if (start == at_) fail(at_ < text_.size() ? fmt::format("'{}' is not taken here", text_[at_]) : std::string("the expression ends early"));
+    if (start == at_)
+      fail(at_ < text_.size() ? fmt::format("'{}' is not taken here", text_[at_])
+                              : std::string("the expression ends early"));
     const std::string name = text_.substr(start, at_ - start);
     if (take('(')) return call(name, start);
     if (name == "pi") {

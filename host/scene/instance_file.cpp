@@ -29,7 +29,8 @@ std::vector<std::pair<std::string_view, int>> fields_of(std::string_view line) {
   std::size_t start = 0;
   for (;;) {
     const std::size_t comma = line.find(',', start);
-    const std::string_view raw = line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start);
+    const std::string_view raw =
+        line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start);
     const std::size_t lead = std::min(raw.find_first_not_of(" \t"), raw.size());
     fields.emplace_back(trimmed(raw), static_cast<int>(start + lead + 1));
     if (comma == std::string_view::npos) return fields;
@@ -54,17 +55,19 @@ InstanceTable read_instance_table(const std::string& path, long long max_rows) {
     const auto fields = fields_of(text);
     if (table.columns.empty()) {
       for (const auto& [name, column] : fields) {
-        if (name.empty()) throw InputError(fmt::format("{}:{}:{}: the header row has an empty column name", path, number, column));
+        if (name.empty())
+          throw InputError(fmt::format("{}:{}:{}: the header row has an empty column name", path, number, column));
         if (std::find(table.columns.begin(), table.columns.end(), name) != table.columns.end()) {
-          throw InputError(fmt::format("{}:{}:{}: column '{}' appears twice in the header row", path, number, column, name));
+          throw InputError(
+              fmt::format("{}:{}:{}: column '{}' appears twice in the header row", path, number, column, name));
         }
         table.columns.emplace_back(name);
       }
       continue;
     }
     if (fields.size() != table.columns.size()) {
-      throw InputError(fmt::format("{}:{}: the row has {} values (expected {}, one per column of the header: {})", path, number,
-                                   fields.size(), table.columns.size(), fmt::join(table.columns, ",")));
+      throw InputError(fmt::format("{}:{}: the row has {} values (expected {}, one per column of the header: {})", path,
+                                   number, fields.size(), table.columns.size(), fmt::join(table.columns, ",")));
     }
     if (static_cast<long long>(table.rows.size()) >= max_rows) {
       throw InputError(fmt::format("{}:{}: too many rows (expected at most {})", path, number, max_rows));
@@ -76,7 +79,8 @@ InstanceTable read_instance_table(const std::string& path, long long max_rows) {
       double value = 0.0;
       const auto [end, error] = std::from_chars(text_value.data(), text_value.data() + text_value.size(), value);
       if (error != std::errc() || end != text_value.data() + text_value.size() || !std::isfinite(value)) {
-        throw InputError(fmt::format("{}:{}:{}: {} must be a finite number (got '{}')", path, number, column, table.columns[i], text_value));
+        throw InputError(fmt::format("{}:{}:{}: {} must be a finite number (got '{}')", path, number, column,
+                                     table.columns[i], text_value));
       }
       values.push_back(value);
     }
@@ -85,7 +89,8 @@ InstanceTable read_instance_table(const std::string& path, long long max_rows) {
     if (table.rows.size() % 65536 == 0) throw_if_cancelled();
   }
   if (in.bad()) throw InputError(fmt::format("{}: cannot read the instance file: {}", path, std::strerror(errno)));
-  if (table.columns.empty()) throw InputError(fmt::format("{}: the instance file is empty (it needs a header row of column names)", path));
+  if (table.columns.empty())
+    throw InputError(fmt::format("{}: the instance file is empty (it needs a header row of column names)", path));
   return table;
 }
 

@@ -78,8 +78,8 @@ struct ParamSpec {
 #define CLMARCH_REQUIRED_INTEGERS(member, low, high) glm::ivec3 member{0};
 #define CLMARCH_REQUIRED_AXES(member) glm::bvec3 member{false};
 #define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params) \
-  struct Kind {                                               \
-    params                                                    \
+  struct Kind {                                              \
+    params                                                   \
   };
 #define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params) \
   struct Kind {                                                          \
@@ -124,14 +124,14 @@ using NodeParams = VariantBeforeVoid<TypeList<
 #define CLMARCH_REQUIRED_INTEGERS(member, low, high) \
   visit(ParamSpec{#member, ParamType::IntegerVector, Range::closed(low, high), true}, params.member);
 #define CLMARCH_REQUIRED_AXES(member) visit(ParamSpec{#member, ParamType::Axes, Range::any(), true}, params.member);
-#define CLMARCH_KIND_PARAMS(Kind, params_list)                                                   \
-  template <class Visit>                                                                         \
-  void for_each_param([[maybe_unused]] Kind& params, [[maybe_unused]] Visit&& visit) {           \
-    params_list                                                                                  \
-  }                                                                                              \
-  template <class Visit>                                                                         \
-  void for_each_param([[maybe_unused]] const Kind& params, [[maybe_unused]] Visit&& visit) {     \
-    params_list                                                                                  \
+#define CLMARCH_KIND_PARAMS(Kind, params_list)                                               \
+  template <class Visit>                                                                     \
+  void for_each_param([[maybe_unused]] Kind& params, [[maybe_unused]] Visit&& visit) {       \
+    params_list                                                                              \
+  }                                                                                          \
+  template <class Visit>                                                                     \
+  void for_each_param([[maybe_unused]] const Kind& params, [[maybe_unused]] Visit&& visit) { \
+    params_list                                                                              \
   }
 #define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params) CLMARCH_KIND_PARAMS(Kind, params)
 #define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params) CLMARCH_KIND_PARAMS(Kind, params)
@@ -142,7 +142,7 @@ using NodeParams = VariantBeforeVoid<TypeList<
 template <class Params>
 inline constexpr bool kIsPrimitiveParams = false;
 #define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) \
-  template <>                                                      \
+  template <>                                                     \
   inline constexpr bool kIsPrimitiveParams<Kind> = true;
 #include "scene/node_kinds.def"
 

@@ -17,8 +17,12 @@ double julia_radius(const glm::dvec4& c) { return 0.5 * (1.0 + std::sqrt(1.0 + 4
 
 std::string_view node_kind_name(NodeKind kind) {
   switch (kind) {
-#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind: return #name;
-#define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) case NodeKind::Kind: return #name;
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) \
+  case NodeKind::Kind:                                            \
+    return #name;
+#define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) \
+  case NodeKind::Kind:                                                        \
+    return #name;
 #include "scene/node_kinds.def"
   }
   return "?";
@@ -40,8 +44,12 @@ int primitive_count(const Node& node) {
 
 bool is_primitive(NodeKind kind) {
   switch (kind) {
-#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind: return true;
-#define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) case NodeKind::Kind: return false;
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) \
+  case NodeKind::Kind:                                            \
+    return true;
+#define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) \
+  case NodeKind::Kind:                                                        \
+    return false;
 #include "scene/node_kinds.def"
   }
   return false;
@@ -49,24 +57,35 @@ bool is_primitive(NodeKind kind) {
 
 bool is_profile(NodeKind kind) {
   switch (kind) {
-#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind: return false;
-#define CLMARCH_PROFILE(Kind, name, quality, cost, params_list) case NodeKind::Kind: return true;
-#define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) case NodeKind::Kind: return false;
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) \
+  case NodeKind::Kind:                                            \
+    return false;
+#define CLMARCH_PROFILE(Kind, name, quality, cost, params_list) \
+  case NodeKind::Kind:                                          \
+    return true;
+#define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) \
+  case NodeKind::Kind:                                                        \
+    return false;
 #include "scene/node_kinds.def"
   }
   return false;
 }
 
 bool is_smooth_operator(NodeKind kind) {
-  return kind == NodeKind::SmoothUnion || kind == NodeKind::SmoothIntersection ||
-         kind == NodeKind::SmoothSubtraction;
+  return kind == NodeKind::SmoothUnion || kind == NodeKind::SmoothIntersection || kind == NodeKind::SmoothSubtraction;
 }
 
 bool is_blend_operator(NodeKind kind) {
   switch (kind) {
-#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind: return false;
-#define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) case NodeKind::Kind: return false;
-#define CLMARCH_BLEND(Kind, name, min_children, params_list) case NodeKind::Kind: return true;
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) \
+  case NodeKind::Kind:                                            \
+    return false;
+#define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) \
+  case NodeKind::Kind:                                                        \
+    return false;
+#define CLMARCH_BLEND(Kind, name, min_children, params_list) \
+  case NodeKind::Kind:                                       \
+    return true;
 #include "scene/node_kinds.def"
   }
   return false;
@@ -76,18 +95,30 @@ double operator_lipschitz(const Node& node) {
   // Their gradients in the plane of (a, b) are unit vectors, (1, 1) / sqrt 2 or (a, b) / |(a, b)|,
   // so in space |grad f| <= |(|grad a|, |grad b|)|: sqrt 2 for two operands (reached where
   // grad a = grad b), and each fold adds 1 under the root: sqrt(n) for n children.
-  constexpr NodeKind kExactInTheirPlane[] = {NodeKind::UnionChamfer,  NodeKind::IntersectionChamfer, NodeKind::DifferenceChamfer,
-                                             NodeKind::UnionRound,    NodeKind::IntersectionRound,   NodeKind::DifferenceRound,
-                                             NodeKind::UnionColumns,  NodeKind::IntersectionColumns, NodeKind::DifferenceColumns,
-                                             NodeKind::Pipe,          NodeKind::Engrave};
-  const bool steeper = std::find(std::begin(kExactInTheirPlane), std::end(kExactInTheirPlane), node.kind) != std::end(kExactInTheirPlane);
+  constexpr NodeKind kExactInTheirPlane[] = {NodeKind::UnionChamfer,
+                                             NodeKind::IntersectionChamfer,
+                                             NodeKind::DifferenceChamfer,
+                                             NodeKind::UnionRound,
+                                             NodeKind::IntersectionRound,
+                                             NodeKind::DifferenceRound,
+                                             NodeKind::UnionColumns,
+                                             NodeKind::IntersectionColumns,
+                                             NodeKind::DifferenceColumns,
+                                             NodeKind::Pipe,
+                                             NodeKind::Engrave};
+  const bool steeper = std::find(std::begin(kExactInTheirPlane), std::end(kExactInTheirPlane), node.kind) !=
+                       std::end(kExactInTheirPlane);
   return steeper ? std::sqrt(static_cast<double>(node.children.size())) : 1.0;
 }
 
 int min_children(NodeKind kind) {
   switch (kind) {
-#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind: return 0;
-#define CLMARCH_OPERATOR(Kind, name, low, high, params_list) case NodeKind::Kind: return low;
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) \
+  case NodeKind::Kind:                                            \
+    return 0;
+#define CLMARCH_OPERATOR(Kind, name, low, high, params_list) \
+  case NodeKind::Kind:                                       \
+    return low;
 #include "scene/node_kinds.def"
   }
   return 0;
@@ -95,8 +126,12 @@ int min_children(NodeKind kind) {
 
 int max_children(NodeKind kind) {
   switch (kind) {
-#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind: return 0;
-#define CLMARCH_OPERATOR(Kind, name, low, high, params_list) case NodeKind::Kind: return high;
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) \
+  case NodeKind::Kind:                                            \
+    return 0;
+#define CLMARCH_OPERATOR(Kind, name, low, high, params_list) \
+  case NodeKind::Kind:                                       \
+    return high;
 #include "scene/node_kinds.def"
   }
   return 0;
@@ -106,8 +141,14 @@ Node node_of_kind(NodeKind kind) {
   Node node;
   node.kind = kind;
   switch (kind) {
-#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind: node.params = Kind{}; break;
-#define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) case NodeKind::Kind: node.params = Kind{}; break;
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) \
+  case NodeKind::Kind:                                            \
+    node.params = Kind{};                                         \
+    break;
+#define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) \
+  case NodeKind::Kind:                                                        \
+    node.params = Kind{};                                                     \
+    break;
 #include "scene/node_kinds.def"
   }
   return node;
@@ -115,31 +156,36 @@ Node node_of_kind(NodeKind kind) {
 
 std::vector<ParamSpec> param_table(NodeKind kind) {
   std::vector<ParamSpec> table;
-  std::visit([&](const auto& params) { for_each_param(params, [&](const ParamSpec& spec, const auto&) { table.push_back(spec); }); },
-             node_of_kind(kind).params);
+  std::visit(
+      [&](const auto& params) {
+        for_each_param(params, [&](const ParamSpec& spec, const auto&) { table.push_back(spec); });
+      },
+      node_of_kind(kind).params);
   return table;
 }
 
 int evaluation_cost(const Node& primitive) {
   switch (primitive.kind) {
-#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) \
-  case NodeKind::Kind: {                                           \
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list)     \
+  case NodeKind::Kind: {                                              \
     [[maybe_unused]] const Kind& params = params_of<Kind>(primitive); \
-    return cost;                                                   \
+    return cost;                                                      \
   }
 #define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) case NodeKind::Kind:
 #include "scene/node_kinds.def"
-      break;
+    break;
   }
   throw std::logic_error("evaluation_cost() of an operator");
 }
 
 FieldQuality field_quality(NodeKind primitive) {
   switch (primitive) {
-#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind: return FieldQuality::quality;
+#define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) \
+  case NodeKind::Kind:                                            \
+    return FieldQuality::quality;
 #define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) case NodeKind::Kind:
 #include "scene/node_kinds.def"
-      break;
+    break;
   }
   throw std::logic_error("field_quality() of an operator");
 }
@@ -198,12 +244,14 @@ Material root_material(const Scene& scene) {
 }
 
 bool uses_patterns(const Node& node) {
-  return node.color_pattern || std::any_of(node.children.begin(), node.children.end(), [](const Node& child) { return uses_patterns(child); });
+  return node.color_pattern || std::any_of(node.children.begin(), node.children.end(),
+                                           [](const Node& child) { return uses_patterns(child); });
 }
 
 bool uses_emission(const Node& node) {
   if (node.emission && *node.emission != glm::dvec3(0.0)) return true;
-  return std::any_of(node.children.begin(), node.children.end(), [](const Node& child) { return uses_emission(child); });
+  return std::any_of(node.children.begin(), node.children.end(),
+                     [](const Node& child) { return uses_emission(child); });
 }
 
 bool Transform::is_identity() const {

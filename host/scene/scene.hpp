@@ -420,7 +420,9 @@ struct Scene {
 };
 
 /// Whether camera rays walk the unit cells (tiling.method: cells) rather than a plain march.
-inline bool uses_cells_tiling(const Scene& scene) { return scene.tiling && scene.tiling->method == TilingMethod::Cells; }
+inline bool uses_cells_tiling(const Scene& scene) {
+  return scene.tiling && scene.tiling->method == TilingMethod::Cells;
+}
 
 /// The over-relaxation of render.over_relaxation: for auto, omega = kAutoOverRelaxation, except
 /// plain sphere tracing (1) where it did not pay or would change the picture: scenes shaded by

@@ -33,7 +33,9 @@ BoundingSphere corners_bounds(std::initializer_list<glm::dvec3> corners, double 
 std::optional<BoundingSphere> primitive_bounds(const NodeParams& params) {
   struct Visitor {
     std::optional<BoundingSphere> operator()(const Sphere& s) const { return BoundingSphere{s.center, s.radius}; }
-    std::optional<BoundingSphere> operator()(const Box& b) const { return BoundingSphere{b.center, glm::length(b.half_size)}; }
+    std::optional<BoundingSphere> operator()(const Box& b) const {
+      return BoundingSphere{b.center, glm::length(b.half_size)};
+    }
     std::optional<BoundingSphere> operator()(const RoundBox& b) const {
       return BoundingSphere{b.center, glm::length(b.half_size)};
     }
@@ -87,7 +89,8 @@ std::optional<BoundingSphere> primitive_bounds(const NodeParams& params) {
     // Above the centre the cap lies within its rim's radius of the disc's centre.
     std::optional<BoundingSphere> operator()(const CutSphere& c) const {
       if (c.cut_height <= 0.0) return BoundingSphere{c.center, c.radius};
-      return BoundingSphere{c.center + glm::dvec3(0.0, c.cut_height, 0.0), std::sqrt(c.radius * c.radius - c.cut_height * c.cut_height)};
+      return BoundingSphere{c.center + glm::dvec3(0.0, c.cut_height, 0.0),
+                            std::sqrt(c.radius * c.radius - c.cut_height * c.cut_height)};
     }
     // The smallest sphere through the apex and the base's corners, its centre on the axis.
     std::optional<BoundingSphere> operator()(const Pyramid& p) const {
@@ -95,8 +98,12 @@ std::optional<BoundingSphere> primitive_bounds(const NodeParams& params) {
       const double up = std::clamp((p.height * p.height - corner * corner) / (2.0 * p.height), 0.0, p.height);
       return BoundingSphere{p.center + glm::dvec3(0.0, up, 0.0), std::max(p.height - up, std::hypot(corner, up))};
     }
-    std::optional<BoundingSphere> operator()(const Triangle& t) const { return corners_bounds({t.a, t.b, t.c}, t.thickness); }
-    std::optional<BoundingSphere> operator()(const Quad& q) const { return corners_bounds({q.a, q.b, q.c, q.d}, q.thickness); }
+    std::optional<BoundingSphere> operator()(const Triangle& t) const {
+      return corners_bounds({t.a, t.b, t.c}, t.thickness);
+    }
+    std::optional<BoundingSphere> operator()(const Quad& q) const {
+      return corners_bounds({q.a, q.b, q.c, q.d}, q.thickness);
+    }
     // The field is the largest of the face planes' distances: below tau it holds the prism grown
     // by tau on each face, whose triangle reaches radius + 2 tau and whose caps half_length + tau,
     // within |(radius, half_length)| + sqrt(5) tau of the centre.
@@ -112,7 +119,8 @@ std::optional<BoundingSphere> primitive_bounds(const NodeParams& params) {
     }
     std::optional<BoundingSphere> operator()(const DeathStar& d) const { return BoundingSphere{d.center, d.radius}; }
     std::optional<BoundingSphere> operator()(const Rhombus& r) const {
-      return BoundingSphere{r.center, std::hypot(std::max(r.half_width, r.half_depth) + r.corner_radius, r.half_height)};
+      return BoundingSphere{r.center,
+                            std::hypot(std::max(r.half_width, r.half_depth) + r.corner_radius, r.half_height)};
     }
     std::optional<BoundingSphere> operator()(const Capsule& c) const {
       return BoundingSphere{0.5 * (c.a + c.b), 0.5 * glm::length(c.b - c.a) + c.radius};
@@ -136,7 +144,9 @@ std::optional<BoundingSphere> primitive_bounds(const NodeParams& params) {
     std::optional<BoundingSphere> operator()(const Mandelbox& m) const {
       return BoundingSphere{m.center, mandelbox_half_size(m.scale) * std::sqrt(3.0)};
     }
-    std::optional<BoundingSphere> operator()(const Julia& j) const { return BoundingSphere{j.center, julia_radius(j.c)}; }
+    std::optional<BoundingSphere> operator()(const Julia& j) const {
+      return BoundingSphere{j.center, julia_radius(j.c)};
+    }
     std::optional<BoundingSphere> operator()(const Terrain&) const { return std::nullopt; }
     // A profile alone is a prism along z without end; revolve and extrude bound its section
     // (section_bounds).
@@ -179,7 +189,9 @@ std::optional<BoundingSphere> profile_disc(const NodeParams& params) {
     std::optional<BoundingSphere> operator()(const Segment& s) const {
       return BoundingSphere{0.5 * (s.a + s.b), 0.5 * glm::length(glm::dvec2(s.b - s.a)) + s.radius};
     }
-    std::optional<BoundingSphere> operator()(const RegularPolygon& r) const { return BoundingSphere{r.center, r.radius}; }
+    std::optional<BoundingSphere> operator()(const RegularPolygon& r) const {
+      return BoundingSphere{r.center, r.radius};
+    }
 #define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) \
   std::optional<BoundingSphere> operator()(const Kind&) const { return std::nullopt; }
 #define CLMARCH_PROFILE(Kind, name, quality, cost, params_list)
@@ -247,10 +259,14 @@ std::optional<BoundingSphere> node_bounds_grown(const Node& node, double growth)
 /// min(a, b) (they are estimates), which these spheres do not cover.
 double union_blend_growth(const Node& node) {
   switch (node.kind) {
-    case NodeKind::UnionChamfer: return params_of<UnionChamfer>(node).radius / 2.0;
-    case NodeKind::UnionRound: return params_of<UnionRound>(node).radius * (1.0 - std::sqrt(0.5));
-    case NodeKind::UnionStairs: return params_of<UnionStairs>(node).radius / 2.0;
-    case NodeKind::UnionColumns: return params_of<UnionColumns>(node).radius / 2.0;
+    case NodeKind::UnionChamfer:
+      return params_of<UnionChamfer>(node).radius / 2.0;
+    case NodeKind::UnionRound:
+      return params_of<UnionRound>(node).radius * (1.0 - std::sqrt(0.5));
+    case NodeKind::UnionStairs:
+      return params_of<UnionStairs>(node).radius / 2.0;
+    case NodeKind::UnionColumns:
+      return params_of<UnionColumns>(node).radius / 2.0;
     case NodeKind::IntersectionChamfer:
     case NodeKind::DifferenceChamfer:
     case NodeKind::IntersectionRound:
@@ -264,7 +280,7 @@ double union_blend_growth(const Node& node) {
     case NodeKind::Engrave:
     case NodeKind::Groove:
     case NodeKind::Tongue:
-    // Every kind that is not a blend.
+      // Every kind that is not a blend.
 #define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind:
 #define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params_list) case NodeKind::Kind:
 #define CLMARCH_BLEND(Kind, name, min_children, params_list)
@@ -294,14 +310,17 @@ std::optional<BoundingSphere> blend_bounds(const Node& node) {
     case NodeKind::IntersectionChamfer:
     case NodeKind::IntersectionRound:
     case NodeKind::IntersectionStairs:
-    case NodeKind::IntersectionColumns: return smallest_child(node);
+    case NodeKind::IntersectionColumns:
+      return smallest_child(node);
     case NodeKind::DifferenceChamfer:
     case NodeKind::DifferenceRound:
     case NodeKind::DifferenceStairs:
     case NodeKind::DifferenceColumns:
     case NodeKind::Engrave:
-    case NodeKind::Groove: return node_bounds(node.children.front());
-    case NodeKind::Tongue: return node_bounds_grown(node.children.front(), folds * params_of<Tongue>(node).ra);
+    case NodeKind::Groove:
+      return node_bounds(node.children.front());
+    case NodeKind::Tongue:
+      return node_bounds_grown(node.children.front(), folds * params_of<Tongue>(node).ra);
     case NodeKind::Pipe: {
       // The last child within r, the left operand within r, so the child before within 2 r, ...;
       // the first two children within folds * r.
@@ -326,7 +345,8 @@ std::optional<BoundingSphere> blend_bounds(const Node& node) {
 
 std::optional<BoundingSphere> operator_bounds(const Node& node) {
   switch (node.kind) {
-    case NodeKind::Repeat: return std::nullopt;
+    case NodeKind::Repeat:
+      return std::nullopt;
     case NodeKind::Displace: {
       // (d + displacement) / L < tau needs d < L tau + amplitude, and the child's field is below
       // that within radius + gain (L tau + amplitude): the amplitude counts with the child's gain.
@@ -337,11 +357,14 @@ std::optional<BoundingSphere> operator_bounds(const Node& node) {
       return child;
     }
     case NodeKind::Union:
-    case NodeKind::SmoothUnion: return enclosing_children(node);
+    case NodeKind::SmoothUnion:
+      return enclosing_children(node);
     case NodeKind::Intersection:
-    case NodeKind::SmoothIntersection: return smallest_child(node);
+    case NodeKind::SmoothIntersection:
+      return smallest_child(node);
     case NodeKind::Subtraction:
-    case NodeKind::SmoothSubtraction: return node_bounds(node.children.front());
+    case NodeKind::SmoothSubtraction:
+      return node_bounds(node.children.front());
     case NodeKind::Elongate: {
       // p = q + clamp(p, -h, h) with q in the child's sphere: within |h| more of its centre.
       std::optional<BoundingSphere> child = node_bounds(node.children.front());
@@ -352,7 +375,8 @@ std::optional<BoundingSphere> operator_bounds(const Node& node) {
     case NodeKind::Round: {
       // d' < tau needs d < tau + amount: the child's sphere grown by its gain times amount.
       std::optional<BoundingSphere> child = node_bounds(node.children.front());
-      const double amount = node.kind == NodeKind::Onion ? params_of<Onion>(node).thickness : params_of<Round>(node).radius;
+      const double amount =
+          node.kind == NodeKind::Onion ? params_of<Onion>(node).thickness : params_of<Round>(node).radius;
       if (child) child->radius += child->gain * amount;
       return child;
     }
@@ -398,14 +422,16 @@ std::optional<BoundingSphere> operator_bounds(const Node& node) {
       const std::optional<BoundingSphere> child = section_bounds(node.children.front());
       if (!child) return std::nullopt;
       const double reach = std::abs(child->center.x + params_of<Revolve>(node).offset) + child->radius;
-      return BoundingSphere{{0.0, child->center.y, 0.0}, std::hypot(reach, child->radius), std::sqrt(2.0) * child->gain};
+      return BoundingSphere{
+          {0.0, child->center.y, 0.0}, std::hypot(reach, child->radius), std::sqrt(2.0) * child->gain};
     }
     case NodeKind::Extrude: {
       // The section's disc, extruded to |z| <= half_length (d < tau: the section's field and
       // |z| - half_length are both below tau).
       const std::optional<BoundingSphere> child = section_bounds(node.children.front());
       if (!child) return std::nullopt;
-      return BoundingSphere{{child->center.x, child->center.y, 0.0}, std::hypot(child->radius, params_of<Extrude>(node).half_length),
+      return BoundingSphere{{child->center.x, child->center.y, 0.0},
+                            std::hypot(child->radius, params_of<Extrude>(node).half_length),
                             std::sqrt(2.0) * std::max(child->gain, 1.0)};
     }
     case NodeKind::Twist:
@@ -429,7 +455,7 @@ std::optional<BoundingSphere> operator_bounds(const Node& node) {
 #define CLMARCH_BLEND(Kind, name, min_children, params_list) case NodeKind::Kind:
 #include "scene/node_kinds.def"
       return blend_bounds(node);
-    // Primitives have primitive_bounds instead.
+      // Primitives have primitive_bounds instead.
 #define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) case NodeKind::Kind:
 #include "scene/node_kinds.def"
       return std::nullopt;
@@ -454,7 +480,8 @@ std::optional<BoundingSphere> node_bounds(const Node& node) {
   std::optional<BoundingSphere> b = local_bounds(node);
   if (!b) return std::nullopt;
   // p_parent = translate + R (scale p_local); the field is scale * f(p_local) * step_factor.
-  b->center = node.transform.translate + node.transform.world_from_local_rotation() * (node.transform.scale * b->center);
+  b->center =
+      node.transform.translate + node.transform.world_from_local_rotation() * (node.transform.scale * b->center);
   b->radius *= node.transform.scale;
   b->gain /= node.step_factor;
   return b;
@@ -462,7 +489,8 @@ std::optional<BoundingSphere> node_bounds(const Node& node) {
 
 double hit_growth(const Scene& scene) {
   // The largest hit threshold along a camera ray, which ends at max_distance.
-  const double threshold = std::max(scene.render.epsilon, hit_cone_slope(scene.render, scene.camera) * scene.render.max_distance);
+  const double threshold =
+      std::max(scene.render.epsilon, hit_cone_slope(scene.render, scene.camera) * scene.render.max_distance);
   const double glow = scene.shading.glow ? scene.shading.glow->radius : 0.0;
   return threshold + glow;
 }

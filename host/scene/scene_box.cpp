@@ -24,8 +24,10 @@ BoundingBox intersected(const BoundingBox& a, const BoundingBox& b) {
 /// kinds, whose sphere's cube is their box.
 std::optional<BoundingBox> primitive_box(const Node& node) {
   if (node.kind == NodeKind::Box) return centred(params_of<Box>(node).center, params_of<Box>(node).half_size);
-  if (node.kind == NodeKind::RoundBox) return centred(params_of<RoundBox>(node).center, params_of<RoundBox>(node).half_size);
-  if (node.kind == NodeKind::BoxFrame) return centred(params_of<BoxFrame>(node).center, params_of<BoxFrame>(node).half_size);
+  if (node.kind == NodeKind::RoundBox)
+    return centred(params_of<RoundBox>(node).center, params_of<RoundBox>(node).half_size);
+  if (node.kind == NodeKind::BoxFrame)
+    return centred(params_of<BoxFrame>(node).center, params_of<BoxFrame>(node).half_size);
   if (node.kind == NodeKind::Menger) {
     const Menger& m = params_of<Menger>(node);
     return centred(m.center, glm::dvec3(m.half_size));
@@ -58,7 +60,8 @@ std::optional<BoundingBox> operator_box(const Node& node) {
     }
     return common;
   }
-  if (node.kind == NodeKind::Subtraction || node.kind == NodeKind::SmoothSubtraction) return node_box(node.children.front());
+  if (node.kind == NodeKind::Subtraction || node.kind == NodeKind::SmoothSubtraction)
+    return node_box(node.children.front());
   return std::nullopt;
 }
 

@@ -32,8 +32,9 @@ constexpr int kMaxImageSide = 65536;
 constexpr int kMaxStepBudget = 1000000;
 
 // Keys every SDF node accepts besides its own parameters.
-#define CLMARCH_COMMON_NODE_KEYS \
-  "color", "metallic", "roughness", "reflectivity", "specular", "shininess", "emission", "translate", "rotate", "scale", "step_factor"
+#define CLMARCH_COMMON_NODE_KEYS                                                                                \
+  "color", "metallic", "roughness", "reflectivity", "specular", "shininess", "emission", "translate", "rotate", \
+      "scale", "step_factor"
 
 class SceneReader {
  public:
@@ -48,7 +49,8 @@ class SceneReader {
     if (const YAML::Node camera = root["camera"]) scene.camera = read_camera(camera);
     if (const YAML::Node render = root["render"]) {
       scene.render = read_render(render);
-      if (const YAML::Node side = render["width"] ? render["width"] : render["height"]) scene.size_origin = yaml_.where(side);
+      if (const YAML::Node side = render["width"] ? render["width"] : render["height"])
+        scene.size_origin = yaml_.where(side);
     }
     scene.sdf = read_node(yaml_.required(root, "sdf", "sdf (the distance field tree)"), "sdf", 1);
     bool asks_for_shadows = false;
@@ -60,7 +62,8 @@ class SceneReader {
       scene.tiling = read_tiling(tiling);
       if (uses_cells_tiling(scene) && scene.render.coarse_pass == CoarsePass::Cone) {
         yaml_.fail(root["render"]["coarse_pass"],
-                   "render.coarse_pass: cone does not combine with tiling.method: cells (its march keeps to one cell at a time); "
+                   "render.coarse_pass: cone does not combine with tiling.method: cells (its march keeps to one cell "
+                   "at a time); "
                    "use method: mod or coarse_pass: none");
       }
     }
@@ -77,7 +80,8 @@ class SceneReader {
     yaml_.optional_number(node, "fov", "camera.fov", camera.fov_degrees, Range::open(0.0, 180.0));
     const glm::dvec3 view = camera.look_at - camera.position;
     if (glm::length(view) == 0.0) yaml_.fail(node, "camera.look_at must differ from camera.position");
-    const double sine = glm::length(glm::cross(glm::normalize(view), camera.up)) / std::max(glm::length(camera.up), 1e-300);
+    const double sine =
+        glm::length(glm::cross(glm::normalize(view), camera.up)) / std::max(glm::length(camera.up), 1e-300);
     if (glm::length(camera.up) == 0.0 || sine < 1e-9) {
       yaml_.fail(node, "camera.up must not be zero or parallel to the view direction (look_at - position)");
     }
@@ -86,36 +90,45 @@ class SceneReader {
 
   RenderSettings read_render(const YAML::Node& node) {
     RenderSettings render;
-    yaml_.expect_map(node, "render", {"width", "height", "max_steps", "epsilon", "max_distance", "normal_method", "normal_epsilon",
-                                      "over_relaxation", "hit_threshold", "cone_factor", "bounds", "subtree_bounds",
-                                      "coarse_pass", "pruning", "samples", "adaptive", "precision"});
+    yaml_.expect_map(node, "render",
+                     {"width", "height", "max_steps", "epsilon", "max_distance", "normal_method", "normal_epsilon",
+                      "over_relaxation", "hit_threshold", "cone_factor", "bounds", "subtree_bounds", "coarse_pass",
+                      "pruning", "samples", "adaptive", "precision"});
     const Range side = Range::closed(1, kMaxImageSide);
     if (node["width"]) render.width = yaml_.integer(node["width"], "render.width", side);
     if (node["height"]) render.height = yaml_.integer(node["height"], "render.height", side);
-    if (node["max_steps"]) render.max_steps = yaml_.integer(node["max_steps"], "render.max_steps", Range::closed(1, kMaxStepBudget));
+    if (node["max_steps"])
+      render.max_steps = yaml_.integer(node["max_steps"], "render.max_steps", Range::closed(1, kMaxStepBudget));
     yaml_.optional_number(node, "epsilon", "render.epsilon", render.epsilon, Range::positive());
     yaml_.optional_number(node, "max_distance", "render.max_distance", render.max_distance, Range::positive());
     if (node["normal_method"]) {
-      render.normal_method = static_cast<NormalMethod>(yaml_.choice(node["normal_method"], "render.normal_method", kNormalMethodNames));
+      render.normal_method =
+          static_cast<NormalMethod>(yaml_.choice(node["normal_method"], "render.normal_method", kNormalMethodNames));
     }
     yaml_.optional_number(node, "normal_epsilon", "render.normal_epsilon", render.normal_epsilon, Range::positive());
     read_march_acceleration(node, render);
-    if (node["bounds"]) render.bounds = static_cast<RayBounds>(yaml_.choice(node["bounds"], "render.bounds", kRayBoundsNames));
+    if (node["bounds"])
+      render.bounds = static_cast<RayBounds>(yaml_.choice(node["bounds"], "render.bounds", kRayBoundsNames));
     if (node["subtree_bounds"]) {
       render.subtree_bounds =
           static_cast<SceneBounds>(yaml_.choice(node["subtree_bounds"], "render.subtree_bounds", kSceneBoundsNames));
     }
-    if (node["pruning"]) render.pruning = static_cast<Pruning>(yaml_.choice(node["pruning"], "render.pruning", kPruningNames));
+    if (node["pruning"])
+      render.pruning = static_cast<Pruning>(yaml_.choice(node["pruning"], "render.pruning", kPruningNames));
     if (node["coarse_pass"]) {
-      render.coarse_pass = static_cast<CoarsePass>(yaml_.choice(node["coarse_pass"], "render.coarse_pass", kCoarsePassNames));
+      render.coarse_pass =
+          static_cast<CoarsePass>(yaml_.choice(node["coarse_pass"], "render.coarse_pass", kCoarsePassNames));
     }
-    if (node["samples"]) render.samples = yaml_.integer(node["samples"], "render.samples", Range::closed(1, kMaxSamples));
+    if (node["samples"])
+      render.samples = yaml_.integer(node["samples"], "render.samples", Range::closed(1, kMaxSamples));
     if (node["adaptive"]) render.adaptive = yaml_.boolean(node["adaptive"], "render.adaptive");
-    if (node["precision"]) render.precision = static_cast<Precision>(yaml_.choice(node["precision"], "render.precision", kPrecisionNames));
+    if (node["precision"])
+      render.precision = static_cast<Precision>(yaml_.choice(node["precision"], "render.precision", kPrecisionNames));
     if (!image_size_fits(render.width, render.height)) {
-      yaml_.fail(node, fmt::format("render.width x render.height = {} x {} exceeds {} pixels (got {}, expected at most {})",
-                                   render.width, render.height, kMaxPixels,
-                                   static_cast<long long>(render.width) * render.height, kMaxPixels));
+      yaml_.fail(node,
+                 fmt::format("render.width x render.height = {} x {} exceeds {} pixels (got {}, expected at most {})",
+                             render.width, render.height, kMaxPixels,
+                             static_cast<long long>(render.width) * render.height, kMaxPixels));
     }
     return render;
   }
@@ -140,7 +153,8 @@ class SceneReader {
   void read_march_acceleration(const YAML::Node& node, RenderSettings& render) {
     if (const YAML::Node omega = node["over_relaxation"]) render.over_relaxation = read_over_relaxation(omega);
     if (node["hit_threshold"]) {
-      render.hit_threshold = static_cast<HitThreshold>(yaml_.choice(node["hit_threshold"], "render.hit_threshold", kHitThresholdNames));
+      render.hit_threshold =
+          static_cast<HitThreshold>(yaml_.choice(node["hit_threshold"], "render.hit_threshold", kHitThresholdNames));
     }
     yaml_.optional_number(node, "cone_factor", "render.cone_factor", render.cone_factor, Range::positive());
     if (node["cone_factor"] && render.hit_threshold != HitThreshold::PixelCone) {
@@ -152,7 +166,8 @@ class SceneReader {
   std::vector<Light> read_lights(const YAML::Node& node, bool& asks_for_shadows) {
     if (!node.IsSequence()) yaml_.fail(node, fmt::format("lights must be a list (got {})", describe_yaml(node)));
     if (node.size() > static_cast<std::size_t>(kMaxLights)) {
-      yaml_.fail(node, fmt::format("lights has too many entries (got {}, expected at most {})", node.size(), kMaxLights));
+      yaml_.fail(node,
+                 fmt::format("lights has too many entries (got {}, expected at most {})", node.size(), kMaxLights));
     }
     std::vector<Light> lights;
     for (std::size_t i = 0; i < node.size(); ++i) {
@@ -174,13 +189,16 @@ class SceneReader {
         if (light.kind == LightKind::Point) {
           yaml_.expect_map(params, path, {"position", "color", "intensity", "falloff", "range", "shadows"});
         } else {
-          yaml_.expect_map(params, path, {"position", "direction", "inner_angle", "outer_angle", "color", "intensity", "falloff",
-                                          "range", "shadows"});
+          yaml_.expect_map(params, path,
+                           {"position", "direction", "inner_angle", "outer_angle", "color", "intensity", "falloff",
+                            "range", "shadows"});
           read_spot_cone(params, path, light);
         }
         light.position = yaml_.vec3(yaml_.required(params, "position", path + ".position"), path + ".position");
-        if (const YAML::Node falloff = params["falloff"]) light.falloff = static_cast<Falloff>(yaml_.choice(falloff, path + ".falloff", kFalloffNames));
-        if (const YAML::Node range = params["range"]) light.range = yaml_.number(range, path + ".range", Range::positive());
+        if (const YAML::Node falloff = params["falloff"])
+          light.falloff = static_cast<Falloff>(yaml_.choice(falloff, path + ".falloff", kFalloffNames));
+        if (const YAML::Node range = params["range"])
+          light.range = yaml_.number(range, path + ".range", Range::positive());
       }
       if (params["color"]) light.color = yaml_.color(params["color"], path + ".color");
       yaml_.optional_number(params, "intensity", path + ".intensity", light.intensity, Range::non_negative());
@@ -198,7 +216,8 @@ class SceneReader {
   void read_spot_cone(const YAML::Node& params, const std::string& path, Light& light) {
     light.axis = unit_vector(yaml_.required(params, "direction", path + ".direction"), path + ".direction");
     yaml_.optional_number(params, "outer_angle", path + ".outer_angle", light.outer_angle, Range::open(0.0, 180.0));
-    yaml_.optional_number(params, "inner_angle", path + ".inner_angle", light.inner_angle, Range::closed(0.0, light.outer_angle));
+    yaml_.optional_number(params, "inner_angle", path + ".inner_angle", light.inner_angle,
+                          Range::closed(0.0, light.outer_angle));
     if (!params["inner_angle"] && light.inner_angle > light.outer_angle) light.inner_angle = light.outer_angle;
   }
 
@@ -206,7 +225,8 @@ class SceneReader {
     Tiling tiling;
     yaml_.expect_map(node, "tiling", {"cell", "method"});
     yaml_.optional_vec3(node, "cell", "tiling.cell", tiling.cell, Range::positive());
-    if (node["method"]) tiling.method = static_cast<TilingMethod>(yaml_.choice(node["method"], "tiling.method", kTilingMethodNames));
+    if (node["method"])
+      tiling.method = static_cast<TilingMethod>(yaml_.choice(node["method"], "tiling.method", kTilingMethodNames));
     return tiling;
   }
 
@@ -227,18 +247,21 @@ class SceneReader {
   Shadows read_shadows(const YAML::Node& node) {
     Shadows shadows;
     yaml_.expect_map(node, "shading.shadows", {"mode", "k", "min_t", "max_t", "max_steps"});
-    if (node["mode"]) shadows.mode = static_cast<ShadowMode>(yaml_.choice(node["mode"], "shading.shadows.mode", kShadowModeNames));
+    if (node["mode"])
+      shadows.mode = static_cast<ShadowMode>(yaml_.choice(node["mode"], "shading.shadows.mode", kShadowModeNames));
     yaml_.optional_number(node, "k", "shading.shadows.k", shadows.k, Range::positive());
     yaml_.optional_number(node, "min_t", "shading.shadows.min_t", shadows.min_t, Range::non_negative());
     yaml_.optional_number(node, "max_t", "shading.shadows.max_t", shadows.max_t, Range::positive());
-    if (node["max_steps"]) shadows.max_steps = yaml_.integer(node["max_steps"], "shading.shadows.max_steps", Range::closed(1, 10000));
+    if (node["max_steps"])
+      shadows.max_steps = yaml_.integer(node["max_steps"], "shading.shadows.max_steps", Range::closed(1, 10000));
     return shadows;
   }
 
   NormalOcclusion read_occlusion(const YAML::Node& node) {
     NormalOcclusion ao;
     yaml_.expect_map(node, "shading.ambient_occlusion", {"samples", "step", "power"});
-    if (node["samples"]) ao.samples = yaml_.integer(node["samples"], "shading.ambient_occlusion.samples", Range::closed(1, 64));
+    if (node["samples"])
+      ao.samples = yaml_.integer(node["samples"], "shading.ambient_occlusion.samples", Range::closed(1, 64));
     yaml_.optional_number(node, "step", "shading.ambient_occlusion.step", ao.step, Range::positive());
     yaml_.optional_number(node, "power", "shading.ambient_occlusion.power", ao.power, Range::positive());
     return ao;
@@ -296,10 +319,13 @@ class SceneReader {
     if (node["glow"]) shading.glow = read_glow(node["glow"]);
     if (node["height_fog"]) shading.height_fog = read_height_fog(node["height_fog"]);
     if (node["planetary_glow"]) shading.planetary_glow = read_planetary_glow(node["planetary_glow"]);
-    if (node["reflections"]) shading.reflection_bounces = yaml_.integer(node["reflections"], "shading.reflections", Range::closed(0, 8));
-    if (node["tone_map"]) shading.tone_map = static_cast<ToneMap>(yaml_.choice(node["tone_map"], "shading.tone_map", kToneMapNames));
+    if (node["reflections"])
+      shading.reflection_bounces = yaml_.integer(node["reflections"], "shading.reflections", Range::closed(0, 8));
+    if (node["tone_map"])
+      shading.tone_map = static_cast<ToneMap>(yaml_.choice(node["tone_map"], "shading.tone_map", kToneMapNames));
     yaml_.optional_number(node, "gamma", "shading.gamma", shading.gamma, Range::closed(0.1, 10.0));
-    if (node["model"]) shading.model = static_cast<ShadingModel>(yaml_.choice(node["model"], "shading.model", kShadingModelNames));
+    if (node["model"])
+      shading.model = static_cast<ShadingModel>(yaml_.choice(node["model"], "shading.model", kShadingModelNames));
     if (node["ambient"]) shading.ambient = yaml_.color(node["ambient"], "shading.ambient");
     yaml_.optional_number(node, "diffuse", "shading.diffuse", shading.diffuse, Range::non_negative());
     yaml_.optional_number(node, "specular", "shading.specular", shading.specular, Range::non_negative());
@@ -322,10 +348,12 @@ class SceneReader {
     }
     // Counted on the way in, so that an alias bomb stops after kMaxAliasedNodes nodes: yaml-cpp
     // shares an aliased subtree (one position in the file), and only this walk would expand it.
-    if (!yaml.Mark().is_null() && !positions_read_.insert(yaml.Mark().pos).second && ++aliased_nodes_ > kMaxAliasedNodes) {
-      yaml_.fail(yaml, fmt::format("{}: the tree has too many nodes through aliases (got aliased node {} here, expected "
-                                   "at most {}; an alias *name counts its nodes again at every use)",
-                                   path, aliased_nodes_, kMaxAliasedNodes));
+    if (!yaml.Mark().is_null() && !positions_read_.insert(yaml.Mark().pos).second &&
+        ++aliased_nodes_ > kMaxAliasedNodes) {
+      yaml_.fail(yaml,
+                 fmt::format("{}: the tree has too many nodes through aliases (got aliased node {} here, expected "
+                             "at most {}; an alias *name counts its nodes again at every use)",
+                             path, aliased_nodes_, kMaxAliasedNodes));
     }
     if (!yaml.IsMap() || yaml.size() != 1) {
       // Blamed on a key that --set added, if any (--set sdf.sphere.radius=1 on a torus adds a kind).
@@ -336,10 +364,12 @@ class SceneReader {
         keys.push_back(entry.first.Scalar());
         if (entry.first.Mark().is_null() && !yaml.Mark().is_null()) at.reset(entry.first);
       }
-      yaml_.fail(at, fmt::format("{} must be a map with one key naming the node kind, e.g. sphere: {{radius: 1}} (got {})",
-                                 path, !yaml.IsMap() ? describe_yaml(yaml)
-                                       : keys.empty() ? std::string("0 keys")
-                                                      : fmt::format("{} keys: {}", yaml.size(), fmt::join(keys, ", "))));
+      yaml_.fail(
+          at,
+          fmt::format("{} must be a map with one key naming the node kind, e.g. sphere: {{radius: 1}} (got {})", path,
+                      !yaml.IsMap()  ? describe_yaml(yaml)
+                      : keys.empty() ? std::string("0 keys")
+                                     : fmt::format("{} keys: {}", yaml.size(), fmt::join(keys, ", "))));
     }
     const auto entry = yaml.begin();
     const std::string name = entry->first.Scalar();
@@ -347,8 +377,8 @@ class SceneReader {
     if (!kind) {
       std::vector<std::string_view> names;
       for (NodeKind k : kAllNodeKinds) names.push_back(node_kind_name(k));
-      yaml_.fail(entry->first, fmt::format("{}: unknown node kind '{}'{} (expected one of: {})", path, name, did_you_mean(name, names),
-                                           fmt::join(names, ", ")));
+      yaml_.fail(entry->first, fmt::format("{}: unknown node kind '{}'{} (expected one of: {})", path, name,
+                                           did_you_mean(name, names), fmt::join(names, ", ")));
     }
     Node node = node_of_kind(*kind);
     const std::string node_path = path + "." + name;
@@ -362,8 +392,10 @@ class SceneReader {
 
   void read_common(Node& node, const YAML::Node& params, const std::string& path) {
     if (params["color"]) read_node_color(yaml_, params["color"], path + ".color", node);
-    if (params["metallic"]) node.metallic = yaml_.number(params["metallic"], path + ".metallic", Range::closed(0.0, 1.0));
-    if (params["roughness"]) node.roughness = yaml_.number(params["roughness"], path + ".roughness", Range::closed(0.02, 1.0));
+    if (params["metallic"])
+      node.metallic = yaml_.number(params["metallic"], path + ".metallic", Range::closed(0.0, 1.0));
+    if (params["roughness"])
+      node.roughness = yaml_.number(params["roughness"], path + ".roughness", Range::closed(0.02, 1.0));
     if (params["reflectivity"]) {
       node.reflectivity = yaml_.number(params["reflectivity"], path + ".reflectivity", Range::closed(0.0, 1.0));
     }
@@ -374,7 +406,8 @@ class SceneReader {
     yaml_.optional_vec3(params, "rotate", path + ".rotate", node.transform.rotate_degrees);
     // The kernels divide by the scale in float: 1 / scale must be a float too.
     if (!has_param(node, "scale")) {
-      yaml_.optional_number(params, "scale", path + ".scale", node.transform.scale, Range::closed(1.0 / kMaxSceneNumber, kMaxSceneNumber));
+      yaml_.optional_number(params, "scale", path + ".scale", node.transform.scale,
+                            Range::closed(1.0 / kMaxSceneNumber, kMaxSceneNumber));
     }
     yaml_.optional_number(params, "step_factor", path + ".step_factor", node.step_factor, Range{0.0, 1.0, true, false});
   }
@@ -403,18 +436,20 @@ class SceneReader {
   /// Reads the parameters of the node's kind from map, by its declaration's table: the keys
   /// given are read and range-checked, the others keep their defaults (a required one fails).
   void read_params(Node& node, const YAML::Node& map, const std::string& path) {
-    std::visit([&](auto& params) {
-      for_each_param(params, [&](const ParamSpec& spec, auto& value) {
-        const std::string what = path + "." + spec.key;
-        const YAML::Node given = map[spec.key];
-        if (!given) {
-          if (spec.required) yaml_.required(map, spec.key, what);
-          return;
-        }
-        read_param(spec, given, what, value);
-      });
-      check_params(params, map, path);
-    }, node.params);
+    std::visit(
+        [&](auto& params) {
+          for_each_param(params, [&](const ParamSpec& spec, auto& value) {
+            const std::string what = path + "." + spec.key;
+            const YAML::Node given = map[spec.key];
+            if (!given) {
+              if (spec.required) yaml_.required(map, spec.key, what);
+              return;
+            }
+            read_param(spec, given, what, value);
+          });
+          check_params(params, map, path);
+        },
+        node.params);
   }
 
   void read_param(const ParamSpec& spec, const YAML::Node& given, const std::string& what, glm::dvec3& value) {
@@ -435,12 +470,12 @@ class SceneReader {
     value = yaml_.number(given, what, spec.range);
   }
   template <class Integer>
-    requires std::is_integral_v<Integer>
+  requires std::is_integral_v<Integer>
   void read_param(const ParamSpec& spec, const YAML::Node& given, const std::string& what, Integer& value) {
     value = static_cast<Integer>(yaml_.integer(given, what, spec.range));
   }
   template <class Enum>
-    requires std::is_enum_v<Enum>
+  requires std::is_enum_v<Enum>
   void read_param(const ParamSpec& spec, const YAML::Node& given, const std::string& what, Enum& value) {
     value = static_cast<Enum>(yaml_.choice(given, what, spec.choices));
   }
@@ -453,7 +488,8 @@ class SceneReader {
   }
   void read_param(const ParamSpec&, const YAML::Node& given, const std::string& what, glm::bvec3& value) {
     if (!given.IsSequence() || given.size() == 0) {
-      yaml_.fail(given, fmt::format("{} must be a non-empty list of the axes x, y, z (got {})", what, describe_yaml(given)));
+      yaml_.fail(given,
+                 fmt::format("{} must be a non-empty list of the axes x, y, z (got {})", what, describe_yaml(given)));
     }
     for (std::size_t i = 0; i < given.size(); ++i) {
       const std::string axis = yaml_.text(given[i], fmt::format("{}[{}]", what, i));
@@ -470,7 +506,8 @@ class SceneReader {
 
   // A rounding radius at most the shape's smallest size: a given one is checked against it, the
   // default lowered to it.
-  void limit_rounding(double& radius, double smallest, const YAML::Node& map, const std::string& key, const std::string& path) {
+  void limit_rounding(double& radius, double smallest, const YAML::Node& map, const std::string& key,
+                      const std::string& path) {
     if (map[key]) {
       radius = yaml_.number(map[key], path + "." + key, Range::closed(0.0, smallest));
     } else {
@@ -512,8 +549,10 @@ class SceneReader {
     }
     const double length = glm::length(cone.b - cone.a);
     if (!(std::abs(cone.radius_a - cone.radius_b) < length)) {
-      yaml_.fail(map, fmt::format("{}.radius_a and {}.radius_b must differ by less than |b - a| = {} (got {} and {}: one "
-                                  "ball holds the other, use a sphere)", path, path, length, cone.radius_a, cone.radius_b));
+      yaml_.fail(map,
+                 fmt::format("{}.radius_a and {}.radius_b must differ by less than |b - a| = {} (got {} and {}: one "
+                             "ball holds the other, use a sphere)",
+                             path, path, length, cone.radius_a, cone.radius_b));
     }
   }
 
@@ -521,7 +560,8 @@ class SceneReader {
   void check_cut_height(double cut_height, double radius, const YAML::Node& map, const std::string& path) {
     if (!(std::abs(cut_height) < radius)) {
       yaml_.fail(map["cut_height"] ? map["cut_height"] : map,
-                 fmt::format("{}.cut_height must be in (-radius, radius) = ({}, {}) (got {})", path, -radius, radius, cut_height));
+                 fmt::format("{}.cut_height must be in (-radius, radius) = ({}, {}) (got {})", path, -radius, radius,
+                             cut_height));
     }
   }
 
@@ -538,9 +578,11 @@ class SceneReader {
     // is no death star (and Quilez's formula assumes the circle).
     const double low = std::abs(star.radius - star.carve_radius), high = star.radius + star.carve_radius;
     if (!(star.carve_distance > low && star.carve_distance < high)) {
-      yaml_.fail(map["carve_distance"] ? map["carve_distance"] : map,
-                 fmt::format("{}.carve_distance must be in (|radius - carve_radius|, radius + carve_radius) = ({}, {}) so "
-                             "that the spheres meet (got {})", path, low, high, star.carve_distance));
+      yaml_.fail(
+          map["carve_distance"] ? map["carve_distance"] : map,
+          fmt::format("{}.carve_distance must be in (|radius - carve_radius|, radius + carve_radius) = ({}, {}) so "
+                      "that the spheres meet (got {})",
+                      path, low, high, star.carve_distance));
     }
   }
 
@@ -553,7 +595,8 @@ class SceneReader {
   }
 
   void check_params(Triangle& triangle, const YAML::Node& map, const std::string& path) {
-    check_spans_a_plane(triangle.b - triangle.a, triangle.c - triangle.a, map, path + ".a, " + path + ".b and " + path + ".c");
+    check_spans_a_plane(triangle.b - triangle.a, triangle.c - triangle.a, map,
+                        path + ".a, " + path + ".b and " + path + ".c");
   }
 
   void check_params(Quad& quad, const YAML::Node& map, const std::string& path) {
@@ -570,7 +613,8 @@ class SceneReader {
     }
     for (int i = 0; i < 4; ++i) {
       const glm::dvec3 turn = glm::cross(v[(i + 1) % 4] - v[i], v[(i + 2) % 4] - v[(i + 1) % 4]);
-      if (!(glm::dot(turn, n) > 0.0)) yaml_.fail(map, corners + " must be the corners of a convex quadrilateral, in order");
+      if (!(glm::dot(turn, n) > 0.0))
+        yaml_.fail(map, corners + " must be the corners of a convex quadrilateral, in order");
     }
   }
 
@@ -578,9 +622,11 @@ class SceneReader {
     // An escaping orbit reaches |z| ~ bailout^power; the kernel squares it in float (max ~3e38).
     const double largest_bailout = std::pow(10.0, 18.0 / bulb.power);
     if (bulb.bailout > largest_bailout) {
-      yaml_.fail(map["bailout"] ? map["bailout"] : map,
-                 fmt::format("{}.bailout must be at most 10^(18/power) = {:.3g} for power {} so that |z|^2 stays finite in "
-                             "float (got {})", path, largest_bailout, bulb.power, bulb.bailout));
+      yaml_.fail(
+          map["bailout"] ? map["bailout"] : map,
+          fmt::format("{}.bailout must be at most 10^(18/power) = {:.3g} for power {} so that |z|^2 stays finite in "
+                      "float (got {})",
+                      path, largest_bailout, bulb.power, bulb.bailout));
     }
   }
 
@@ -618,8 +664,8 @@ class SceneReader {
     }
     for (int axis = 0; axis < 3; ++axis) {
       if (repeat.min[axis] > repeat.max[axis]) {
-        yaml_.fail(map["min"], fmt::format("{}.min[{}] must be at most {}.max[{}] (got {} > {})", path, axis, path, axis,
-                                           repeat.min[axis], repeat.max[axis]));
+        yaml_.fail(map["min"], fmt::format("{}.min[{}] must be at most {}.max[{}] (got {} > {})", path, axis, path,
+                                           axis, repeat.min[axis], repeat.max[axis]));
       }
     }
   }
@@ -647,7 +693,8 @@ class SceneReader {
         yaml_.fail(value, fmt::format("{} needs {}{}: write {{{}: ..., children: [...]}}", path, required,
                                       is_smooth_operator(node.kind) ? " (a blend radius)" : "", required));
       }
-      if (most == 1) yaml_.fail(value, fmt::format("{} takes parameters: write it as a map with children: [node]", path));
+      if (most == 1)
+        yaml_.fail(value, fmt::format("{} takes parameters: write it as a map with children: [node]", path));
       children = value;
     } else if (value.IsMap()) {
       yaml_.expect_map(value, path, node_keys(node));
@@ -655,15 +702,19 @@ class SceneReader {
       children = yaml_.required(value, "children", path + ".children");
       read_common(node, value, path);
     } else {
-      yaml_.fail(value, fmt::format("{} must be a list of nodes or a map with children (got {})", path, describe_yaml(value)));
+      yaml_.fail(value,
+                 fmt::format("{} must be a list of nodes or a map with children (got {})", path, describe_yaml(value)));
     }
-    if (!children.IsSequence()) yaml_.fail(children, fmt::format("{} children must be a list of nodes (got {})", path, describe_yaml(children)));
+    if (!children.IsSequence())
+      yaml_.fail(children, fmt::format("{} children must be a list of nodes (got {})", path, describe_yaml(children)));
     const std::size_t minimum = static_cast<std::size_t>(min_children(node.kind));
     if (children.size() < minimum) {
-      yaml_.fail(children, fmt::format("{} needs at least {} child node{} (got {})", path, minimum, minimum > 1 ? "s" : "", children.size()));
+      yaml_.fail(children, fmt::format("{} needs at least {} child node{} (got {})", path, minimum,
+                                       minimum > 1 ? "s" : "", children.size()));
     }
     if (most == 1 && children.size() != 1) {
-      yaml_.fail(children, fmt::format("{} takes exactly 1 child node (got {}); wrap several in a union", path, children.size()));
+      yaml_.fail(children,
+                 fmt::format("{} takes exactly 1 child node (got {}); wrap several in a union", path, children.size()));
     }
     if (most > 1 && children.size() > most) {
       yaml_.fail(children, fmt::format("{} takes at most {} child nodes (got {})", path, most, children.size()));
@@ -679,9 +730,10 @@ class SceneReader {
     }
     // A turn's Lipschitz factor grows with the distance from its axis: it needs the child's reach.
     if ((node.kind == NodeKind::Twist || node.kind == NodeKind::Bend) && !node_bounds(node.children.front())) {
-      yaml_.fail(children[0], fmt::format("{} needs a bounded child: {}[0] ({}) has no bounding sphere (planes, terrain, infinite "
-                                          "cylinders, 2D primitives alone and repeat have none)",
-                                          path, path, node_kind_name(node.children.front().kind)));
+      yaml_.fail(children[0],
+                 fmt::format("{} needs a bounded child: {}[0] ({}) has no bounding sphere (planes, terrain, infinite "
+                             "cylinders, 2D primitives alone and repeat have none)",
+                             path, path, node_kind_name(node.children.front().kind)));
     }
   }
 
@@ -698,14 +750,15 @@ class SceneReader {
       for (NodeKind k : kAllNodeKinds) {
         if (is_primitive(k)) names.push_back(node_kind_name(k));
       }
-      yaml_.fail(primitive_key, fmt::format("{}.primitive: '{}' is not a primitive (expected one of: {})", path, primitive,
-                                            fmt::join(names, ", ")));
+      yaml_.fail(primitive_key, fmt::format("{}.primitive: '{}' is not a primitive (expected one of: {})", path,
+                                            primitive, fmt::join(names, ", ")));
     }
     std::filesystem::path file = yaml_.text(file_key, path + ".file");
     if (file.is_relative()) file = std::filesystem::path(source_name_).parent_path() / file;
     std::error_code error;
     if (!std::filesystem::is_regular_file(file, error)) {
-      yaml_.fail(file_key, fmt::format("{}.file: cannot read the instance file {} (no such file)", path, file.string()));
+      yaml_.fail(file_key,
+                 fmt::format("{}.file: cannot read the instance file {} (no such file)", path, file.string()));
     }
     const InstanceTable table = read_instance_table(file.string(), kMaxTreeNodes - node_count_);
     const std::vector<InstanceColumn> columns = instance_columns(table);
@@ -758,8 +811,9 @@ class SceneReader {
           return other.key == column.key && other.component == component;
         });
         if (!present) {
-          throw InputError(fmt::format("{}:1: column {} needs its companions: {}_x, {}_y, {}_z (or _r, _g, _b for a color)",
-                                       table.path, column.key, column.key, column.key, column.key));
+          throw InputError(
+              fmt::format("{}:1: column {} needs its companions: {}_x, {}_y, {}_z (or _r, _g, _b for a color)",
+                          table.path, column.key, column.key, column.key, column.key));
         }
       }
     }
@@ -788,12 +842,14 @@ class PositionlessCopy {
                                    kMaxOverrideDepth));
     }
     if (++count_ > kMaxOverrideNodes) {
-      throw InputError(fmt::format("{}: the value has too many YAML values (got value {}, expected at most {}; an alias "
-                                   "*name counts its nodes again at every use)",
-                                   option_, count_, kMaxOverrideNodes));
+      throw InputError(
+          fmt::format("{}: the value has too many YAML values (got value {}, expected at most {}; an alias "
+                      "*name counts its nodes again at every use)",
+                      option_, count_, kMaxOverrideNodes));
     }
     switch (node.Type()) {
-      case YAML::NodeType::Scalar: return YAML::Node(node.Scalar());
+      case YAML::NodeType::Scalar:
+        return YAML::Node(node.Scalar());
       case YAML::NodeType::Sequence: {
         YAML::Node out(YAML::NodeType::Sequence);
         for (const auto& item : node) out.push_back((*this)(item, depth + 1));
@@ -801,10 +857,12 @@ class PositionlessCopy {
       }
       case YAML::NodeType::Map: {
         YAML::Node out(YAML::NodeType::Map);
-        for (const auto& entry : node) out.force_insert((*this)(entry.first, depth + 1), (*this)(entry.second, depth + 1));
+        for (const auto& entry : node)
+          out.force_insert((*this)(entry.first, depth + 1), (*this)(entry.second, depth + 1));
         return out;
       }
-      default: return YAML::Node(YAML::NodeType::Null);
+      default:
+        return YAML::Node(YAML::NodeType::Null);
     }
   }
 
@@ -823,13 +881,15 @@ std::string quoted_option(const SceneOverride& override_) {
 void apply_override(YAML::Node& root, const SceneOverride& override_) {
   const std::string option = quoted_option(override_);
   if (override_.value.find_first_not_of(" \t") == std::string::npos) {
-    throw InputError(fmt::format("{}: the value is empty (null removes the key: --set {}=null)", option, override_.path));
+    throw InputError(
+        fmt::format("{}: the value is empty (null removes the key: --set {}=null)", option, override_.path));
   }
   YAML::Node value;
   try {
     // One document, as in a scene file: a second one ('---') would be dropped unseen.
     const std::vector<YAML::Node> documents = YAML::LoadAll(override_.value);
-    if (documents.size() > 1) throw InputError(fmt::format("{}: the value holds {} YAML documents, expected one", option, documents.size()));
+    if (documents.size() > 1)
+      throw InputError(fmt::format("{}: the value holds {} YAML documents, expected one", option, documents.size()));
     value = PositionlessCopy(option)(documents.empty() ? YAML::Node() : documents.front());
   } catch (const YAML::Exception& e) {
     throw InputError(fmt::format("{}: the value is not valid YAML: {}", option, e.msg));
@@ -852,13 +912,15 @@ void apply_override(YAML::Node& root, const SceneOverride& override_) {
     YAML::Node next;
     const bool is_index = segment.find_first_not_of("0123456789") == std::string::npos;
     if (remove && (!current.IsDefined() || current.IsNull() || (current.IsMap() && !current[segment]))) {
-      throw InputError(fmt::format("{}: the scene has no {} to remove", option, fmt::join(segments.begin(), segments.begin() + i + 1, ".")));
+      throw InputError(fmt::format("{}: the scene has no {} to remove", option,
+                                   fmt::join(segments.begin(), segments.begin() + i + 1, ".")));
     }
     // A key the file does not have yet becomes a map; assigning through current fills the parent.
     if (!current.IsDefined() || current.IsNull()) {
       if (is_index && i > 0) {
-        throw InputError(fmt::format("{}: the scene has no {}, so index {} reaches nothing (set the whole list, e.g. --set {}=[...])",
-                                     option, segments[i - 1], segment, fmt::join(segments.begin(), segments.begin() + i, ".")));
+        throw InputError(fmt::format(
+            "{}: the scene has no {}, so index {} reaches nothing (set the whole list, e.g. --set {}=[...])", option,
+            segments[i - 1], segment, fmt::join(segments.begin(), segments.begin() + i, ".")));
       }
       current = YAML::Node(YAML::NodeType::Map);
     }
@@ -901,9 +963,7 @@ void apply_override(YAML::Node& root, const SceneOverride& override_) {
 
 }  // namespace
 
-bool image_size_fits(int width, int height) {
-  return static_cast<long long>(width) * height <= kMaxPixels;
-}
+bool image_size_fits(int width, int height) { return static_cast<long long>(width) * height <= kMaxPixels; }
 
 SceneOverride parse_override(const std::string& option_text) {
   const std::size_t equals = option_text.find('=');
@@ -922,7 +982,8 @@ std::string tab_hint(const std::string& text, int error_line) {
   std::size_t line_start = 0;
   for (std::size_t at = 0; at < text.size() && line <= error_line + 1; ++at) {
     if (text[at] == '\t') {
-      return fmt::format(" (line {} column {} holds a tab: YAML indents with spaces only)", line + 1, at - line_start + 1);
+      return fmt::format(" (line {} column {} holds a tab: YAML indents with spaces only)", line + 1,
+                         at - line_start + 1);
     }
     if (text[at] == '\n') {
       ++line;
@@ -934,18 +995,19 @@ std::string tab_hint(const std::string& text, int error_line) {
 
 }  // namespace
 
-Scene load_scene_text(const std::string& text, const std::string& source_name, const std::vector<SceneOverride>& overrides,
-                      double time) {
+Scene load_scene_text(const std::string& text, const std::string& source_name,
+                      const std::vector<SceneOverride>& overrides, double time) {
   // yaml-cpp takes a NUL in UTF-8 text for an escape and reports it a line later ("unknown escape
   // character"). UTF-16 and UTF-32, which it reads, show by a byte-order mark or a NUL in the first
   // two bytes (YAML's encoding detection).
-  const bool wide = text.starts_with("\xff\xfe") || text.starts_with("\xfe\xff") ||
-                    text.substr(0, 2).find('\0') != std::string::npos;
+  const bool wide =
+      text.starts_with("\xff\xfe") || text.starts_with("\xfe\xff") || text.substr(0, 2).find('\0') != std::string::npos;
   if (const std::size_t nul = text.find('\0'); nul != std::string::npos && !wide) {
     const std::size_t line_start = text.rfind('\n', nul);
     const std::size_t column = nul - (line_start == std::string::npos ? 0 : line_start + 1);
-    throw InputError(fmt::format("{}:{}:{}: the file holds a NUL byte (a scene file is text: YAML or JSON)", source_name,
-                                 std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(nul), '\n') + 1, column + 1));
+    throw InputError(
+        fmt::format("{}:{}:{}: the file holds a NUL byte (a scene file is text: YAML or JSON)", source_name,
+                    std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(nul), '\n') + 1, column + 1));
   }
   YAML::Node root;
   try {
@@ -953,14 +1015,15 @@ Scene load_scene_text(const std::string& text, const std::string& source_name, c
     root = YAML::Load(text);
   } catch (const YAML::DeepRecursion& e) {
     // yaml-cpp's own message for its recursion limit is "bad file".
-    throw InputError(fmt::format("{}:{}:{}: the YAML is nested more than {} levels deep (an sdf tree may have {})", source_name,
-                                 e.mark.line + 1, e.mark.column + 1, e.depth(), kMaxTreeDepth));
+    throw InputError(fmt::format("{}:{}:{}: the YAML is nested more than {} levels deep (an sdf tree may have {})",
+                                 source_name, e.mark.line + 1, e.mark.column + 1, e.depth(), kMaxTreeDepth));
   } catch (const YAML::ParserException& e) {
-    throw InputError(fmt::format("{}:{}:{}: malformed YAML: {}{}", source_name, e.mark.line + 1, e.mark.column + 1, e.msg,
-                                 tab_hint(text, e.mark.line)));
+    throw InputError(fmt::format("{}:{}:{}: malformed YAML: {}{}", source_name, e.mark.line + 1, e.mark.column + 1,
+                                 e.msg, tab_hint(text, e.mark.line)));
   }
   if (root.IsNull()) {
-    if (overrides.empty()) throw InputError(fmt::format("{}: the scene is empty (it needs at least an sdf tree)", source_name));
+    if (overrides.empty())
+      throw InputError(fmt::format("{}: the scene is empty (it needs at least an sdf tree)", source_name));
     root = YAML::Node(YAML::NodeType::Map);
   }
   for (const SceneOverride& o : overrides) apply_override(root, o);
@@ -983,8 +1046,8 @@ std::string read_scene_file(const std::string& path) {
   while (in.read(piece.data(), piece.size()) || in.gcount() > 0) {
     text.append(piece.data(), static_cast<std::size_t>(in.gcount()));
     if (static_cast<long long>(text.size()) > kMaxSceneFileBytes) {
-      throw InputError(fmt::format("{}: the scene file is too large (got more than {} bytes, expected at most {})", path,
-                                   kMaxSceneFileBytes, kMaxSceneFileBytes));
+      throw InputError(fmt::format("{}: the scene file is too large (got more than {} bytes, expected at most {})",
+                                   path, kMaxSceneFileBytes, kMaxSceneFileBytes));
     }
   }
   if (in.bad()) throw InputError(fmt::format("{}: cannot read the scene file: {}", path, std::strerror(errno)));
@@ -995,7 +1058,8 @@ std::string read_scene_file(const std::string& path) {
 
 Scene load_scene_file(const std::string& path, const std::vector<SceneOverride>& overrides, double time) {
   std::error_code error;
-  if (std::filesystem::is_directory(path, error)) throw InputError(fmt::format("{}: is a folder, not a scene file", path));
+  if (std::filesystem::is_directory(path, error))
+    throw InputError(fmt::format("{}: is a folder, not a scene file", path));
   return load_scene_text(read_scene_file(path), path, overrides, time);
 }
 

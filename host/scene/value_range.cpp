@@ -25,7 +25,8 @@ std::string Range::describe() const {
   const bool bounded_low = std::isfinite(low);
   const bool bounded_high = std::isfinite(high);
   if (bounded_low && bounded_high) {
-    return fmt::format("in {}{}, {}{}", low_open ? "(" : "[", readable_bound(low), readable_bound(high), high_open ? ")" : "]");
+    return fmt::format("in {}{}, {}{}", low_open ? "(" : "[", readable_bound(low), readable_bound(high),
+                       high_open ? ")" : "]");
   }
   if (bounded_low) return fmt::format("{} {}", low_open ? ">" : ">=", readable_bound(low));
   if (bounded_high) return fmt::format("{} {}", high_open ? "<" : "<=", readable_bound(high));

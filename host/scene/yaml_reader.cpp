@@ -23,10 +23,14 @@ namespace clmarch {
 
 std::string describe_yaml(const YAML::Node& node) {
   switch (node.Type()) {
-    case YAML::NodeType::Scalar: return "'" + node.Scalar() + "'";
-    case YAML::NodeType::Sequence: return "a list";
-    case YAML::NodeType::Map: return "a map";
-    default: return "nothing";
+    case YAML::NodeType::Scalar:
+      return "'" + node.Scalar() + "'";
+    case YAML::NodeType::Sequence:
+      return "a list";
+    case YAML::NodeType::Map:
+      return "a map";
+    default:
+      return "nothing";
   }
 }
 
@@ -38,14 +42,17 @@ class NodeCounter : public YAML::EventHandler {
   NodeCounter(const std::string& source_name, long long max_nodes) : source_(source_name), max_(max_nodes) {}
   void OnDocumentStart(const YAML::Mark& mark) override {
     if (documents_++ == 0) return;
-    throw InputError(fmt::format("{}:{}:{}: a scene file holds one YAML document (got a second one after '---' here, "
-                                 "expected at most 1)",
-                                 source_, mark.line + 1, mark.column + 1));
+    throw InputError(
+        fmt::format("{}:{}:{}: a scene file holds one YAML document (got a second one after '---' here, "
+                    "expected at most 1)",
+                    source_, mark.line + 1, mark.column + 1));
   }
   void OnDocumentEnd() override {}
   void OnNull(const YAML::Mark& mark, YAML::anchor_t) override { count(mark); }
   void OnAlias(const YAML::Mark& mark, YAML::anchor_t) override { count(mark); }
-  void OnScalar(const YAML::Mark& mark, const std::string&, YAML::anchor_t, const std::string&) override { count(mark); }
+  void OnScalar(const YAML::Mark& mark, const std::string&, YAML::anchor_t, const std::string&) override {
+    count(mark);
+  }
   void OnSequenceStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
     count(mark);
   }
@@ -72,7 +79,9 @@ class NodeCounter : public YAML::EventHandler {
 /// long text with unbalanced parentheses is another mistake.
 std::string split_expression_hint(const std::string& text) {
   constexpr std::size_t kLongestPiece = 200;
-  if (text.size() > kLongestPiece || std::count(text.begin(), text.end(), '(') == std::count(text.begin(), text.end(), ')')) return {};
+  if (text.size() > kLongestPiece ||
+      std::count(text.begin(), text.end(), '(') == std::count(text.begin(), text.end(), ')'))
+    return {};
   return "; an expression with a comma must be quoted, as in radius: \"max(0.1, t)\", or YAML splits it at the comma";
 }
 
@@ -135,7 +144,6 @@ void YamlReader::fail(const YAML::Node& at, const std::string& message) const {
   throw InputError(fmt::format("{}: {}", where(at), shown));
 }
 
-
 void YamlReader::expect_map(const YAML::Node& node, const std::string& what,
                             std::initializer_list<std::string_view> allowed) const {
   expect_map(node, what, std::vector<std::string_view>(allowed));
@@ -150,8 +158,8 @@ void YamlReader::expect_map(const YAML::Node& node, const std::string& what,
     bool known = false;
     for (std::string_view a : allowed) known = known || a == key;
     if (!known) {
-      fail(entry.first, fmt::format("unknown key '{}' in {}{} (expected one of: {}){}", key, what, did_you_mean(key, allowed),
-                                    fmt::join(allowed, ", "), split_expression_hint(key)));
+      fail(entry.first, fmt::format("unknown key '{}' in {}{} (expected one of: {}){}", key, what,
+                                    did_you_mean(key, allowed), fmt::join(allowed, ", "), split_expression_hint(key)));
     }
     if (!seen.insert(key).second) fail(entry.first, fmt::format("duplicate key '{}' in {}", key, what));
   }
@@ -169,14 +177,15 @@ double YamlReader::number(const YAML::Node& node, const std::string& what, Range
     errno = 0;
     std::strtod(node.Scalar().c_str(), &end);
     if (errno == ERANGE && end != node.Scalar().c_str() && *end == '\0') {
-      fail(node, fmt::format("{} must be a number within +-{:g}, the float range (got {})", what, kMaxSceneNumber, node.Scalar()));
+      fail(node, fmt::format("{} must be a number within +-{:g}, the float range (got {})", what, kMaxSceneNumber,
+                             node.Scalar()));
     }
     try {
       value = evaluate_expression(node.Scalar(), {{"t", time_}});
       shown = fmt::format("{} = {:g} at t = {:g}", node.Scalar(), value, time_);
     } catch (const ExpressionError& e) {
-      fail(node, fmt::format("{} must be a number or an expression of the time t (got '{}': {}){}", what, node.Scalar(), e.what(),
-                             split_expression_hint(node.Scalar())));
+      fail(node, fmt::format("{} must be a number or an expression of the time t (got '{}': {}){}", what, node.Scalar(),
+                             e.what(), split_expression_hint(node.Scalar())));
     }
   }
   if (!std::isfinite(value)) fail(node, fmt::format("{} must be finite (got {})", what, shown));
@@ -227,16 +236,21 @@ glm::dvec3 YamlReader::vec3(const YAML::Node& node, const std::string& what, Ran
 
 glm::dvec3 YamlReader::color(const YAML::Node& node, const std::string& what, bool warn_past_plausible) const {
   const std::string& text = node.IsScalar() ? node.Scalar() : std::string();
-  const bool is_word = !text.empty() && std::all_of(text.begin(), text.end(), [](unsigned char c) { return std::isalpha(c) || c == '_'; });
+  const bool is_word = !text.empty() && std::all_of(text.begin(), text.end(),
+                                                    [](unsigned char c) { return std::isalpha(c) || c == '_'; });
   if (is_word && text != "t" && text != "pi") {
-    fail(node, fmt::format("{} must be a color: [r, g, b], linear with 1 the full channel, or one number for gray (got '{}')", what, text));
+    fail(node,
+         fmt::format("{} must be a color: [r, g, b], linear with 1 the full channel, or one number for gray (got '{}')",
+                     what, text));
   }
-  const glm::dvec3 color = node.IsScalar() ? glm::dvec3(number(node, what, Range::non_negative())) : vec3(node, what, Range::non_negative());
+  const glm::dvec3 color =
+      node.IsScalar() ? glm::dvec3(number(node, what, Range::non_negative())) : vec3(node, what, Range::non_negative());
   if (warn_past_plausible && std::max({color.r, color.g, color.b}) > kPlausibleColor) {
     // Without the value, so that an animated color warns once, not once a frame.
-    log_warning(fmt::format("{}: {} has a channel above {:g}: colors are linear with 1 the full channel (as in a shader), so "
-                            "this one blows out; [255, 0, 0] red is [1, 0, 0]",
-                            where(node), what, kPlausibleColor));
+    log_warning(
+        fmt::format("{}: {} has a channel above {:g}: colors are linear with 1 the full channel (as in a shader), so "
+                    "this one blows out; [255, 0, 0] red is [1, 0, 0]",
+                    where(node), what, kPlausibleColor));
   }
   return color;
 }
@@ -249,7 +263,8 @@ int YamlReader::choice_of(const YAML::Node& node, const std::string& what, const
     if (value == names[i]) return static_cast<int>(i);
     options.emplace_back(names[i]);
   }
-  fail(node, fmt::format("{} must be one of {} (got '{}'){}", what, fmt::join(options, ", "), value, did_you_mean(value, options)));
+  fail(node, fmt::format("{} must be one of {} (got '{}'){}", what, fmt::join(options, ", "), value,
+                         did_you_mean(value, options)));
 }
 
 void YamlReader::optional_number(const YAML::Node& map, const char* key, const std::string& what, double& out,

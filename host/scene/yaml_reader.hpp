@@ -32,7 +32,8 @@ class YamlReader {
   [[noreturn]] void fail(const YAML::Node& at, const std::string& message) const;
 
   /// Fails unless node is a map whose keys are all in allowed and none repeats.
-  void expect_map(const YAML::Node& node, const std::string& what, std::initializer_list<std::string_view> allowed) const;
+  void expect_map(const YAML::Node& node, const std::string& what,
+                  std::initializer_list<std::string_view> allowed) const;
   void expect_map(const YAML::Node& node, const std::string& what, const std::vector<std::string_view>& allowed) const;
 
   /// A number, or an expression of the time t such as "cos(t)" or "0.5 + 0.2 * sin(2 * pi * t)"

@@ -39,7 +39,9 @@ void render_benchmark(benchmark::State& state, const std::string& name, KernelPu
   state.counters["evals/s"] = benchmark::Counter(steps, benchmark::Counter::kIsRate);
 }
 
-void BM_Shaded(benchmark::State& state, const std::string& name) { render_benchmark(state, name, KernelPurpose::Shaded); }
+void BM_Shaded(benchmark::State& state, const std::string& name) {
+  render_benchmark(state, name, KernelPurpose::Shaded);
+}
 void BM_DepthOnly(benchmark::State& state, const std::string& name) {
   render_benchmark(state, name, KernelPurpose::DepthSteps);
 }

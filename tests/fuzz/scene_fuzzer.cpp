@@ -36,7 +36,8 @@ void check_generated_literals(const std::string& source) {
   const std::size_t end = source.find("#line 1 \"kernels/", begin);
   const std::string generated = source.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
   std::smatch match;
-  if (std::regex_search(generated, match, non_finite)) bug("non-finite literal '" + match[2].str() + "' in:\n" + generated);
+  if (std::regex_search(generated, match, non_finite))
+    bug("non-finite literal '" + match[2].str() + "' in:\n" + generated);
   // The defines before the first library file carry values too (shading constants, background).
   const std::string defines = source.substr(0, source.find("#line 1 \"kernels/"));
   if (std::regex_search(defines, match, non_finite)) bug("non-finite literal '" + match[2].str() + "' in:\n" + defines);

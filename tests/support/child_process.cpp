@@ -33,7 +33,8 @@ std::vector<std::string> merged_environment(const std::vector<std::string>& extr
   for (char** e = environ; *e != nullptr; ++e) {
     const std::string entry(*e);
     bool replaced = false;
-    for (const std::string& x : extra) replaced = replaced || entry.substr(0, entry.find('=') + 1) == x.substr(0, x.find('=') + 1);
+    for (const std::string& x : extra)
+      replaced = replaced || entry.substr(0, entry.find('=') + 1) == x.substr(0, x.find('=') + 1);
     if (!replaced) out.push_back(entry);
   }
   out.insert(out.end(), extra.begin(), extra.end());

@@ -19,15 +19,20 @@ std::string required_value(const ParamSpec& spec, int integer_vectors_before) {
       if (spec.range.contains(30.0) && spec.range.contains(-30.0)) return "30";
       if (spec.range.contains(0.15)) return "0.15";
       break;
-    case ParamType::Integer: return spec.range.contains(3.0) ? "3" : fmt::format("{}", spec.range.low);
-    case ParamType::Vector: return spec.range.contains(0.0) ? "[1.2, 0, 0]" : "[1.2, 0.8, 1]";
+    case ParamType::Integer:
+      return spec.range.contains(3.0) ? "3" : fmt::format("{}", spec.range.low);
+    case ParamType::Vector:
+      return spec.range.contains(0.0) ? "[1.2, 0, 0]" : "[1.2, 0.8, 1]";
     // min before max, as repeat_limited declares them.
-    case ParamType::IntegerVector: return integer_vectors_before == 0 ? "[-1, 0, 0]" : "[1, 0, 0]";
-    case ParamType::Axes: return "[x, z]";
+    case ParamType::IntegerVector:
+      return integer_vectors_before == 0 ? "[-1, 0, 0]" : "[1, 0, 0]";
+    case ParamType::Axes:
+      return "[x, z]";
     case ParamType::Point:
     case ParamType::Direction:
     case ParamType::Choice:
-    case ParamType::Vector4: break;
+    case ParamType::Vector4:
+      break;
   }
   throw std::logic_error(fmt::format("no value for a required parameter {}", spec.key));
 }
@@ -41,7 +46,9 @@ std::string kind_settings(NodeKind kind) { return kind == NodeKind::Mandelbox ? 
 
 }  // namespace
 
-std::string kind_render_settings(NodeKind kind) { return kind == NodeKind::Mandelbox ? "hit_threshold: pixel_cone, " : ""; }
+std::string kind_render_settings(NodeKind kind) {
+  return kind == NodeKind::Mandelbox ? "hit_threshold: pixel_cone, " : "";
+}
 
 std::string kind_node(NodeKind kind, const glm::dvec3& offset) {
   const std::string name(node_kind_name(kind));
@@ -55,16 +62,18 @@ std::string kind_node(NodeKind kind, const glm::dvec3& offset) {
   }
   if (is_primitive(kind)) {
     const Scene local = scene_from_yaml(fmt::format("sdf:\n  {}: {{{}}}\n", name, params));
-    std::visit([&](const auto& values) {
-      for_each_param(values, [&](const ParamSpec& spec, const auto& value) {
-        if constexpr (std::is_same_v<std::decay_t<decltype(value)>, glm::dvec3>) {
-          if (spec.type != ParamType::Point) return;
-          const glm::dvec3 moved = value + offset;
-          params += fmt::format("{}: [{}, {}, {}], ", spec.key, moved.x, moved.y, moved.z);
-          has_points = true;
-        }
-      });
-    }, local.sdf.params);
+    std::visit(
+        [&](const auto& values) {
+          for_each_param(values, [&](const ParamSpec& spec, const auto& value) {
+            if constexpr (std::is_same_v<std::decay_t<decltype(value)>, glm::dvec3>) {
+              if (spec.type != ParamType::Point) return;
+              const glm::dvec3 moved = value + offset;
+              params += fmt::format("{}: [{}, {}, {}], ", spec.key, moved.x, moved.y, moved.z);
+              has_points = true;
+            }
+          });
+        },
+        local.sdf.params);
   } else {
     const std::string children = max_children(kind) == 1
                                      ? "[{box: {half_size: [0.45, 0.35, 0.4]}}]"

@@ -63,12 +63,15 @@ std::string error_of(const std::string& yaml, const std::vector<SceneOverride>& 
   return "no error";
 }
 
-std::filesystem::path source_path(const std::string& relative) { return std::filesystem::path(CLMARCH_SOURCE_DIR) / relative; }
+std::filesystem::path source_path(const std::string& relative) {
+  return std::filesystem::path(CLMARCH_SOURCE_DIR) / relative;
+}
 
 std::vector<std::string> shipped_scene_names() {
   std::vector<std::string> names;
   for (const auto& entry : std::filesystem::directory_iterator(source_path("scenes"))) {
-    if (entry.path().extension() == ".yaml" || entry.path().extension() == ".json") names.push_back(entry.path().filename().string());
+    if (entry.path().extension() == ".yaml" || entry.path().extension() == ".json")
+      names.push_back(entry.path().filename().string());
   }
   std::sort(names.begin(), names.end());
   return names;
@@ -129,7 +132,8 @@ TempDir::~TempDir() {
 
 std::vector<std::string> TempDir::files() const {
   std::vector<std::string> names;
-  for (const auto& entry : std::filesystem::directory_iterator(path_)) names.push_back(entry.path().filename().string());
+  for (const auto& entry : std::filesystem::directory_iterator(path_))
+    names.push_back(entry.path().filename().string());
   std::sort(names.begin(), names.end());
   return names;
 }
