@@ -1,6 +1,7 @@
 // Programs are keyed by their feature switches and the shape of the scene's code: the numbers a
 // frame changes (camera, march limits, shading, lights) reach the device as data and never rebuild
 // the program, and the program's #defines are feature switches only.
+#include "cl/device_program.hpp"
 #include "codegen/kernel_source.hpp"
 #include "render/opencl_renderer.hpp"
 #include "scene/scene_loader.hpp"
@@ -9,6 +10,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <initializer_list>
 #include <regex>
 #include <utility>
@@ -160,6 +162,40 @@ TEST(KernelSource, DefinesAreFeatureSwitches) {
         "FOG", "SKY", "GLOW", "PLANET_GLOW", "HEIGHT_FOG", "TONE_MAP_REINHARD", "DISPLAY_GAMMA", "COARSE_PASS"}) {
     EXPECT_EQ(names.count(feature), 1u) << feature;
   }
+}
+
+}  // namespace
+}  // namespace clmarch
+
+namespace clmarch {
+namespace {
+
+// A process builds each program once: tests, frames and sweeps that render the same program share
+// it (issue 46), and a different source or option set is a program of its own.
+TEST(DevicePrograms, AProcessBuildsTheSameSourceOnce) {
+  const DeviceEntry device = select_device(std::nullopt);
+  const std::string source =
+      fmt::format("/* DevicePrograms {} */ kernel void fill(global float* x) {{ x[0] = 1.0f; }}\n",
+                  std::chrono::steady_clock::now().time_since_epoch().count());
+  const DeviceProgram first = build_device_program(device, source);
+  const DeviceProgram second = build_device_program(device, source);
+  EXPECT_EQ(first.program(), second.program());
+  EXPECT_EQ(first.context(), second.context());
+  EXPECT_EQ(second.build_ms, 0.0);
+  const DeviceProgram fast =
+      build_device_program(device, source, std::string(kBuildOptions) + " -cl-fast-relaxed-math");
+  EXPECT_NE(fast.program(), first.program());
+  EXPECT_EQ(fast.context(), first.context()) << "one context per device";
+  forget_device_programs();
+  const DeviceProgram rebuilt = build_device_program(device, source);
+  EXPECT_NE(rebuilt.program(), first.program());
+  cl::Kernel kernel(rebuilt.program, "fill");
+  cl::Buffer out(rebuilt.context, CL_MEM_WRITE_ONLY, sizeof(float));
+  kernel.setArg(0, out);
+  rebuilt.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(1));
+  float value = 0.0f;
+  rebuilt.queue.enqueueReadBuffer(out, CL_TRUE, 0, sizeof(float), &value);
+  EXPECT_EQ(value, 1.0f);
 }
 
 }  // namespace

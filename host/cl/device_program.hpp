@@ -3,6 +3,7 @@
 
 #include "cl/devices.hpp"
 
+#include <cstddef>
 #include <string>
 
 namespace clmarch {
@@ -24,8 +25,19 @@ struct DeviceProgram {
 /// Builds source for the device with options (kBuildOptions and more). Throws DeviceError with the
 /// build log on failure. With --verbose it logs the device, the options, the build time and the
 /// driver cache.
+///
+/// A process keeps one context and queue per device, and the programs it built last (at most
+/// kKeptPrograms, the least recently used dropped first): building the same source with the same
+/// options again returns the kept program with build_ms 0, so the renderers of a long-lived process
+/// (frames, a sweep, a test executable's tests) share contexts and programs.
 DeviceProgram build_device_program(const DeviceEntry& device, const std::string& source,
                                    const std::string& options = kBuildOptions);
+
+/// Programs build_device_program keeps for reuse.
+inline constexpr std::size_t kKeptPrograms = 32;
+
+/// Drops the kept programs (their contexts stay); later builds compile again.
+void forget_device_programs();
 
 /// Milliseconds between the start and end of a profiled event.
 double event_milliseconds(const cl::Event& event);

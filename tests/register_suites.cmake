@@ -1,0 +1,58 @@
+# Registers the test executable's tests with ctest a process per group (run by ctest through
+# TEST_INCLUDE_FILES, after the executable is built): the tests of one suite run in one process, so
+# that they share its OpenCL context and the programs it built (cl/device_program.hpp), instead of
+# starting the driver and loading programs once per test. A suite of more than MAX_GROUP tests is
+# split into groups of consecutive tests, so that the two cores stay busy to the end.
+#   TEST_EXECUTABLE  the gtest executable       OUTPUT     the ctest file to write
+#   SERIAL           suites (regex) that run alone
+#   MAX_GROUP        most tests in one process  TIMEOUT    seconds a group may take
+execute_process(
+  COMMAND "${TEST_EXECUTABLE}" --gtest_list_tests
+  OUTPUT_VARIABLE listing
+  RESULT_VARIABLE listed)
+if(NOT listed EQUAL 0)
+  message(FATAL_ERROR "register_suites.cmake: ${TEST_EXECUTABLE} --gtest_list_tests failed: ${listed}")
+endif()
+string(REPLACE "\n" ";" lines "${listing}")
+set(suites "")
+foreach(line IN LISTS lines)
+  # "Suite.", "Prefix/Suite.  # TypeParam = ...", "  Test", "  Test/0  # GetParam() = ..."
+  string(REGEX REPLACE "  #.*$" "" line "${line}")
+  if(line MATCHES "^([^ ].*)\\.$")
+    set(suite "${CMAKE_MATCH_1}")
+    list(APPEND suites "${suite}")
+    string(MAKE_C_IDENTIFIER "${suite}" var)
+    set(tests_${var} "")
+  elseif(line MATCHES "^  (.+)$")
+    list(APPEND tests_${var} "${CMAKE_MATCH_1}")
+  endif()
+endforeach()
+
+set(script "")
+foreach(suite IN LISTS suites)
+  string(MAKE_C_IDENTIFIER "${suite}" var)
+  list(LENGTH tests_${var} count)
+  set(properties "TIMEOUT ${TIMEOUT}")
+  if(suite MATCHES "${SERIAL}")
+    string(APPEND properties " RUN_SERIAL TRUE")
+  endif()
+  if(count LESS_EQUAL MAX_GROUP)
+    string(APPEND script "add_test([=[${suite}]=] \"${TEST_EXECUTABLE}\" [=[--gtest_filter=${suite}.*]=])\n"
+           "set_tests_properties([=[${suite}]=] PROPERTIES ${properties})\n")
+    continue()
+  endif()
+  math(EXPR groups "(${count} + ${MAX_GROUP} - 1) / ${MAX_GROUP}")
+  math(EXPR last "${groups} - 1")
+  foreach(group RANGE ${last})
+    math(EXPR first "${group} * ${count} / ${groups}")
+    math(EXPR end "(${group} + 1) * ${count} / ${groups} - 1")
+    set(filter "")
+    foreach(i RANGE ${first} ${end})
+      list(GET tests_${var} ${i} test)
+      string(APPEND filter "${suite}.${test}:")
+    endforeach()
+    string(APPEND script "add_test([=[${suite}#${group}]=] \"${TEST_EXECUTABLE}\" [=[--gtest_filter=${filter}]=])\n"
+           "set_tests_properties([=[${suite}#${group}]=] PROPERTIES ${properties})\n")
+  endforeach()
+endforeach()
+file(WRITE "${OUTPUT}" "${script}")
