@@ -11,6 +11,8 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
+#include <fstream>
 #include <initializer_list>
 #include <regex>
 #include <utility>
@@ -137,6 +139,118 @@ TEST(ProgramKey, OneRendererDrawsEachFrameAsItsOwnWould) {
       }
     }
   }
+}
+
+// render.literals: buffer reads every number of the tree from the values buffer, so that scenes
+// differing in their numbers alone (positions, radii, angles, blend radii, colours, materials) share
+// one program keyed by the tree's shape, and each renders as its own program with spelled literals
+// would (issue 41: a value edit without a rebuild). auto and inline spell them.
+const char* const kEdited =
+    "camera: {position: [0, 1.5, 5], look_at: [0, 0.5, 0]}\n"
+    "render: {width: 40, height: 24, max_distance: 30, literals: LITERALS}\n"
+    "sdf:\n  smooth_union:\n    k: 0.3\n    children:\n"
+    "      - sphere: {center: [0, 0.6, 0], radius: 0.6173, color: [0.9, 0.2, 0.1], specular: 0.3}\n"
+    "      - box: {center: [0.8, 0.4, 0], half_size: [0.3, 0.4, 0.3], rotate: [0, 30, 0]}\n"
+    "      - plane: {normal: [0, 1, 0], offset: 0}\n"
+    "lights: [{point: {position: [2, 3, 2]}}]\n";
+
+Scene edited(const std::string& literals, std::initializer_list<std::pair<std::string, std::string>> changes = {}) {
+  std::string yaml = kEdited;
+  yaml.replace(yaml.find("LITERALS"), 8, literals);
+  for (const auto& [from, to] : changes) {
+    const std::size_t at = yaml.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) yaml.replace(at, from.size(), to);
+  }
+  return load_scene_text(yaml, "edited.yaml");
+}
+
+const std::initializer_list<std::pair<std::string, std::string>> kValueEdits = {
+    {"radius: 0.6173", "radius: 0.45"},
+    {"k: 0.3", "k: 0.15"},
+    {"rotate: [0, 30, 0]", "rotate: [10, 75, 0]"},
+    {"color: [0.9, 0.2, 0.1]", "color: [0.1, 0.5, 0.9]"},
+    {"specular: 0.3", "specular: 0.7"},
+    {"center: [0.8, 0.4, 0]", "center: [0.7, 0.5, -0.2]"}};
+
+TEST(LiteralPlacement, BufferKeysProgramsByTheTreesShape) {
+  const KernelOptions options = shaded();
+  const ProgramKey inline_key = program_key(edited("inline"), options);
+  EXPECT_EQ(edited("auto").render.literals, LiteralPlacement::Auto);
+  EXPECT_EQ(program_key(edited("auto"), options), inline_key) << "auto spells the literals";
+  EXPECT_NE(program_key(edited("inline", kValueEdits), options), inline_key);
+
+  OpenClOptions cl;
+  OpenClRenderer renderer(edited("buffer"), cl);
+  EXPECT_EQ(renderer.render().stats.literals, "buffer");
+  EXPECT_EQ(renderer.source().find("0.6173"), std::string::npos) << "a number of the tree is spelled";
+  EXPECT_NE(renderer.source().find("values[0]"), std::string::npos);
+  const Scene changed = edited("buffer", kValueEdits);
+  ASSERT_TRUE(renderer.can_render(changed, cl)) << "a value edit needs a new program";
+  EXPECT_FALSE(renderer.can_render(
+      edited("buffer", {{"- plane:", "- torus: {major_radius: 2, minor_radius: 0.1}\n      - plane:"}}), cl))
+      << "another shape is another program";
+  renderer.set_scene(changed);
+  const RenderResult shared = renderer.render();
+  EXPECT_EQ(shared.stats.build_ms, 0.0) << "the edit re-rendered from the built program";
+  const RenderResult spelled = render_opencl(edited("inline", kValueEdits), cl);
+  EXPECT_EQ(spelled.stats.literals, "inline");
+  // The same arithmetic on the same floats, read instead of spelled: the compiler may still fuse or
+  // fold differently around a known constant, so depths agree to float rounding, not bit for bit.
+  const std::vector<float>& depth = shared.buffers.plane(Channel::Depth);
+  const std::vector<float>& expected = spelled.buffers.plane(Channel::Depth);
+  ASSERT_EQ(depth.size(), expected.size());
+  int hits = 0;
+  for (std::size_t i = 0; i < depth.size(); ++i) {
+    ASSERT_EQ(std::isinf(depth[i]), std::isinf(expected[i])) << "pixel " << i;
+    if (std::isinf(depth[i])) continue;
+    ++hits;
+    EXPECT_NEAR(depth[i], expected[i], 1e-4f + 1e-5f * expected[i]) << "pixel " << i;
+  }
+  EXPECT_GT(hits, static_cast<int>(depth.size()) / 2);
+  for (Channel c : {Channel::R, Channel::G, Channel::B}) {
+    const std::vector<float>& got = shared.buffers.plane(c);
+    const std::vector<float>& want = spelled.buffers.plane(c);
+    for (std::size_t i = 0; i < got.size(); ++i) ASSERT_NEAR(got[i], want[i], 2e-3f) << "pixel " << i;
+  }
+}
+
+TEST(LiteralPlacement, TheKeyTakesAutoInlineOrBufferAndStatsSayWhich) {
+  EXPECT_EQ(testing::error_of("render: {literals: spelled}\nsdf: {sphere: {}}\n"),
+            "s.yaml:1:20: render.literals must be one of auto, inline, buffer (got 'spelled')");
+  testing::TempDir dir;
+  const std::string scene = (dir / "s.yaml").string();
+  {
+    std::ofstream out(scene);
+    out << "render: {width: 16, height: 8}\nsdf: {sphere: {radius: 0.8}}\n";
+  }
+  for (const char* placement : {"inline", "buffer"}) {
+    const auto result = testing::run_clmarch(
+        {"render", scene, "--no-image", "--stats", "--set", std::string("render.literals=") + placement});
+    ASSERT_EQ(result.exit_code, 0) << result.err;
+    EXPECT_NE(result.out.find(fmt::format("\"literals\":\"{}\"", placement)), std::string::npos) << result.out;
+  }
+}
+
+// A value edit in a new process: the program read from the driver's cache, not compiled again.
+TEST(LiteralPlacement, AnEditInTheNextProcessLoadsTheCachedProgram) {
+  testing::TempDir dir;
+  const std::string scene = (dir / "s.yaml").string();
+  const auto render = [&](const char* radius) {
+    return testing::run_clmarch({"render", scene, "--no-image", "--stats", "--verbose", "--set",
+                                 "render.literals=buffer", "--set", std::string("sdf.sphere.radius=") + radius},
+                                {"POCL_CACHE_DIR=" + (dir / "cache").string()});
+  };
+  {
+    std::ofstream out(scene);
+    out << "render: {width: 16, height: 8}\nsdf: {sphere: {radius: 0.8}}\n";
+  }
+  const auto first = render("0.8");
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  if (first.err.find("driver cache miss") == std::string::npos) GTEST_SKIP() << "not PoCL: " << first.err;
+  const auto second = render("0.55");
+  ASSERT_EQ(second.exit_code, 0) << second.err;
+  EXPECT_NE(second.err.find("driver cache hit"), std::string::npos) << second.err;
 }
 
 // The program's #defines switch features; numbers reach it as MarchParams and the lights. The only

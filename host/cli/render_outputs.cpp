@@ -67,6 +67,7 @@ nlohmann::json stats_json(const RenderCommandOptions& options, const Scene& scen
           {"steps", s.steps},
           {"rays_per_s", s.rays_per_s},
           {"chunks", s.chunks},
+          {"literals", s.literals},
           {"surface_steps", s.steps - s.wall_steps},
           {"wall_steps", s.wall_steps},
           {"coarse_steps", s.coarse_steps},

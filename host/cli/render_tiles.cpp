@@ -65,6 +65,7 @@ void render_image_in_tiles(const RenderCommandOptions& options, const Scene& sce
       t.host = figures.host;
       s.device = figures.stats.device;
       s.lanes = figures.stats.lanes;
+      s.literals = figures.stats.literals;
       s.chunks = 0;
     }
     t.pixels += figures.pixels;

@@ -92,19 +92,6 @@ MaterialLayout material_layout(const Scene& scene) {
   return {root_material(scene), scene.shading.model, uses_emission(scene.sdf)};
 }
 
-/// The scene's code as eval_points has it: world points, every literal spelled.
-SdfCode eval_points_scene_code(const Scene& scene) {
-  return generate_sdf_code(scene.sdf, glm::dvec3(0.0), scene.render.subtree_bounds == SceneBounds::Sphere,
-                           grid_union(scene), true, material_layout(scene));
-}
-
-/// The scene's code as a program built with options has it.
-SdfCode program_scene_code(const Scene& scene, const KernelOptions& options) {
-  if (options.purpose == KernelPurpose::EvalPoints) return eval_points_scene_code(scene);
-  const MarchOutputs outputs = march_outputs(scene, options.purpose, options.ray_status);
-  return march_scene_code(scene, outputs.ids);
-}
-
 /// True if node or a descendant is of one of kinds: the library files of rare primitives are
 /// compiled in only for the scenes that use them.
 bool uses_kind(const Node& node, std::initializer_list<NodeKind> kinds) {
@@ -121,6 +108,18 @@ bool uses_group(const Node& node, bool (*in_group)(NodeKind)) {
 }
 
 }  // namespace
+
+/// The scene's code as eval_points has it: world points, every literal spelled.
+SdfCode eval_points_scene_code(const Scene& scene) {
+  return generate_sdf_code(scene.sdf, glm::dvec3(0.0), scene.render.subtree_bounds == SceneBounds::Sphere,
+                           grid_union(scene), true, material_layout(scene));
+}
+
+SdfCode program_scene_code(const Scene& scene, const KernelOptions& options) {
+  if (options.purpose == KernelPurpose::EvalPoints) return eval_points_scene_code(scene);
+  const MarchOutputs outputs = march_outputs(scene, options.purpose, options.ray_status);
+  return march_scene_code(scene, outputs.ids);
+}
 
 bool uses_antialiasing(const Scene& scene, KernelPurpose purpose) {
   return scene.render.samples > 1 && purpose != KernelPurpose::EvalPoints && purpose != KernelPurpose::Ceiling;

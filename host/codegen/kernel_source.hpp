@@ -115,6 +115,10 @@ struct ProgramKey {
 };
 ProgramKey program_key(const Scene& scene, const KernelOptions& options);
 
+/// The scene's code as a program built with options has it (eval_points: world points, every
+/// literal spelled; march programs: march_scene_code, with ids where the purpose writes them).
+SdfCode program_scene_code(const Scene& scene, const KernelOptions& options);
+
 /// What the values buffer of the scene's march program built with options holds.
 ProgramValues scene_values(const Scene& scene, const KernelOptions& options);
 

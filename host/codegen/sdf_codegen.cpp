@@ -998,13 +998,15 @@ std::string sdf_functions(const Node& root, const glm::dvec3& frame_origin, bool
                         frame_origin.y, frame_origin.z);
   // The operand grid's data can pass the 64 KiB of constant memory that every device has.
   const std::string values_type =
-      grid.emitted ? "/* Literals of the scene that change between the frames of an animation are read from the\n"
-                     " * kernel's values buffer (values[j]) instead, so that those frames share this program; the\n"
-                     " * operand grid's data follows them (SCENE_DATA), in global memory for its size. */\n"
-                     "typedef __global const float* SceneValues;\n\n"
-                   : "/* Literals of the scene that change between the frames of an animation are read from the\n"
-                     " * kernel's values buffer (values[j]) instead, so that those frames share this program. */\n"
-                     "typedef __constant const float* SceneValues;\n\n";
+      grid.emitted
+          ? "/* Literals of the scene read from the kernel's values buffer (values[j]) instead of spelled\n"
+            " * (render.literals, or those an animation changes) let scenes that differ in them share this\n"
+            " * program; the operand grid's data follows them (SCENE_DATA), in global memory for its size. */\n"
+            "typedef __global const float* SceneValues;\n\n"
+          : "/* Literals of the scene read from the kernel's values buffer (values[j]) instead of spelled\n"
+            " * (render.literals, or those an animation changes) let scenes that differ in them share this\n"
+            " * program. */\n"
+            "typedef __constant const float* SceneValues;\n\n";
   return frame + values_type + grid.functions +
          fmt::format(
              "/* Distance to the scene. */\n"
@@ -1086,7 +1088,7 @@ std::string spell_sdf_code(const SdfCode& code, const ValueSlots& slots) {
   for (std::size_t j = 0; j < order.size(); ++j) slot_of[order[j]] = static_cast<int>(j);
   std::string out;
   if (!order.empty()) {
-    out += fmt::format("/* values[0 .. {}]: the literals that change from frame to frame. */\n", order.size() - 1);
+    out += fmt::format("/* values[0 .. {}]: the literals read from the values buffer. */\n", order.size() - 1);
   }
   if (code.data) out += fmt::format("#define SCENE_DATA (values + {})\n", order.size());
   for_each_mark(code.source, [&](std::string_view text, std::size_t k) {

@@ -76,6 +76,7 @@ struct Report {
   std::uint64_t out_of_distance = 0;
   char device[256] = {};
   char host[128] = {};
+  char literals[8] = {};
 };
 
 template <std::size_t N>
@@ -108,6 +109,7 @@ Report report_of(int kind, int unit, const UnitFigures* figures, std::size_t pay
     r.out_of_steps = s.out_of_steps;
     r.out_of_distance = s.out_of_distance;
     copy_text(r.device, s.device);
+    copy_text(r.literals, s.literals);
   }
   return r;
 }
@@ -118,6 +120,7 @@ UnitFigures figures_of(const Report& r) {
   f.host = r.host;
   RenderStats& s = f.stats;
   s.device = r.device;
+  s.literals = r.literals;
   s.lanes = r.lanes;
   s.chunks = r.chunks;
   s.kernel_ms = r.kernel_ms;

@@ -300,6 +300,7 @@ RenderResult OpenClRenderer::render_rows(int band_first_row, int band_rows) {
   stats.device = dp.device.label();
   stats.lanes = s.prepared.lanes;
   stats.precision = s.prepared.kernel_options.variant.precision;
+  stats.literals = s.prepared.literals_in_buffer ? "buffer" : "inline";
   if (!s.rendered) {
     stats.build_ms = dp.build_ms + first_enqueue_ms.value_or(0.0);
     log_verbose(

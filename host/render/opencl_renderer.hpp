@@ -60,6 +60,8 @@ struct RenderStats {
   double rays_per_s = 0.0;
   /// Dispatches the image was split into.
   int chunks = 1;
+  /// Where the program keeps the scene's numbers (render.literals as taken): "inline" or "buffer".
+  std::string literals = "inline";
 };
 
 struct RenderResult {

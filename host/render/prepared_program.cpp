@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include <numeric>
+
 namespace clmarch {
 
 KernelVariant scene_variant(const Scene& scene, KernelVariant variant) {
@@ -25,6 +27,15 @@ void check_precision_support(const Scene& scene, const KernelVariant& variant, c
   }
 }
 
+bool literals_in_buffer(const Scene& scene, const KernelOptions& kernel_options) {
+  // auto spells them: spelled literals measured 0-16 % faster warm than read ones on the shipped
+  // scenes (docs/performance.md, "Literals"), and only a session that edits numbers gains from a
+  // program keyed by the tree's shape alone.
+  if (kernel_options.purpose == KernelPurpose::EvalPoints || scene.render.literals != LiteralPlacement::Buffer)
+    return false;
+  return !program_scene_code(scene, kernel_options).literals.empty();
+}
+
 PreparedProgram prepare_program(const Scene& scene, const OpenClOptions& options, KernelPurpose purpose) {
   const DeviceEntry device = select_device(options.device);
   const KernelVariant variant = scene_variant(scene, options.variant);
@@ -34,6 +45,11 @@ PreparedProgram prepare_program(const Scene& scene, const OpenClOptions& options
   kernel_options.fp_contraction = allows_fp_contraction(device);
   const bool march = purpose != KernelPurpose::EvalPoints;
   if (march) kernel_options.value_slots = options.value_slots;
+  const bool in_buffer = literals_in_buffer(scene, kernel_options);
+  if (in_buffer) {
+    kernel_options.value_slots.resize(program_scene_code(scene, kernel_options).literals.size());
+    std::iota(kernel_options.value_slots.begin(), kernel_options.value_slots.end(), 0);
+  }
   const std::string source = generate_kernel_source(scene, kernel_options);
   if (options.before_build) options.before_build(source);
   return {build_device_program(device, source, kernel_build_options(variant)),
@@ -42,7 +58,8 @@ PreparedProgram prepare_program(const Scene& scene, const OpenClOptions& options
           march ? march_outputs(scene, purpose, options.ray_status).planes() : std::vector<int>{},
           source,
           kernel_options,
-          program_key(scene, kernel_options)};
+          program_key(scene, kernel_options),
+          in_buffer};
 }
 
 }  // namespace clmarch

@@ -23,6 +23,8 @@ struct PreparedProgram {
   KernelOptions kernel_options;
   /// program_key(scene, kernel_options): which scenes it renders.
   ProgramKey key;
+  /// Whether every literal of the scene's code is read from the values buffer (render.literals).
+  bool literals_in_buffer = false;
 };
 
 /// The program variant the scene renders with: variant, in double where the scene asks for
@@ -33,6 +35,10 @@ KernelVariant scene_variant(const Scene& scene, KernelVariant variant);
 /// device lacks cl_khr_fp64.
 void check_precision_support(const Scene& scene, const KernelVariant& variant, const std::string& device,
                              bool has_fp64);
+
+/// Whether the program reads every literal of the scene's code from its values buffer
+/// (render.literals: buffer and a code with literals); auto and inline spell them.
+bool literals_in_buffer(const Scene& scene, const KernelOptions& kernel_options);
 
 /// Generates and builds the scene's program for purpose (handing the source to
 /// options.before_build first when set).

@@ -216,6 +216,14 @@ inline constexpr const char* kPruningNames[] = {"auto", "none", "grid"};
 enum class Precision { Float, Double };
 inline constexpr const char* kPrecisionNames[] = {"float", "double"};
 
+/// Where the numbers of the scene's tree (positions, sizes, angles, blend radii, colours, materials)
+/// live in its program: spelled into the source (inline: a changed number is a new program), or read
+/// from the program's values buffer (buffer: programs are keyed by the tree's shape, so an edited
+/// number re-renders from the program built before, in this process or from the driver's cache in
+/// the next). auto spells them, measured faster warm (render/prepared_program.hpp).
+enum class LiteralPlacement { Auto, Inline, Buffer };
+inline constexpr const char* kLiteralPlacementNames[] = {"auto", "inline", "buffer"};
+
 /// The most samples per pixel render.samples allows.
 inline constexpr int kMaxSamples = 1024;
 
@@ -252,6 +260,7 @@ struct RenderSettings {
   /// With samples > 1: only pixels whose neighbourhood shows an edge get more than the centre ray.
   bool adaptive = true;
   Precision precision = Precision::Float;
+  LiteralPlacement literals = LiteralPlacement::Auto;
 
   bool operator==(const RenderSettings&) const = default;
 };
