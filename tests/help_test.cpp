@@ -61,6 +61,13 @@ TEST(Help, TopLevelShowsGlobalFlagsEveryCommandAndExitCodes) {
   EXPECT_NE(result.out.find("Exit codes: 0 success"), std::string::npos) << result.out;
 }
 
+TEST(Help, VersionPrintsTheProjectsVersion) {
+  const auto result = run_clmarch({"--version"});
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(result.out, std::string("clmarch ") + CLMARCH_VERSION + "\n");
+  EXPECT_TRUE(std::regex_match(std::string(CLMARCH_VERSION), std::regex(R"(\d+\.\d+\.\d+)"))) << CLMARCH_VERSION;
+}
+
 TEST(Help, RenderExplainsEveryOptionWithAnExample) { expect_every_option_in_an_example({"render", "--help"}, 9); }
 
 TEST(Help, CheckExplainsEveryOptionWithAnExample) { expect_every_option_in_an_example({"check", "--help"}, 6); }

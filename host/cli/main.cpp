@@ -82,6 +82,7 @@ int main(int argc, char** argv) {
   using namespace clmarch;
   install_interrupt_handlers();
   CLI::App app{"clmarch: a sphere tracer of signed distance fields on OpenCL", "clmarch"};
+  app.set_version_flag("--version", std::string("clmarch ") + CLMARCH_VERSION);
   app.require_subcommand(1);
   // Global flags may also follow the subcommand: `clmarch render x.yaml --quiet`.
   app.fallthrough();
@@ -100,6 +101,7 @@ int main(int argc, char** argv) {
       "  clmarch check scenes/torus.yaml --size 160x90     # OpenCL against the CPU reference\n"
       "  clmarch bench scenes/torus.yaml --size 1280x720   # kernel times against the device's ceiling\n"
       "  clmarch devices                                   # the indices --device takes\n"
+      "  clmarch --version                                 # the version, e.g. clmarch 0.3.0\n"
       "Exit codes: 0 success, 1 check failed, 2 bad input, 3 OpenCL/device fault, 4 output not written,\n"
       "70 internal error, 130 interrupted (Ctrl-C; 143 for SIGTERM). See docs/cli.md.\n"
       "Help on a command: clmarch render --help, clmarch check --help, clmarch bench --help.");
@@ -116,6 +118,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     // CLI11 takes a misspelt command for a stray argument and asks for a subcommand.
