@@ -6,6 +6,8 @@
 #   TEST_EXECUTABLE  the gtest executable       OUTPUT     the ctest file to write
 #   SERIAL           suites (regex) that run alone
 #   MAX_GROUP        most tests in one process  TIMEOUT    seconds a group may take
+#   COVERAGE_DIR     (coverage builds) where each group's gcov counts go, a folder per group
+#                    (GCOV_PREFIX), for scripts/coverage-report.py
 execute_process(
   COMMAND "${TEST_EXECUTABLE}" --gtest_list_tests
   OUTPUT_VARIABLE listing
@@ -36,6 +38,10 @@ foreach(suite IN LISTS suites)
   if(suite MATCHES "${SERIAL}")
     string(APPEND properties " RUN_SERIAL TRUE")
   endif()
+  if(COVERAGE_DIR)
+    string(MAKE_C_IDENTIFIER "${suite}" folder)
+    string(APPEND properties " ENVIRONMENT [=[GCOV_PREFIX=${COVERAGE_DIR}/${folder}]=]")
+  endif()
   if(count LESS_EQUAL MAX_GROUP)
     string(APPEND script "add_test([=[${suite}]=] \"${TEST_EXECUTABLE}\" [=[--gtest_filter=${suite}.*]=])\n"
            "set_tests_properties([=[${suite}]=] PROPERTIES ${properties})\n")
@@ -51,8 +57,12 @@ foreach(suite IN LISTS suites)
       list(GET tests_${var} ${i} test)
       string(APPEND filter "${suite}.${test}:")
     endforeach()
+    set(group_properties "${properties}")
+    if(COVERAGE_DIR)
+      string(REPLACE "]=]" "_${group}]=]" group_properties "${properties}")
+    endif()
     string(APPEND script "add_test([=[${suite}#${group}]=] \"${TEST_EXECUTABLE}\" [=[--gtest_filter=${filter}]=])\n"
-           "set_tests_properties([=[${suite}#${group}]=] PROPERTIES ${properties})\n")
+           "set_tests_properties([=[${suite}#${group}]=] PROPERTIES ${group_properties})\n")
   endforeach()
 endforeach()
 file(WRITE "${OUTPUT}" "${script}")

@@ -192,7 +192,10 @@ TEST(FarCamera, PlainMarchKeepsTheOriginsAccuracyOnEveryAxis) {
 /// Renders the scene whose sdf (a YAML block under "sdf:", indented by two) sdf_at writes for a
 /// function placing points relative to an offset, at the origin and 10^3 + 500 away (frame origin
 /// 1472 on x), in float and in double (render.precision), and expects the cross-check against the
-/// double reference to pass at both.
+/// double reference to pass at both. The numbers are read from the values buffer (render.literals:
+/// buffer), so that the near and far scenes of a kind, whose code differs only in its numbers
+/// relative to the map frame, share one program: the numbers the host folds into the frame are the
+/// same floats spelled or read, and half the programs to compile halve the test's time.
 void expect_checks_near_and_far(
     const std::function<std::string(const std::function<std::string(double, double, double)>&, const glm::dvec3&)>&
         sdf_at) {
@@ -205,7 +208,8 @@ void expect_checks_near_and_far(
     };
     const std::string yaml = fmt::format(
         "camera: {{position: {}, look_at: {}, fov: 50}}\n"
-        "render: {{width: 64, height: 36, epsilon: 1.0e-4, max_steps: 400, max_distance: 40, precision: {}}}\n"
+        "render: {{width: 64, height: 36, epsilon: 1.0e-4, max_steps: 400, max_distance: 40, precision: {},\n"
+        "         literals: buffer}}\n"
         "sdf:\n{}"
         "lights: [{{directional: {{direction: [1, 2, 1.5]}}}}]\n",
         at(4, 3, 6), at(0, 0.3, 0), precision, sdf_at(at, offset));
