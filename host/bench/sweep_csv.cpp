@@ -106,7 +106,7 @@ std::string existing_rows(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::stringstream text;
   text << in.rdbuf();
-  const std::string existing = text.str();
+  std::string existing = text.str();
   if (!existing.empty() && existing.compare(0, header_line().size(), header_line()) != 0) {
     throw InputError(
         fmt::format("--csv {}: cannot append, its header is not the sweep's (columns: docs/cli.md)", path));

@@ -76,6 +76,7 @@ SweepResult run_sweep(const std::vector<SweepCase>& cases, SweepSettings setting
   }
 
   std::vector<Scene> scenes;
+  scenes.reserve(cases.size());
   for (const SweepCase& c : cases) scenes.push_back(without_step_ao(c.scene));
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const double pixels = static_cast<double>(scenes[k].render.width) * scenes[k].render.height;

@@ -125,7 +125,7 @@ std::vector<SweepCombination> expand_one_at_a_time(const std::vector<SweepAxis>&
 std::vector<std::string> scene_sets(const SweepCombination& combination) {
   std::vector<std::string> sets;
   for (const auto& [key, value] : combination) {
-    if (!is_kernel_key(key)) sets.push_back(key + "=" + value);
+    if (!is_kernel_key(key)) sets.push_back(fmt::format("{}={}", key, value));
   }
   return sets;
 }
@@ -154,7 +154,7 @@ OpenClOptions with_kernel_settings(OpenClOptions options, const SweepCombination
 
 std::string combination_label(const SweepCombination& combination) {
   std::vector<std::string> parts;
-  for (const auto& [key, value] : combination) parts.push_back(key + "=" + value);
+  for (const auto& [key, value] : combination) parts.push_back(fmt::format("{}={}", key, value));
   return fmt::format("{}", fmt::join(parts, " "));
 }
 

@@ -76,9 +76,8 @@ std::string option_suggestion(const CLI::App& app, int argc, char** argv) {
   return {};
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+/// The command line's work: parse, then run the command with its errors reported.
+int run_main(int argc, char** argv) {
   using namespace clmarch;
   install_interrupt_handlers();
   CLI::App app{"clmarch: a sphere tracer of signed distance fields on OpenCL", "clmarch"};
@@ -185,4 +184,12 @@ int main(int argc, char** argv) {
   }
   finish_mpi();
   return code;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // An exception outside the commands' own reporting (setting up the options, MPI) still ends
+  // with its message and kExitInternalError rather than in std::terminate.
+  return clmarch::run_reporting_errors([&] { return run_main(argc, argv); });
 }

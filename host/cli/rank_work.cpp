@@ -18,7 +18,8 @@ bool every_rank_stopped() { return g_every_rank_stopped; }
 void render_units(WorkQueue& queue, const std::function<void(int unit)>& render, const UnitName& describe) {
   const MpiWorld& world = mpi_world();
   std::optional<int> own_failure;
-  const std::string rank_context = error_context();
+  // A copy, not a reference: set_error_context below changes what error_context() refers to.
+  const std::string rank_context = error_context();  // NOLINT(performance-unnecessary-copy-initialization)
   while (const std::optional<int> unit = queue.next()) {
     if (!world.distributed()) {
       render(*unit);

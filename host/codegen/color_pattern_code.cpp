@@ -64,6 +64,7 @@ class ExpressionCode {
     if (f == "length") {
       if (a.size() == 1) return fmt::format("fabs({})", a[0]);
       std::vector<std::string> squares;
+      squares.reserve(a.size());
       for (const std::string& x : a) squares.push_back(fmt::format("{0} * {0}", x));
       return fmt::format("sqrt({})", fmt::join(squares, " + "));
     }

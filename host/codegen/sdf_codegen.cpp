@@ -324,7 +324,7 @@ class SdfEmitter {
   /// lattice coordinates), the point relative to its axis for the polar repetition.
   std::string absolute_point(const std::string& p, const glm::dvec3& offset) {
     if (offset == glm::dvec3(0.0)) return p;
-    const std::string q = fresh("p");
+    std::string q = fresh("p");
     line(fmt::format("vec3v {} = v3_add({}, v3_from({}));", q, p, lit_.f4(offset)));
     return q;
   }

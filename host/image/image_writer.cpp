@@ -58,6 +58,7 @@ struct HeaderAttributes {
 
 std::vector<NamedPlane> named(const FrameBuffers& buffers, const std::vector<Channel>& channels) {
   std::vector<NamedPlane> out;
+  out.reserve(channels.size());
   for (Channel c : channels) out.push_back({&buffers.plane(c), kChannelNames[static_cast<int>(c)]});
   return out;
 }
@@ -156,7 +157,7 @@ std::array<float, 16> imath_matrix(const glm::dvec4 (&rows)[4]) {
   std::array<float, 16> m{};
   for (int column = 0; column < 4; ++column) {
     for (int row = 0; row < 4; ++row)
-      m[static_cast<std::size_t>(row * 4 + column)] = static_cast<float>(rows[column][row]);
+      m[static_cast<std::size_t>(row) * 4 + static_cast<std::size_t>(column)] = static_cast<float>(rows[column][row]);
   }
   return m;
 }

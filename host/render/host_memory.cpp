@@ -14,7 +14,8 @@ constexpr std::uint64_t kWrittenChannels = 26;
 }  // namespace
 
 std::uint64_t host_bytes_per_pixel(int samples) {
-  const std::uint64_t frame = 2 * kChannelCount * sizeof(float) + 3 * kWrittenChannels * sizeof(float);
+  const std::uint64_t frame =
+      2 * static_cast<std::uint64_t>(kChannelCount) * sizeof(float) + 3 * kWrittenChannels * sizeof(float);
   // SampleSums' doubles (color, hits and the layers) and its flag (the refining pass's buffers are
   // of a fixed size).
   const std::uint64_t antialiasing = 13 * sizeof(double) + 1;

@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
 #include <numeric>
 #include <optional>
 #include <stdexcept>
@@ -95,7 +96,7 @@ OpenClRenderer::OpenClRenderer(const Scene& scene, const OpenClOptions& options)
       const int float4s = CLMARCH_REFINED_FLOAT4S(layers);
       s.antialias = AntialiasBuffers{
           cl::Buffer(dp.context, CL_MEM_READ_ONLY, kRefinePairs * sizeof(cl_int)),
-          cl::Buffer(dp.context, CL_MEM_READ_ONLY, 2 * CLMARCH_SAMPLE_POINT_STRIDE * sizeof(float)),
+          cl::Buffer(dp.context, CL_MEM_READ_ONLY, std::size_t{2} * CLMARCH_SAMPLE_POINT_STRIDE * sizeof(float)),
           cl::Buffer(dp.context, CL_MEM_WRITE_ONLY, kRefinePairs * float4s * sizeof(cl_float4)), float4s, layers};
       s.kernel.setArg(next_arg, s.antialias->refine_pixels);
       s.kernel.setArg(next_arg + 1, s.antialias->sample_points);
@@ -149,7 +150,7 @@ double refine_samples(const RenderSettings& render, PreparedProgram& prepared, c
   SampleSums sums(buffers, pixels_to_refine(buffers, render.adaptive), antialias.layers);
   const std::vector<std::uint8_t>& refine = sums.refine();
   DeviceProgram& dp = prepared.program;
-  std::vector<float> points(2 * CLMARCH_SAMPLE_POINT_STRIDE, 0.0f);
+  std::vector<float> points(std::size_t{2} * CLMARCH_SAMPLE_POINT_STRIDE, 0.0f);
   for (int k = 0; k < count; ++k) {
     const glm::dvec2 point = sample_point(k, count);
     points[k] = static_cast<float>(point.x);
@@ -195,7 +196,7 @@ double refine_samples(const RenderSettings& render, PreparedProgram& prepared, c
       const cl_float4* sum = &samples[pair * float4s];
       std::copy(sum[0].s, sum[0].s + 4, values.begin());
       for (std::size_t layer = 1; layer < float4s; ++layer)
-        std::copy(sum[layer].s, sum[layer].s + 3, values.begin() + 1 + 3 * layer);
+        std::copy(sum[layer].s, sum[layer].s + 3, values.begin() + static_cast<std::ptrdiff_t>(1 + 3 * layer));
       sums.add(static_cast<std::size_t>(pixels[pair / per_pixel]), values.data());
     }
     pixels.clear();

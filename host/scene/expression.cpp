@@ -120,6 +120,7 @@ double CompiledExpression::operator()(const std::vector<double>& values) {
 
 std::string expression_vocabulary(const std::vector<ExpressionVariable>& variables) {
   std::vector<std::string> names;
+  names.reserve(variables.size());
   for (const auto& [name, value] : variables) names.push_back(name);
   return fmt::format("an expression may use the variable{} {}, the constant pi and the functions {}",
                      names.size() == 1 ? "" : "s", fmt::join(names, ", "), fmt::join(function_names(), ", "));

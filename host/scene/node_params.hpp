@@ -124,6 +124,8 @@ using NodeParams = VariantBeforeVoid<TypeList<
 #define CLMARCH_REQUIRED_INTEGERS(member, low, high) \
   visit(ParamSpec{#member, ParamType::IntegerVector, Range::closed(low, high), true}, params.member);
 #define CLMARCH_REQUIRED_AXES(member) visit(ParamSpec{#member, ParamType::Axes, Range::any(), true}, params.member);
+// Kind names a type here, which parentheses would break.
+// NOLINTBEGIN(bugprone-macro-parentheses)
 #define CLMARCH_KIND_PARAMS(Kind, params_list)                                               \
   template <class Visit>                                                                     \
   void for_each_param([[maybe_unused]] Kind& params, [[maybe_unused]] Visit&& visit) {       \
@@ -133,6 +135,7 @@ using NodeParams = VariantBeforeVoid<TypeList<
   void for_each_param([[maybe_unused]] const Kind& params, [[maybe_unused]] Visit&& visit) { \
     params_list                                                                              \
   }
+// NOLINTEND(bugprone-macro-parentheses)
 #define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params) CLMARCH_KIND_PARAMS(Kind, params)
 #define CLMARCH_OPERATOR(Kind, name, min_children, max_children, params) CLMARCH_KIND_PARAMS(Kind, params)
 #include "scene/node_kinds.def"

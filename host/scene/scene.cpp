@@ -141,6 +141,8 @@ Node node_of_kind(NodeKind kind) {
   Node node;
   node.kind = kind;
   switch (kind) {
+// Kind names a type here, which parentheses would break.
+// NOLINTBEGIN(bugprone-macro-parentheses)
 #define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params_list) \
   case NodeKind::Kind:                                            \
     node.params = Kind{};                                         \
@@ -149,6 +151,7 @@ Node node_of_kind(NodeKind kind) {
   case NodeKind::Kind:                                                        \
     node.params = Kind{};                                                     \
     break;
+// NOLINTEND(bugprone-macro-parentheses)
 #include "scene/node_kinds.def"
   }
   return node;

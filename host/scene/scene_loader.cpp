@@ -16,6 +16,7 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -182,7 +183,7 @@ class SceneReader {
       const auto kind = entry.begin();
       const std::string kind_name = kind->first.Scalar();
       const YAML::Node params = kind->second;
-      const std::string path = what + "." + kind_name;
+      const std::string path = fmt::format("{}.{}", what, kind_name);
       if (kind_name == "directional") {
         light.kind = LightKind::Directional;
         yaml_.expect_map(params, path, {"direction", "color", "intensity", "shadows"});
@@ -419,8 +420,8 @@ class SceneReader {
   /// operator, and the common ones.
   static std::vector<std::string_view> node_keys(const Node& node) {
     std::vector<std::string_view> keys;
-    for (const ParamSpec& spec : param_table(node.kind)) keys.push_back(spec.key);
-    if (!is_primitive(node.kind)) keys.push_back("children");
+    for (const ParamSpec& spec : param_table(node.kind)) keys.emplace_back(spec.key);
+    if (!is_primitive(node.kind)) keys.emplace_back("children");
     for (std::string_view common : {CLMARCH_COMMON_NODE_KEYS}) {
       if (!has_param(node, common)) keys.push_back(common);
     }
@@ -912,18 +913,20 @@ void apply_override(YAML::Node& root, const SceneOverride& override_) {
   for (std::size_t i = 0; i < segments.size(); ++i) {
     const std::string& segment = segments[i];
     const bool last = i + 1 == segments.size();
+    // The key path up to this segment, without it.
+    const auto before = segments.begin() + static_cast<std::ptrdiff_t>(i);
     YAML::Node next;
     const bool is_index = segment.find_first_not_of("0123456789") == std::string::npos;
     if (remove && (!current.IsDefined() || current.IsNull() || (current.IsMap() && !current[segment]))) {
-      throw InputError(fmt::format("{}: the scene has no {} to remove", option,
-                                   fmt::join(segments.begin(), segments.begin() + i + 1, ".")));
+      throw InputError(
+          fmt::format("{}: the scene has no {} to remove", option, fmt::join(segments.begin(), before + 1, ".")));
     }
     // A key the file does not have yet becomes a map; assigning through current fills the parent.
     if (!current.IsDefined() || current.IsNull()) {
       if (is_index && i > 0) {
         throw InputError(fmt::format(
             "{}: the scene has no {}, so index {} reaches nothing (set the whole list, e.g. --set {}=[...])", option,
-            segments[i - 1], segment, fmt::join(segments.begin(), segments.begin() + i, ".")));
+            segments[i - 1], segment, fmt::join(segments.begin(), before, ".")));
       }
       current = YAML::Node(YAML::NodeType::Map);
     }
