@@ -11,8 +11,8 @@ report_args=()
 case "${1:-}" in
   "") ;;
   --sanitized)
-    source <(sed -n '/^sanitized_tests=(/,/^)/p' scripts/test.sh)
-    report_args=(--sanitized "${sanitized_tests[*]}" --costs build-coverage/ctest-junit.xml)
+    source <(sed -n '/^sanitized_suites=(/,/^)/p' scripts/test.sh)
+    report_args=(--sanitized "${sanitized_suites[*]}" --costs build-coverage/ctest-junit.xml)
     ;;
   *) echo "coverage.sh: unknown option $1 (expected --sanitized)" >&2; exit 2 ;;
 esac

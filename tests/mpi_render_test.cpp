@@ -35,9 +35,18 @@ constexpr const char* kMpiexec = "";
 /// frame pointers: the ranks keep the components loaded and unwind allocations fully, so that
 /// the leak suppressions for Open MPI (tests/sanitize/sanitizer_defaults.cpp) see where its
 /// allocations come from.
+// GCC defines __SANITIZE_ADDRESS__ under AddressSanitizer; clang 14 says so through __has_feature.
+#if defined(__SANITIZE_ADDRESS__)
+#define CLMARCH_UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define CLMARCH_UNDER_ASAN 1
+#endif
+#endif
+
 std::vector<std::string> mpirun_environment() {
   std::vector<std::string> environment = {"OMPI_ALLOW_RUN_AS_ROOT=1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1"};
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(CLMARCH_UNDER_ASAN)
   environment.push_back("OMPI_MCA_mca_base_component_disable_dlclose=1");
   environment.push_back("LSAN_OPTIONS=fast_unwind_on_malloc=0");
 #endif
