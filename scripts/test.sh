@@ -5,9 +5,10 @@
 #   3. the host-code suites below under AddressSanitizer and UndefinedBehaviorSanitizer
 #      (build-sanitize/, clang), whose build also holds the scene fuzzer,
 #   4. the scene fuzzer for a bounded time (scripts/fuzz.sh; CLMARCH_FUZZ_SECONDS).
-# CLMARCH_QUICK=1 runs steps 1 and 2 only. Each step prints its wall time, and a table of them
-# closes the run. All builds treat warnings as errors (CLMARCH_WERROR): a warning fails CI, not just
-# the log. scripts/test-profile.sh shows where the suite's time goes.
+# CLMARCH_QUICK=1 runs steps 1 and 2 only, over a PoCL cache kept between its runs. Each step
+# prints its wall time, and a table of them closes the run. All builds treat warnings as errors
+# (CLMARCH_WERROR): a warning fails CI, not just the log. scripts/test-profile.sh shows where the
+# suite's time goes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc)
@@ -31,10 +32,17 @@ summary() {
 scripts/setup.sh
 # One PoCL kernel cache for this run, empty at its start: the suites' processes and both builds'
 # suites share the programs compiled once in it, and no run starts from what an earlier one
-# compiled, so every run compiles what it tests.
-POCL_CACHE_DIR=$(mktemp -d -t clmarch-test-pocl.XXXXXX)
+# compiled, so every run compiles what it tests. CLMARCH_QUICK=1, a developer's loop that CI never
+# runs, keeps its cache in build/pocl-cache from run to run instead: a run after a small change
+# compiles only the programs the change touched.
+if [ "${CLMARCH_QUICK:-0}" = 1 ]; then
+  POCL_CACHE_DIR=$PWD/build/pocl-cache
+  mkdir -p "$POCL_CACHE_DIR"
+else
+  POCL_CACHE_DIR=$(mktemp -d -t clmarch-test-pocl.XXXXXX)
+  trap 'rm -rf "$POCL_CACHE_DIR"' EXIT
+fi
 export POCL_CACHE_DIR
-trap 'rm -rf "$POCL_CACHE_DIR"' EXIT
 
 step "format check" scripts/format.sh --check
 step "build" scripts/build.sh -DCLMARCH_WERROR=ON

@@ -6,6 +6,7 @@
 #include "frame/frame_buffers.hpp"
 #include "render/device_inputs.hpp"
 #include "render/host_memory.hpp"
+#include "support/sanitizers.hpp"
 #include "support/test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -113,14 +114,6 @@ TEST(HostMemory, CliRefusesSceneSizeBeyondMemoryAtItsLine) {
       run_clmarch({"render", (dir / "scene.yaml").string(), "--size", "8x8", "-o", (dir / "out.png").string()});
   EXPECT_EQ(small.exit_code, 0) << small.err;
 }
-
-#if defined(__SANITIZE_ADDRESS__)
-#define CLMARCH_UNDER_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define CLMARCH_UNDER_ASAN 1
-#endif
-#endif
 
 TEST(HostMemory, CliHonoursTheAddressSpaceLimit) {
 #if defined(CLMARCH_UNDER_ASAN)

@@ -4,6 +4,7 @@
 // Three ranks share the test machine's 2 cores (--oversubscribe), so the renders are small.
 #include "cli/render_tiles.hpp"
 #include "support/child_process.hpp"
+#include "support/sanitizers.hpp"
 #include "support/test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -35,15 +36,6 @@ constexpr const char* kMpiexec = "";
 /// frame pointers: the ranks keep the components loaded and unwind allocations fully, so that
 /// the leak suppressions for Open MPI (tests/sanitize/sanitizer_defaults.cpp) see where its
 /// allocations come from.
-// GCC defines __SANITIZE_ADDRESS__ under AddressSanitizer; clang 14 says so through __has_feature.
-#if defined(__SANITIZE_ADDRESS__)
-#define CLMARCH_UNDER_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define CLMARCH_UNDER_ASAN 1
-#endif
-#endif
-
 std::vector<std::string> mpirun_environment() {
   std::vector<std::string> environment = {"OMPI_ALLOW_RUN_AS_ROOT=1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1"};
 #if defined(CLMARCH_UNDER_ASAN)
