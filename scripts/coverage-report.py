@@ -78,12 +78,12 @@ def main():
     total_ex = sum(len(v) for v in executable.values())
     total_cov = sum(len(v) for v in covered.values())
     print(f"| file | lines | covered |\n|---|---|---|")
-    for source in sorted(executable):
+    for source in sorted(s for s in executable if executable[s]):
         ex, cov = len(executable[source]), len(covered[source])
         print(f"| {source} | {ex} | {100 * cov / max(ex, 1):.0f} % |")
     print(f"\nhost/: {total_cov} of {total_ex} lines run by the suite ({100 * total_cov / max(total_ex, 1):.1f} %), "
           f"{len(per_group)} test groups")
-    low = [(100 * len(covered[s]) / max(len(executable[s]), 1), s) for s in executable]
+    low = [(100 * len(covered[s]) / len(executable[s]), s) for s in executable if executable[s]]
     low = sorted(x for x in low if x[0] < args.threshold)
     print(f"files under {args.threshold:.0f} %: " + (", ".join(f"{s} ({p:.0f} %)" for p, s in low) or "none"))
 
