@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# Line coverage of host/ by the test suite (gcov through gcovr): builds build-coverage/ (g++,
+# Line coverage of host/ by the test suite (gcov): builds build-coverage/ (g++,
 # --coverage, -O1), runs the suite, each test group's counts in a folder of its own, and prints each
 # file's line coverage, the total and the files under 70 % (scripts/coverage-report.py). With
-# --sanitized it also tells how much of that the sanitizer stage's test sources run and what each
-# of their groups adds (how scripts/test.sh's sanitized_tests were chosen).
+# --sanitized it also tells how much of that the sanitizer stage's suites run and what each of
+# their groups adds (how scripts/test.sh's sanitized_suites were chosen).
 # Usage: scripts/coverage.sh [--sanitized]    (about a Release suite's time, plus a build)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -16,7 +16,7 @@ case "${1:-}" in
     ;;
   *) echo "coverage.sh: unknown option $1 (expected --sanitized)" >&2; exit 2 ;;
 esac
-scripts/setup.sh --coverage
+scripts/setup.sh
 cmake -S . -B build-coverage -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
   -DCLMARCH_COVERAGE=ON >/dev/null
 cmake --build build-coverage

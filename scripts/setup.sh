@@ -6,8 +6,8 @@
 # check. `setup.sh --plots` also installs python3-matplotlib
 # for scripts/sweep-plot.py (run it with /usr/bin/python3); `setup.sh --peers` the GLSL peer's
 # libraries (EGL, OSMesa, libpng, Mesa's llvmpipe) for scripts/speed-vs-peers.sh, and numpy and
-# OpenImageIO's Python module for the peers' peer_equivalence.py; `setup.sh --coverage` gcovr for
-# scripts/coverage.sh. clang-format and clang-tidy serve scripts/format.sh and scripts/tidy.sh.
+# OpenImageIO's Python module for the peers' peer_equivalence.py. clang-format and clang-tidy serve
+# scripts/format.sh and scripts/tidy.sh.
 set -euo pipefail
 
 packages=(
@@ -23,9 +23,8 @@ packages=(
 for arg in "$@"; do
   case "$arg" in
     --plots) packages+=(python3-matplotlib) ;;
-    --coverage) packages+=(gcovr) ;;
     --peers) packages+=(libegl-dev libosmesa6-dev libpng-dev libgl1-mesa-dri python3-numpy python3-openimageio) ;;
-    *) echo "setup.sh: unknown option $arg (expected --plots, --peers or --coverage)" >&2; exit 2 ;;
+    *) echo "setup.sh: unknown option $arg (expected --plots or --peers)" >&2; exit 2 ;;
   esac
 done
 
