@@ -19,6 +19,9 @@ esac
 scripts/setup.sh
 cmake -S . -B build-coverage -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
   -DCLMARCH_COVERAGE=ON >/dev/null
+# Counts of an earlier build would clash with the new objects' (the test listing after the build
+# writes some): start without any.
+find build-coverage -name '*.gcda' -delete 2>/dev/null || true
 cmake --build build-coverage
 rm -rf build-coverage/coverage-groups
 # A PoCL cache of the run's own unless the caller shares one (a warm one saves the compiles).
