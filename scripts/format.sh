@@ -5,7 +5,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 mapfile -t files < <(git ls-files -- 'host/*.cpp' 'host/*.hpp' 'kernels/*.cl' 'kernels/*.h' \
-  'tests/*.cpp' 'tests/*.hpp' 'scripts/*.cpp' 'scripts/*.c')
+  'tests/*.cpp' 'tests/*.hpp' 'scripts/*.cpp' 'scripts/*.c' 'python/src/*.cpp' 'python/src/*.hpp')
 if [ "${1:-}" = --check ]; then
   unformatted=()
   for f in "${files[@]}"; do

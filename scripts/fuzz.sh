@@ -13,7 +13,7 @@ seconds=${1:-60}
 build=${CLMARCH_FUZZ_BUILD_DIR:-build-fuzz}
 if [ -z "${CLMARCH_FUZZ_BUILD_DIR:-}" ]; then
   cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" \
-    -DCMAKE_CXX_COMPILER=clang++ -DCLMARCH_FUZZ=ON -DCLMARCH_BUILD_TESTS=OFF -DCLMARCH_WERROR=ON \
+    -DCMAKE_CXX_COMPILER=clang++ -DCLMARCH_FUZZ=ON -DCLMARCH_BUILD_TESTS=OFF -DCLMARCH_WERROR=ON -DCLMARCH_PYTHON=OFF \
     >/dev/null
 fi
 cmake --build "$build" --target clmarch_fuzz_scene

@@ -3,11 +3,12 @@
 # with sudo available); safe to run again. clang and libclang-rt-14-dev (libFuzzer and clang's
 # sanitizer runtimes) are for scripts/fuzz.sh; libopenmpi-dev and openmpi-bin let `clmarch render`
 # run under mpirun (docs/cli.md#mpi); python3 runs scripts/large-scene.py, whose scenes the tests
-# check. `setup.sh --plots` also installs python3-matplotlib
-# for scripts/sweep-plot.py (run it with /usr/bin/python3); `setup.sh --peers` the GLSL peer's
-# libraries (EGL, OSMesa, libpng, Mesa's llvmpipe) for scripts/speed-vs-peers.sh, and numpy and
-# OpenImageIO's Python module for the peers' peer_equivalence.py. clang-format and clang-tidy serve
-# scripts/format.sh and scripts/tidy.sh.
+# check; python3-dev, pybind11-dev, python3-numpy, python3-pytest and python3-openimageio (an EXR
+# reader independent of the writer) build and test the Python module (python/, docs/python.md).
+# clang-format and clang-tidy serve scripts/format.sh and scripts/tidy.sh. `setup.sh --plots` also
+# installs python3-matplotlib for scripts/sweep-plot.py (run it with /usr/bin/python3);
+# `setup.sh --peers` the GLSL peer's libraries (EGL, OSMesa, libpng, Mesa's llvmpipe) for
+# scripts/speed-vs-peers.sh.
 set -euo pipefail
 
 packages=(
@@ -18,12 +19,12 @@ packages=(
   libgtest-dev libbenchmark-dev libmuparser-dev
   clang libclang-rt-14-dev clang-format clang-tidy
   libopenmpi-dev openmpi-bin
-  python3
+  python3 python3-dev python3-numpy python3-pytest pybind11-dev python3-openimageio
 )
 for arg in "$@"; do
   case "$arg" in
     --plots) packages+=(python3-matplotlib) ;;
-    --peers) packages+=(libegl-dev libosmesa6-dev libpng-dev libgl1-mesa-dri python3-numpy python3-openimageio) ;;
+    --peers) packages+=(libegl-dev libosmesa6-dev libpng-dev libgl1-mesa-dri) ;;
     *) echo "setup.sh: unknown option $arg (expected --plots or --peers)" >&2; exit 2 ;;
   esac
 done

@@ -57,7 +57,8 @@ fi
 # 2026-11-27; docs/testing.md): the whole suite runs 7,483 lines of host/, and these 42 suites run
 # 7,354 of them (98.3 %): loading and every input error, code generation, the reference, every
 # kernel purpose, the operand grid, anti-aliasing, check, bench and sweeps, MPI, images, the command
-# line. Left out: the suites whose lines the chosen ones run too, above all the sweeps that repeat
+# line; and the library layer's own suites (RenderSession, SceneRequest, SampleField), added with it.
+# Left out: the suites whose lines the chosen ones run too, above all the sweeps that repeat
 # host paths over many programs for the kernels' sake (every kind far away and near, golden images,
 # random operand-grid trees: 0 lines of their own), and four that cost a minute or more under the
 # sanitizers for a dozen lines of their own (Verbosity 12 lines in 135 s, Scenes/CheckScene 28 in
@@ -67,7 +68,7 @@ sanitized_suites=(
   ColorPattern HostMemory ExitCodes OutputFailure InstanceFile CheckCli ConePass SdfClosedForm ShadingLayers RayStatus
   ProgramKey OpenClRenderer KernelVariant CheckThresholds NodeBoxes DeviceErrors DevicePrograms ReferenceSdf
   ForwardNormals DebugViews SceneLoader DeviceMemory FrameRange StagedFiles RenderReference FractalKeys SdfCode
-  FuzzRegressions Expression KernelSource SweepSpec
+  FuzzRegressions Expression KernelSource SweepSpec RenderSession SceneRequest SampleField
 )
 # The test sources that declare those suites: the sanitizer build compiles only them.
 sanitized_test_files() {
@@ -82,7 +83,7 @@ sanitized_test_files() {
 # Debug keeps assertions on. clang, so that the same build holds the libFuzzer target.
 sanitize_build() {
   cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g1" \
-    -DCMAKE_CXX_COMPILER=clang++ -DCLMARCH_SANITIZE=ON -DCLMARCH_FUZZ=ON -DCLMARCH_WERROR=ON \
+    -DCMAKE_CXX_COMPILER=clang++ -DCLMARCH_SANITIZE=ON -DCLMARCH_FUZZ=ON -DCLMARCH_WERROR=ON -DCLMARCH_PYTHON=OFF \
     "-DCLMARCH_TEST_FILES=$(sanitized_test_files)" >/dev/null
   cmake --build build-sanitize
 }

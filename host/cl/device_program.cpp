@@ -42,6 +42,8 @@ struct ProgramStore {
   std::mutex mutex;
   std::vector<DeviceQueue> queues;
   std::list<KeptProgram> programs;
+  /// Programs compiled (not found among the kept ones) since the process started.
+  std::uint64_t compiled = 0;
 };
 
 ProgramStore& program_store() {
@@ -118,6 +120,7 @@ DeviceProgram build_device_program(const DeviceEntry& device, const std::string&
     }
     out.program = cl::Program(out.context, source);
     build_logged(device, options, out);
+    ++store.compiled;
     store.programs.push_back({device.device(), options, source, out.program, out.build_log});
     if (store.programs.size() > kKeptPrograms) store.programs.pop_front();
     return out;
@@ -128,6 +131,12 @@ void forget_device_programs() {
   ProgramStore& store = program_store();
   const std::lock_guard<std::mutex> lock(store.mutex);
   store.programs.clear();
+}
+
+std::uint64_t device_programs_compiled() {
+  ProgramStore& store = program_store();
+  const std::lock_guard<std::mutex> lock(store.mutex);
+  return store.compiled;
 }
 
 double event_milliseconds(const cl::Event& event) {

@@ -4,6 +4,7 @@
 #include "cl/devices.hpp"
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 
 namespace clmarch {
@@ -38,6 +39,10 @@ inline constexpr std::size_t kKeptPrograms = 32;
 
 /// Drops the kept programs (their contexts stay); later builds compile again.
 void forget_device_programs();
+
+/// Programs build_device_program compiled in this process (those it found kept not counted):
+/// what a session's or a sweep's builds are measured by.
+std::uint64_t device_programs_compiled();
 
 /// Milliseconds between the start and end of a profiled event.
 double event_milliseconds(const cl::Event& event);

@@ -1,12 +1,11 @@
 // `clmarch check`.
 #include "cli/check_command.hpp"
 
-#include "check/cross_check.hpp"
+#include "api/check.hpp"
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
 #include "common/log.hpp"
 #include "image/image_writer.hpp"
-#include "reference/reference_renderer.hpp"
 
 #include <fmt/format.h>
 
@@ -47,11 +46,10 @@ int run_check_command(const CheckCommandOptions& options) {
     check_output_folder(std::filesystem::path(options.out_dir) / "difference.exr", "--out-dir");
   }
   const Scene scene = load_scene_with_options(options.scene);
-  OpenClOptions cl = opencl_options(options.scene);
-  cl.purpose = KernelPurpose::Buffers;
-  const RenderResult opencl = render_opencl(scene, cl);
-  const FrameBuffers reference = render_reference(scene);
-  const CheckReport report = cross_check(scene, opencl.buffers, reference, reshade_hits(scene, opencl.buffers));
+  const CheckOutcome outcome = check_scene(scene, session_options(options.scene));
+  const RenderResult& opencl = outcome.opencl;
+  const FrameBuffers& reference = outcome.reference;
+  const CheckReport& report = outcome.report;
   if (options.json) {
     nlohmann::json json = report.to_json();
     json["scene"] = options.scene.scene_path;

@@ -7,7 +7,6 @@
 #include "cli/render_tiles.hpp"
 
 #include "cl/devices.hpp"
-#include "codegen/varying_literals.hpp"
 #include "common/atomic_file.hpp"
 #include "common/cancellation.hpp"
 #include "common/errors.hpp"
@@ -18,14 +17,11 @@
 #include "distributed/work_queue.hpp"
 #include "frame/views.hpp"
 #include "image/image_writer.hpp"
-#include "reference/reference_cones.hpp"
-#include "reference/reference_renderer.hpp"
 #include "scene/scene_bounds.hpp"
 #include "scene/scene_box.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <chrono>
@@ -140,66 +136,29 @@ void check_render_options(const RenderCommandOptions& options, const std::string
   }
 }
 
-/// What the frames of a sequence carry from one to the next: the OpenCL renderer of the previous
-/// frame, kept when this frame's program is the same (the camera, march limits, shading, lights and
-/// the varying literals are its inputs), and the literals of the distance function that vary among the frames.
-struct SequenceState {
-  std::optional<OpenClRenderer> renderer;
-  VaryingLiterals varying;
-};
-
-/// Renders scene with the options' backend; sequence is set for the frames of a sequence.
+/// Renders scene with the options' backend in session (which keeps the program for the next
+/// frame); a --dump-kernel run without outputs builds the program and renders nothing.
 RenderResult render_scene(const RenderCommandOptions& options, const Scene& scene, const FrameFiles& files,
-                          SequenceState* sequence) {
-  if (options.backend == "reference") {
-    log_verbose(fmt::format("rendering on the CPU reference (double precision, {} threads)",
-                            tbb::this_task_arena::max_concurrency()));
-    RenderResult result;
-    const auto start = std::chrono::steady_clock::now();
-    const std::optional<ConeStarts> cones = reference_cones_if_used(scene);
-    result.buffers = render_reference(scene, cones);
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    result.stats.device = "CPU reference (double)";
-    result.stats.kernel_ms = ms;
-    for (float s : result.buffers.plane(Channel::Steps)) result.stats.steps += static_cast<std::uint64_t>(s);
-    for (float s : result.buffers.plane(Channel::WallSteps)) result.stats.wall_steps += static_cast<std::uint64_t>(s);
-    result.stats.out_of_steps = result.buffers.rays_with_status(RayStatus::OutOfSteps);
-    result.stats.out_of_distance = result.buffers.rays_with_status(RayStatus::OutOfDistance);
-    if (cones) {
-      for (int s : cones->steps) result.stats.coarse_steps += static_cast<std::uint64_t>(s);
-    }
-    result.stats.rays_per_s = static_cast<double>(scene.render.width) * scene.render.height / (ms * 1e-3);
-    return result;
-  }
-  OpenClOptions cl = opencl_options(options.scene);
-  cl.ray_status = options.stats;
-  cl.purpose = purpose_for(scene, !files.buffers.empty());
+                          RenderSession& session) {
+  FrameRequest request;
+  request.backend = backend_of(options);
+  request.buffers = !files.buffers.empty();
+  request.ray_status = options.stats;
   if (!files.dump_kernel.empty()) {
-    cl.before_build = [path = files.dump_kernel](const std::string& source) { write_file_atomically(path, source); };
-  }
-  std::optional<OpenClRenderer> single;
-  std::optional<OpenClRenderer>* renderer = &single;
-  if (sequence) {
-    // A frame between the samples may vary more: its shape's program is built again, once.
-    cl.value_slots = sequence->varying.add(scene);
-    renderer = &sequence->renderer;
-  }
-  if (*renderer && (*renderer)->can_render(scene, cl)) {
-    log_verbose("same program as the previous frame: no build");
-    if (!files.dump_kernel.empty()) write_file_atomically(files.dump_kernel, (*renderer)->source());
-    (*renderer)->set_scene(scene);
-  } else {
-    renderer->emplace(scene, cl);
+    request.on_source = [path = files.dump_kernel](const std::string& source) { write_file_atomically(path, source); };
   }
   if (files.output.empty() && files.buffers.empty() && !options.stats) {
     // A --dump-kernel run: the program is built (its build log shows any error), nothing rendered.
+    session.prepare(scene, request);
     return {};
   }
-  RenderResult result = (*renderer)->render();
-  // The renderer's dispatch takes default_local_size for its work-groups (render/dispatch_plan.cpp).
-  log_verbose(fmt::format("lanes {} (pixels per work-item), local size {}, {} chunk{}, kernel {:.1f} ms",
-                          result.stats.lanes, default_local_size(select_device(options.scene.device)),
-                          result.stats.chunks, result.stats.chunks == 1 ? "" : "s", result.stats.kernel_ms));
+  RenderResult result = session.render(scene, request);
+  if (request.backend == Backend::OpenCl) {
+    // The renderer's dispatch takes default_local_size for its work-groups (render/dispatch_plan.cpp).
+    log_verbose(fmt::format("lanes {} (pixels per work-item), local size {}, {} chunk{}, kernel {:.1f} ms",
+                            result.stats.lanes, default_local_size(select_device(options.scene.device)),
+                            result.stats.chunks, result.stats.chunks == 1 ? "" : "s", result.stats.kernel_ms));
+  }
   return result;
 }
 
@@ -221,8 +180,8 @@ std::string march_summary(const Scene& scene) {
 
 /// Renders and writes one image (and its buffers); frame is set for sequences. Returns its figures.
 RenderStats render_image(const RenderCommandOptions& options, const Scene& scene, const FrameFiles& files,
-                         std::optional<int> frame, SequenceState* sequence = nullptr) {
-  RenderResult result = render_scene(options, scene, files, sequence);
+                         std::optional<int> frame, RenderSession& session) {
+  RenderResult result = render_scene(options, scene, files, session);
   write_outputs(files, scene, result.buffers);
   if (options.stats) {
     nlohmann::json line = stats_json(options, scene, result.stats);
@@ -269,7 +228,7 @@ constexpr int kSampledFrames = 64;
 /// Ctrl-C leaves the finished frames and nothing of the ones in progress.
 void render_sequence(const RenderCommandOptions& options, const std::string& output) {
   const FrameRange range = parse_frame_range(options.frames, options.fps.value_or(24.0));
-  SequenceState sequence;
+  RenderSession session(session_options(options.scene));
   // Every frame is loaded, and so checked, before the first renders: a scene that breaks at some
   // time fails with nothing written (a load costs little next to a render). Knowing up front
   // which literals vary, the frames of one shape build one program between them (OpenCL).
@@ -282,7 +241,7 @@ void render_sequence(const RenderCommandOptions& options, const std::string& out
     const Scene scene = load_scene_with_options(options.scene, range.time_of(frame));
     pixels = static_cast<double>(scene.render.width) * scene.render.height;
     if (options.backend == "opencl" && std::binary_search(sampled.begin(), sampled.end(), frame)) {
-      sequence.varying.add(scene);
+      session.expect_frame(scene);
     }
   }
   // Rank 0 counts every rank's frames.
@@ -298,7 +257,7 @@ void render_sequence(const RenderCommandOptions& options, const std::string& out
         const Scene scene = load_scene_with_options(options.scene, range.time_of(frame));
         const FrameFiles files = frame_files(options, output, frame, range);
         log_verbose(fmt::format("frame {} at t = {} s", frame, scene.time));
-        const RenderStats stats = render_image(options, scene, files, frame, &sequence);
+        const RenderStats stats = render_image(options, scene, files, frame, session);
         queue->done(unit, UnitFigures{stats, pixels, ""}, {});
         throw_if_cancelled();
       },
@@ -335,7 +294,8 @@ int run_render_command(const RenderCommandOptions& given) {
   } else if (world.rank == 0) {
     // The CPU reference renders whole images only, and a --dump-kernel run renders nothing: under
     // MPI, rank 0 does either alone.
-    render_image(options, scene, files, std::nullopt);
+    RenderSession session(session_options(options.scene));
+    render_image(options, scene, files, std::nullopt, session);
   }
   return kExitOk;
 }

@@ -1,6 +1,7 @@
 // The outputs of `clmarch render`.
 #include "cli/render_outputs.hpp"
 
+#include "api/stats_json.hpp"
 #include "common/cancellation.hpp"
 #include "common/log.hpp"
 #include "common/atomic_file.hpp"
@@ -15,25 +16,6 @@
 #include <vector>
 
 namespace clmarch {
-
-KernelPurpose purpose_for(const Scene& scene, bool want_buffers) {
-  switch (scene.shading.view) {
-    case View::Shaded:
-      return want_buffers ? KernelPurpose::Buffers : KernelPurpose::Color;
-    // The samples a pixel gets follow its color's edges: the shaded program decides them.
-    case View::Samples:
-      return want_buffers ? KernelPurpose::Buffers : KernelPurpose::Color;
-    case View::Normals:
-      return KernelPurpose::Normals;
-    // The status view's program writes the status plane (Normals does).
-    case View::Status:
-      return KernelPurpose::Normals;
-    case View::Depth:
-    case View::Steps:
-      return want_buffers ? KernelPurpose::Normals : KernelPurpose::DepthSteps;
-  }
-  return KernelPurpose::Shaded;
-}
 
 void write_outputs(const FrameFiles& files, const Scene& scene, FrameBuffers& buffers) {
   // A Ctrl-C that came too late for the renderer's own checks still writes nothing.
@@ -56,24 +38,10 @@ void write_outputs(const FrameFiles& files, const Scene& scene, FrameBuffers& bu
 }
 
 nlohmann::json stats_json(const RenderCommandOptions& options, const Scene& scene, const RenderStats& s) {
-  return {{"backend", options.backend},
-          {"device", s.device},
-          {"lanes", s.lanes},
-          {"precision", options.backend == "reference" ? "double" : kPrecisionNames[static_cast<int>(s.precision)]},
-          {"width", scene.render.width},
-          {"height", scene.render.height},
-          {"build_ms", s.build_ms},
-          {"kernel_ms", s.kernel_ms},
-          {"steps", s.steps},
-          {"rays_per_s", s.rays_per_s},
-          {"chunks", s.chunks},
-          {"literals", s.literals},
-          {"surface_steps", s.steps - s.wall_steps},
-          {"wall_steps", s.wall_steps},
-          {"coarse_steps", s.coarse_steps},
-          {"out_of_steps", s.out_of_steps},
-          {"out_of_distance", s.out_of_distance}};
+  return render_stats_json(backend_of(options), scene, s);
 }
+
+Backend backend_of(const RenderCommandOptions& options) { return parse_backend(options.backend, "--backend"); }
 
 void print_json_line(const nlohmann::json& json) {
   const std::string line = json.dump() + "\n";

@@ -2,8 +2,8 @@
 // of an MPI job): its files, the kernel work its outputs need, and its --stats line.
 #pragma once
 
+#include "api/render_session.hpp"
 #include "cli/render_command.hpp"
-#include "codegen/kernel_source.hpp"
 #include "render/opencl_renderer.hpp"
 #include "scene/scene.hpp"
 
@@ -20,15 +20,15 @@ struct FrameFiles {
   std::string dump_kernel;
 };
 
-/// The kernel work the outputs need: buffers include normals, the image needs what its view shows.
-KernelPurpose purpose_for(const Scene& scene, bool want_buffers);
-
 /// Draws the scene's view into buffers and writes the image (and the buffers file) atomically:
 /// both are written before either replaces its target. Logs "wrote ...".
 void write_outputs(const FrameFiles& files, const Scene& scene, FrameBuffers& buffers);
 
 /// The --stats object of one render (docs/cli.md#--stats).
 nlohmann::json stats_json(const RenderCommandOptions& options, const Scene& scene, const RenderStats& stats);
+
+/// The backend --backend names.
+Backend backend_of(const RenderCommandOptions& options);
 
 /// Prints json as one line on stdout in one write, so that the lines of several ranks, which
 /// mpirun forwards to one stdout, do not interleave within a line.

@@ -1,8 +1,8 @@
 // Shared scene options.
 #include "cli/scene_options.hpp"
 
+#include "api/scene_request.hpp"
 #include "common/errors.hpp"
-#include "render/host_memory.hpp"
 #include "scene/scene_loader.hpp"
 
 #include <fmt/format.h>
@@ -66,17 +66,6 @@ CLI::Validator finite_number(const std::function<bool(double)>& accept, const st
       "", "NUMBER");
 }
 
-void check_host_memory(const Scene& scene, const std::string& size_option) {
-  const std::optional<AvailableMemory> available = available_host_memory();
-  if (!available) return;
-  const std::string shortfall =
-      host_memory_shortfall(scene.render.width, scene.render.height, *available, scene.render.samples);
-  if (shortfall.empty()) return;
-  if (!size_option.empty()) throw InputError(fmt::format("{}: {}", size_option, shortfall));
-  const std::string where = scene.size_origin.empty() ? scene.source_name : scene.size_origin;
-  throw InputError(fmt::format("{}: render.width x render.height: {}", where, shortfall));
-}
-
 std::pair<int, int> parse_size(const std::string& text) {
   static const std::regex pattern(R"(^(\d{1,6})x(\d{1,6})$)");
   static const std::regex long_digits(R"(^\d+x\d+$)");
@@ -101,18 +90,16 @@ std::pair<int, int> parse_size(const std::string& text) {
 }
 
 Scene load_scene_with_options(const SceneOptions& options, std::optional<double> time) {
-  std::vector<SceneOverride> overrides;
-  for (const std::string& set : options.sets) overrides.push_back(parse_override(set));
-  std::optional<std::pair<int, int>> size;
-  if (!options.size.empty()) size = parse_size(options.size);
-  Scene scene = load_scene_file(options.scene_path, overrides, time ? *time : options.time.value_or(0.0));
-  if (size) {
-    scene.render.width = size->first;
-    scene.render.height = size->second;
+  SceneRequest request;
+  request.path = options.scene_path;
+  for (const std::string& set : options.sets) request.overrides.push_back(parse_override(set));
+  if (!options.size.empty()) {
+    request.size = parse_size(options.size);
+    request.size_label = "--size " + options.size;
   }
-  if (options.samples) scene.render.samples = *options.samples;
-  check_host_memory(scene, size ? "--size " + options.size : "");
-  return scene;
+  request.time = time ? *time : options.time.value_or(0.0);
+  request.samples = options.samples;
+  return load_scene(request);
 }
 
 OpenClOptions opencl_options(const SceneOptions& options) {
@@ -121,5 +108,7 @@ OpenClOptions opencl_options(const SceneOptions& options) {
   out.lanes = options.lanes;
   return out;
 }
+
+SessionOptions session_options(const SceneOptions& options) { return {options.device, options.lanes}; }
 
 }  // namespace clmarch

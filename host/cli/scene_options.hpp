@@ -2,6 +2,7 @@
 // --lanes, --time, --samples; and loading the scene they describe.
 #pragma once
 
+#include "api/render_session.hpp"
 #include "render/opencl_renderer.hpp"
 #include "scene/scene.hpp"
 
@@ -38,10 +39,8 @@ Scene load_scene_with_options(const SceneOptions& options, std::optional<double>
 
 /// The OpenCL settings the options ask for.
 OpenClOptions opencl_options(const SceneOptions& options);
-
-/// Throws InputError, naming size_option (e.g. "--size 40000x40000") or else render.width/height
-/// in the scene file, when the scene's image needs more host memory than the machine has left.
-void check_host_memory(const Scene& scene, const std::string& size_option);
+/// The same as a render session's.
+SessionOptions session_options(const SceneOptions& options);
 
 /// Parses "WxH" (each 1..65536); throws InputError naming --size.
 std::pair<int, int> parse_size(const std::string& text);

@@ -2,6 +2,7 @@
 // and nothing at all with --quiet. One setting for the whole process, chosen by the CLI.
 #pragma once
 
+#include <functional>
 #include <string_view>
 
 namespace clmarch {
@@ -12,6 +13,14 @@ enum class Verbosity { Quiet, Normal, Verbose };
 /// The process-wide setting (default Normal); set once by the CLI before any work starts.
 void set_verbosity(Verbosity verbosity);
 Verbosity verbosity();
+
+/// Where a library's caller takes the lines instead of stderr (the Python module hands them to
+/// Python's logging and warnings): called with the level and the line without "clmarch: ", from
+/// any thread. Verbosity still decides which lines are made.
+enum class LogLevel { Info, Verbose, Warning };
+using LogSink = std::function<void(LogLevel level, std::string_view line)>;
+/// Sends the lines to sink from now on; an empty sink restores stderr.
+void set_log_sink(LogSink sink);
 
 /// "clmarch: " + line on stderr unless --quiet (results: the files written).
 void log_info(std::string_view line);

@@ -3,6 +3,7 @@
 
 #include "common/atomic_file.hpp"
 #include "common/errors.hpp"
+#include "frame/hit_positions.hpp"
 #include "scene/camera_model.hpp"
 
 #include <OpenImageIO/filesystem.h>
@@ -191,20 +192,7 @@ void write_buffers_exr(StagedFiles& files, const std::filesystem::path& path, co
 void write_buffers_exr(StagedFiles& files, const std::filesystem::path& path, const FrameBuffers& buffers,
                        const Scene& scene) {
   const CameraBasis basis = camera_basis(scene.camera, buffers.width, buffers.height);
-  const std::size_t pixels = static_cast<std::size_t>(buffers.width) * buffers.height;
-  std::array<std::vector<float>, 3> position;
-  for (std::vector<float>& axis : position) axis.assign(pixels, 0.0f);
-  const std::vector<float>& depth = buffers.plane(Channel::Depth);
-  for (int j = 0; j < buffers.height; ++j) {
-    for (int i = 0; i < buffers.width; ++i) {
-      const std::size_t at = static_cast<std::size_t>(j) * buffers.width + i;
-      if (!std::isfinite(depth[at])) continue;
-      const double t =
-          static_cast<double>(depth[at]) + (buffers.has_depth_lo ? buffers.plane(Channel::DepthLo)[at] : 0.0);
-      const glm::dvec3 p = basis.origin + t * pixel_ray_direction(basis, i, j);
-      for (int axis = 0; axis < 3; ++axis) position[axis][at] = static_cast<float>(p[axis]);
-    }
-  }
+  const std::array<std::vector<float>, 3> position = hit_positions(buffers, scene.camera);
   std::vector<NamedPlane> planes = buffer_planes(buffers);
   planes.push_back({&position[0], "P.x"});
   planes.push_back({&position[1], "P.y"});

@@ -114,9 +114,14 @@ bool OpenClRenderer::can_render(const Scene& scene, const OpenClOptions& options
   if (options.device != mine.device || options.lanes != mine.lanes || options.purpose != mine.purpose ||
       !(options.variant == mine.variant) || options.max_chunk_pixels != mine.max_chunk_pixels ||
       options.value_slots != mine.value_slots || options.ray_status != mine.ray_status ||
+      options.literals_in_buffer != mine.literals_in_buffer ||
       !(scene_variant(scene, options.variant) == s.prepared.kernel_options.variant)) {
     return false;
   }
+  // A scene that wants its numbers spelled (render.literals: inline) is not rendered by a program
+  // that reads them, nor the other way round, though the key of the open code is the same.
+  if (literals_in_buffer(scene, s.prepared.kernel_options, options.literals_in_buffer) != s.prepared.literals_in_buffer)
+    return false;
   return program_key(scene, s.prepared.kernel_options) == s.prepared.key;
 }
 

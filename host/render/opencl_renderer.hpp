@@ -28,6 +28,9 @@ struct OpenClOptions {
   /// values buffer instead of spelling them (march_scene_code): the values an animation changes,
   /// so that its frames share one program (VaryingLiterals). Empty: every literal is spelled.
   ValueSlots value_slots;
+  /// Every literal read from the values buffer where the scene's render.literals is auto (a session
+  /// whose scenes edit numbers: one program per shape); inline and buffer decide for themselves.
+  bool literals_in_buffer = false;
   /// Called with the exact program source before it is built (--dump-kernel writes it to a file,
   /// so that a program that fails to build can be read); empty: not called.
   std::function<void(const std::string& source)> before_build;

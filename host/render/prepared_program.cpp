@@ -27,12 +27,13 @@ void check_precision_support(const Scene& scene, const KernelVariant& variant, c
   }
 }
 
-bool literals_in_buffer(const Scene& scene, const KernelOptions& kernel_options) {
+bool literals_in_buffer(const Scene& scene, const KernelOptions& kernel_options, bool asked) {
   // auto spells them: spelled literals measured 0-16 % faster warm than read ones on the shipped
   // scenes (docs/performance.md, "Literals"), and only a session that edits numbers gains from a
-  // program keyed by the tree's shape alone.
-  if (kernel_options.purpose == KernelPurpose::EvalPoints || scene.render.literals != LiteralPlacement::Buffer)
-    return false;
+  // program keyed by the tree's shape alone (it asks, RenderSession).
+  if (kernel_options.purpose == KernelPurpose::EvalPoints) return false;
+  const LiteralPlacement placement = scene.render.literals;
+  if (placement == LiteralPlacement::Inline || (placement == LiteralPlacement::Auto && !asked)) return false;
   return !program_scene_code(scene, kernel_options).literals.empty();
 }
 
@@ -45,7 +46,7 @@ PreparedProgram prepare_program(const Scene& scene, const OpenClOptions& options
   kernel_options.fp_contraction = allows_fp_contraction(device);
   const bool march = purpose != KernelPurpose::EvalPoints;
   if (march) kernel_options.value_slots = options.value_slots;
-  const bool in_buffer = literals_in_buffer(scene, kernel_options);
+  const bool in_buffer = literals_in_buffer(scene, kernel_options, options.literals_in_buffer);
   if (in_buffer) {
     kernel_options.value_slots.resize(program_scene_code(scene, kernel_options).literals.size());
     std::iota(kernel_options.value_slots.begin(), kernel_options.value_slots.end(), 0);

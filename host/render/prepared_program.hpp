@@ -36,9 +36,10 @@ KernelVariant scene_variant(const Scene& scene, KernelVariant variant);
 void check_precision_support(const Scene& scene, const KernelVariant& variant, const std::string& device,
                              bool has_fp64);
 
-/// Whether the program reads every literal of the scene's code from its values buffer
-/// (render.literals: buffer and a code with literals); auto and inline spell them.
-bool literals_in_buffer(const Scene& scene, const KernelOptions& kernel_options);
+/// Whether the program reads every literal of the scene's code from its values buffer: a code with
+/// literals and render.literals: buffer, or auto where the caller asked (OpenClOptions::
+/// literals_in_buffer); inline spells them.
+bool literals_in_buffer(const Scene& scene, const KernelOptions& kernel_options, bool asked);
 
 /// Generates and builds the scene's program for purpose (handing the source to
 /// options.before_build first when set).

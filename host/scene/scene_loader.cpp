@@ -29,7 +29,6 @@
 namespace clmarch {
 namespace {
 
-constexpr int kMaxImageSide = 65536;
 constexpr int kMaxStepBudget = 1000000;
 
 // Keys every SDF node accepts besides its own parameters.

@@ -28,6 +28,8 @@ Scene load_scene_file(const std::string& path, const std::vector<SceneOverride>&
 Scene load_scene_text(const std::string& text, const std::string& source_name,
                       const std::vector<SceneOverride>& overrides = {}, double time = 0.0);
 
+/// Longest side of an image, in pixels (render.width, render.height).
+inline constexpr int kMaxImageSide = 65536;
 /// Most pixels in one image: pixel indices are 32-bit on the device.
 inline constexpr long long kMaxPixels = 2147483647LL;
 /// True when width x height stays within kMaxPixels.
