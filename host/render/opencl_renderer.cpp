@@ -332,8 +332,8 @@ RenderResult render_opencl(const Scene& scene, const OpenClOptions& options) {
   return OpenClRenderer(scene, options).render();
 }
 
-PointSamples eval_points_opencl(const Scene& scene, const std::vector<glm::dvec3>& points,
-                                const OpenClOptions& options) {
+PointSamples eval_points_opencl(const Scene& scene, const std::vector<glm::dvec3>& points, const OpenClOptions& options,
+                                const glm::dvec3& origin) {
   PreparedProgram prepared = prepare_program(scene, options, KernelPurpose::EvalPoints);
   DeviceProgram& dp = prepared.program;
   const Dispatch dispatch = plan_point_dispatch(dp.device, points.size(), prepared.lanes);
@@ -363,6 +363,11 @@ PointSamples eval_points_opencl(const Scene& scene, const std::vector<glm::dvec3
     // eval_points programs spell every literal; their values hold only an operand grid's data.
     const std::optional<cl::Buffer> values = make_scene_values(prepared, scene);
     set_scene_values_arg(kernel, 3 + kOutputs, values);
+    // origin = hi + lo, each a float: the double program adds them in double.
+    const glm::vec3 hi(origin);
+    const glm::vec3 lo(origin - glm::dvec3(hi));
+    kernel.setArg(4 + kOutputs, cl_float4{{hi.x, hi.y, hi.z, 0.0f}});
+    kernel.setArg(5 + kOutputs, cl_float4{{lo.x, lo.y, lo.z, 0.0f}});
     dp.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(dispatch.global_items),
                                   cl::NDRange(dispatch.local_items));
     for (int i = 0; i < kOutputs; ++i)

@@ -122,7 +122,9 @@ struct PointSamples {
   /// The number of the primitive whose material map_color() gives (the id channel's).
   std::vector<float> primitive;
 };
-PointSamples eval_points_opencl(const Scene& scene, const std::vector<glm::dvec3>& points,
-                                const OpenClOptions& options);
+/// points are offsets from origin, which the program adds in its precision (a double program keeps
+/// the offsets' precision at a far origin); they travel as floats.
+PointSamples eval_points_opencl(const Scene& scene, const std::vector<glm::dvec3>& points, const OpenClOptions& options,
+                                const glm::dvec3& origin = glm::dvec3(0.0));
 
 }  // namespace clmarch

@@ -1,0 +1,150 @@
+// clmarch mesh's extraction: pruning keeps every brick the surface crosses, marching tetrahedra
+// give a closed, consistently oriented, welded mesh, and its vertices lie on the surface (closed
+// forms of a sphere and a box on the reference; the device's field against the reference's).
+#include "mesh/scene_mesh.hpp"
+
+#include "common/errors.hpp"
+#include "reference/reference_sdf.hpp"
+#include "scene/scene_loader.hpp"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <map>
+#include <set>
+#include <tuple>
+#include <utility>
+
+namespace clmarch {
+namespace {
+
+/// Every directed edge once and its reverse once: a closed, consistently oriented surface.
+void expect_watertight(const TriangleMesh& mesh) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
+  for (const auto& t : mesh.triangles) {
+    for (int k = 0; k < 3; ++k) ++directed[{t[k], t[(k + 1) % 3]}];
+  }
+  std::size_t open = 0, repeated = 0;
+  for (const auto& [edge, count] : directed) {
+    if (count > 1) ++repeated;
+    const auto reverse = directed.find({edge.second, edge.first});
+    if (reverse == directed.end() || reverse->second != 1) ++open;
+  }
+  EXPECT_EQ(open, 0u) << "edges without their reverse";
+  EXPECT_EQ(repeated, 0u) << "directed edges in two triangles";
+}
+
+SceneMesh mesh_on_reference(const Scene& scene, int resolution) {
+  MeshSettings settings;
+  settings.resolution = resolution;
+  return mesh_scene(
+      scene, settings, [&](const glm::dvec3& origin) { return reference_field(scene, origin); }, "--resolution");
+}
+
+TEST(SceneMesh, ASphereIsClosedOutwardAndOnItsSurface) {
+  const Scene scene = load_scene_text("sdf: {sphere: {center: [0.3, -0.2, 0.1], radius: 1, color: [0.2, 0.4, 0.6]}}\n",
+                                      "sphere.yaml");
+  const SceneMesh result = mesh_on_reference(scene, 32);
+  const TriangleMesh& mesh = result.mesh;
+  ASSERT_GT(mesh.triangles.size(), 1000u);
+  expect_watertight(mesh);
+  const glm::dvec3 centre(0.3, -0.2, 0.1);
+  // The root finding stops once the field is within 1e-6 of a cell of 0 (the sphere's field is
+  // its distance), from a chord's sag of 1e-3 at 32 cells.
+  const double on_surface = 1e-6 * result.stats.cell;
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    const glm::dvec3 out = mesh.positions[v] - centre;
+    ASSERT_NEAR(glm::length(out), 1.0, on_surface) << v;
+    EXPECT_GT(glm::dot(glm::dvec3(mesh.normals[v]), glm::normalize(out)), 0.999) << v;
+    EXPECT_NEAR(mesh.colors[v].z, 0.6f, 1e-6f);
+  }
+  // Counter-clockwise seen from outside: the triangles' normals point away from the centre.
+  for (const auto& t : mesh.triangles) {
+    const glm::dvec3 a = mesh.positions[t[0]], b = mesh.positions[t[1]], c = mesh.positions[t[2]];
+    ASSERT_GE(glm::dot(glm::cross(b - a, c - a), (a + b + c) / 3.0 - centre), 0.0);
+  }
+  const MeshStats& s = result.stats;
+  EXPECT_GT(s.cells_pruned, 0u) << "the far corners of the box hold no surface";
+  EXPECT_EQ(s.cells_sampled + s.cells_pruned, s.cells);
+  EXPECT_EQ(s.level, 0.0);
+}
+
+TEST(SceneMesh, NoBrickTheSurfaceCrossesIsPruned) {
+  const Scene scene = load_scene_text(
+      "sdf:\n  union:\n    - torus: {major_radius: 1, minor_radius: 0.25}\n"
+      "    - box: {center: [0, 0.9, 0], half_size: [0.3, 0.2, 0.5]}\n",
+      "union.yaml");
+  glm::dvec3 low, high;
+  surface_box(scene, 0.0, low, high);
+  const MeshGrid grid = mesh_grid(low, high, 48);
+  const FieldAt field = reference_field(scene, grid.origin);
+  const ActiveBricks active = find_active_bricks(grid, field, 0.0);
+  std::set<std::tuple<int, int, int>> kept;
+  for (const glm::ivec3& b : active.bricks) kept.insert({b.x, b.y, b.z});
+  EXPECT_LT(active.bricks.size(), static_cast<std::size_t>(grid.bricks.x * grid.bricks.y * grid.bricks.z))
+      << "something was pruned";
+  // Every grid point's value, then every cell whose corners straddle 0 must be in a kept brick.
+  const glm::ivec3 n = grid.cells + 1;
+  std::vector<glm::dvec3> points;
+  for (int z = 0; z < n.z; ++z)
+    for (int y = 0; y < n.y; ++y)
+      for (int x = 0; x < n.x; ++x) points.push_back(glm::dvec3(x, y, z) * grid.cell);
+  const std::vector<float> values = field(points).distance;
+  const auto at = [&](int x, int y, int z) { return values[static_cast<std::size_t>((z * n.y + y) * n.x + x)]; };
+  int crossing_cells = 0;
+  for (int z = 0; z < grid.cells.z; ++z)
+    for (int y = 0; y < grid.cells.y; ++y)
+      for (int x = 0; x < grid.cells.x; ++x) {
+        int below = 0;
+        for (int c = 0; c < 8; ++c) below += at(x + (c & 1), y + ((c >> 1) & 1), z + ((c >> 2) & 1)) < 0.0f;
+        if (below == 0 || below == 8) continue;
+        ++crossing_cells;
+        ASSERT_TRUE(kept.count({x / kBrickCells, y / kBrickCells, z / kBrickCells}))
+            << "cell " << x << " " << y << " " << z << " crosses the surface in a pruned brick";
+      }
+  EXPECT_GT(crossing_cells, 1000);
+  // The mesh of those bricks is closed; its area is the torus's, 4 pi^2 R r = 9.87, less what the
+  // box covers plus the box's faces outside the torus.
+  const SceneMesh result = mesh_on_reference(scene, 48);
+  expect_watertight(result.mesh);
+  double area = 0.0;
+  for (const auto& t : result.mesh.triangles) {
+    const glm::dvec3 a = result.mesh.positions[t[0]], b = result.mesh.positions[t[1]], c = result.mesh.positions[t[2]];
+    area += 0.5 * glm::length(glm::cross(b - a, c - a));
+  }
+  EXPECT_GT(area, 9.0);
+  EXPECT_LT(area, 9.87 + 2 * (0.6 * 0.4 + 0.6 * 1.0 + 0.4 * 1.0));
+}
+
+TEST(SceneMesh, UnboundedScenesAreRefused) {
+  const Scene plane = load_scene_text("sdf: {plane: {normal: [0, 1, 0], offset: 0}}\n", "plane.yaml");
+  try {
+    mesh_on_reference(plane, 16);
+    FAIL() << "a plane has no bounded surface";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("plane.yaml: sdf: the surface is unbounded", 0), 0u) << e.what();
+  }
+}
+
+TEST(SceneMesh, TheDeviceMeshIsTheReferences) {
+  const Scene scene = load_scene_text("sdf: {box: {half_size: [0.5, 0.3, 0.4], rotate: [10, 20, 0]}}\n", "box.yaml");
+  MeshSettings settings;
+  settings.resolution = 24;
+  const SceneMesh device = mesh_scene(
+      scene, settings, [&](const glm::dvec3& origin) { return opencl_field(scene, OpenClOptions{}, origin); },
+      "--resolution");
+  const SceneMesh reference = mesh_on_reference(scene, 24);
+  expect_watertight(device.mesh);
+  // Float against double: the same cells cross the surface unless a corner's value is within
+  // float rounding of 0, and the vertices agree to float rounding of the box's size.
+  EXPECT_NEAR(static_cast<double>(device.mesh.triangles.size()), static_cast<double>(reference.mesh.triangles.size()),
+              0.01 * reference.mesh.triangles.size());
+  // Each device vertex lies on the box, also where the field kinks inside its corners: within the
+  // root finding's 1e-6 of a cell of the device's level, which is the box's to a few float
+  // roundings of the coordinates (at most 0.7 from the centre).
+  const double tolerance = 1e-6 * device.stats.cell + 8 * std::numeric_limits<float>::epsilon() * 0.7;
+  for (const glm::dvec3& p : device.mesh.positions) ASSERT_NEAR(reference_distance(scene.sdf, p), 0.0, tolerance);
+}
+
+}  // namespace
+}  // namespace clmarch
