@@ -7,7 +7,8 @@
 # for scripts/sweep-plot.py (run it with /usr/bin/python3); `setup.sh --peers` the GLSL peer's
 # libraries (EGL, OSMesa, libpng, Mesa's llvmpipe) for scripts/speed-vs-peers.sh, and numpy and
 # OpenImageIO's Python module for the peers' peer_equivalence.py. clang-format and clang-tidy serve
-# scripts/format.sh and scripts/tidy.sh.
+# scripts/format.sh and scripts/tidy.sh. groff-base lets the tests render the man page;
+# `setup.sh --shells` adds zsh and fish, whose completion files the tests then check too.
 set -euo pipefail
 
 packages=(
@@ -18,13 +19,14 @@ packages=(
   libgtest-dev libbenchmark-dev libmuparser-dev
   clang libclang-rt-14-dev clang-format clang-tidy
   libopenmpi-dev openmpi-bin
-  python3
+  python3 groff-base
 )
 for arg in "$@"; do
   case "$arg" in
     --plots) packages+=(python3-matplotlib) ;;
     --peers) packages+=(libegl-dev libosmesa6-dev libpng-dev libgl1-mesa-dri python3-numpy python3-openimageio) ;;
-    *) echo "setup.sh: unknown option $arg (expected --plots or --peers)" >&2; exit 2 ;;
+    --shells) packages+=(zsh fish) ;;
+    *) echo "setup.sh: unknown option $arg (expected --plots, --peers or --shells)" >&2; exit 2 ;;
   esac
 done
 
