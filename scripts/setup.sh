@@ -7,8 +7,10 @@
 # for scripts/sweep-plot.py (run it with /usr/bin/python3); `setup.sh --peers` the GLSL peer's
 # libraries (EGL, OSMesa, libpng, Mesa's llvmpipe) for scripts/speed-vs-peers.sh, and numpy and
 # OpenImageIO's Python module for the peers' peer_equivalence.py. clang-format and clang-tidy serve
-# scripts/format.sh and scripts/tidy.sh. groff-base lets the tests render the man page;
-# `setup.sh --shells` adds zsh and fish, whose completion files the tests then check too.
+# scripts/format.sh and scripts/tidy.sh. groff-base lets the tests render the man page (dpkg-dev,
+# which scripts/package.sh needs, comes with build-essential); `setup.sh --shells` adds zsh and fish,
+# whose completion files the tests then check too, and `setup.sh --package-check` debootstrap and
+# lintian for scripts/package-check.sh.
 set -euo pipefail
 
 packages=(
@@ -26,7 +28,8 @@ for arg in "$@"; do
     --plots) packages+=(python3-matplotlib) ;;
     --peers) packages+=(libegl-dev libosmesa6-dev libpng-dev libgl1-mesa-dri python3-numpy python3-openimageio) ;;
     --shells) packages+=(zsh fish) ;;
-    *) echo "setup.sh: unknown option $arg (expected --plots, --peers or --shells)" >&2; exit 2 ;;
+    --package-check) packages+=(debootstrap lintian) ;;
+    *) echo "setup.sh: unknown option $arg (expected --plots, --peers, --shells or --package-check)" >&2; exit 2 ;;
   esac
 done
 
