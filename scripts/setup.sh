@@ -5,10 +5,13 @@
 # run under mpirun (docs/cli.md#mpi); python3 runs scripts/large-scene.py, whose scenes the tests
 # check; python3-dev, pybind11-dev, python3-numpy, python3-pytest and python3-openimageio (an EXR
 # reader independent of the writer) build and test the Python module (python/, docs/python.md).
-# clang-format and clang-tidy serve scripts/format.sh and scripts/tidy.sh. `setup.sh --plots` also
-# installs python3-matplotlib for scripts/sweep-plot.py (run it with /usr/bin/python3);
-# `setup.sh --peers` the GLSL peer's libraries (EGL, OSMesa, libpng, Mesa's llvmpipe) for
-# scripts/speed-vs-peers.sh.
+# clang-format and clang-tidy serve scripts/format.sh and scripts/tidy.sh. groff-base lets the
+# tests render the man page (dpkg-dev, which scripts/package.sh needs, comes with build-essential).
+# `setup.sh --plots` also installs python3-matplotlib for scripts/sweep-plot.py (run it with
+# /usr/bin/python3); `setup.sh --peers` the GLSL peer's libraries (EGL, OSMesa, libpng, Mesa's
+# llvmpipe) for scripts/speed-vs-peers.sh; `setup.sh --shells` adds zsh and fish, whose completion
+# files the tests then check too, and `setup.sh --package-check` debootstrap and lintian for
+# scripts/package-check.sh.
 set -euo pipefail
 
 packages=(
@@ -19,13 +22,15 @@ packages=(
   libgtest-dev libbenchmark-dev libmuparser-dev
   clang libclang-rt-14-dev clang-format clang-tidy
   libopenmpi-dev openmpi-bin
-  python3 python3-dev python3-numpy python3-pytest pybind11-dev python3-openimageio
+  python3 python3-dev python3-numpy python3-pytest pybind11-dev python3-openimageio groff-base
 )
 for arg in "$@"; do
   case "$arg" in
     --plots) packages+=(python3-matplotlib) ;;
     --peers) packages+=(libegl-dev libosmesa6-dev libpng-dev libgl1-mesa-dri) ;;
-    *) echo "setup.sh: unknown option $arg (expected --plots or --peers)" >&2; exit 2 ;;
+    --shells) packages+=(zsh fish) ;;
+    --package-check) packages+=(debootstrap lintian) ;;
+    *) echo "setup.sh: unknown option $arg (expected --plots, --peers, --shells or --package-check)" >&2; exit 2 ;;
   esac
 done
 

@@ -109,8 +109,8 @@ TEST(SceneRequest, TextSizeAndSamplesOverrideTheScene) {
 }
 
 TEST(SampleField, IsTheSceneDistanceOnBothBackends) {
-  const Scene scene = load_scene_text(
-      "sdf: {sphere: {center: [0.5, 0, 0], radius: 1.25, color: [0.2, 0.4, 0.6]}}\n", "field.yaml");
+  const Scene scene =
+      load_scene_text("sdf: {sphere: {center: [0.5, 0, 0], radius: 1.25, color: [0.2, 0.4, 0.6]}}\n", "field.yaml");
   const std::vector<glm::dvec3> points = {{0, 0, 0}, {3, 1, -2}, {0.5, 1.25, 0}, {-4, 4, 4}};
   for (Backend backend : {Backend::Reference, Backend::OpenCl}) {
     const FieldSamples samples = sample_field(scene, points, backend);
@@ -125,8 +125,8 @@ TEST(SampleField, IsTheSceneDistanceOnBothBackends) {
       EXPECT_EQ(samples.id[i], 0.0f);
     }
   }
-  const Scene tiled = load_scene_text(
-      "tiling: {cell: [4, 4, 4]}\nsdf: {sphere: {center: [2, 2, 2], radius: 1}}\n", "tiled.yaml");
+  const Scene tiled =
+      load_scene_text("tiling: {cell: [4, 4, 4]}\nsdf: {sphere: {center: [2, 2, 2], radius: 1}}\n", "tiled.yaml");
   const FieldSamples wrapped = sample_field(tiled, {{2, 2, 2}, {6, -2, 10}}, Backend::Reference);
   EXPECT_EQ(wrapped.distance[0], wrapped.distance[1]) << "a tiled scene repeats its cell";
   EXPECT_TRUE(sample_field(scene, {}, Backend::OpenCl).distance.empty());

@@ -53,8 +53,10 @@ CLI::App* add_bench_command(CLI::App& app, BenchCommandOptions& options) {
                    "native_math; repeat for the Cartesian product (e.g. --sweep render.epsilon=1e-3,1e-4 "
                    "--sweep precision=float,double)")
       ->take_all();
-  bench->add_option("--csv", options.csv,
-                    "With --sweep: the CSV file of the results, one row per combination (e.g. --csv torus.csv)");
+  bench
+      ->add_option("--csv", options.csv,
+                   "With --sweep: the CSV file of the results, one row per combination (e.g. --csv torus.csv)")
+      ->type_name("FILE");
   bench->add_flag("--one-at-a-time", options.one_at_a_time,
                   "With --sweep: the scene as given, then each swept key alone (not every combination)");
   bench->add_flag("--append", options.append,

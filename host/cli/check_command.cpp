@@ -27,9 +27,11 @@ CLI::App* add_check_command(CLI::App& app, CheckCommandOptions& options) {
       "  clmarch check scenes/torus.yaml --samples 16 --size 160x90   # anti-aliased on both");
   add_scene_options(*check, options.scene);
   check->add_flag("--json", options.json, "Print the report as one JSON object on stdout (e.g. --json)");
-  check->add_option("--out-dir", options.out_dir,
-                    "When the check fails, write opencl.png, reference.png and difference.exr (all channels) into "
-                    "this existing folder (e.g. --out-dir /tmp/torus-check)");
+  check
+      ->add_option("--out-dir", options.out_dir,
+                   "When the check fails, write opencl.png, reference.png and difference.exr (all channels) into "
+                   "this existing folder (e.g. --out-dir /tmp/torus-check)")
+      ->type_name("DIR");
   return check;
 }
 

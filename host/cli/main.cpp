@@ -1,12 +1,10 @@
 // clmarch: the command-line entry point. Parses the command, installs the Ctrl-C handlers and
 // hands errors to run_reporting_errors, which maps them to exit codes.
-#include "cli/bench_command.hpp"
-#include "cli/check_command.hpp"
+#include "cli/command_line.hpp"
 #include "cli/devices_command.hpp"
 #include "cli/error_report.hpp"
 #include "cli/interrupts.hpp"
 #include "cli/rank_work.hpp"
-#include "cli/render_command.hpp"
 #include "common/cancellation.hpp"
 #include "common/errors.hpp"
 #include "common/log.hpp"
@@ -28,17 +26,6 @@
 #include <unistd.h>
 
 namespace {
-
-/// An empty value (--size '', -o '') is a mistake, not the option left out, which is what CLI11
-/// would take it for.
-void reject_empty_values(CLI::App& command) {
-  const CLI::Validator non_empty(
-      [](std::string& value) { return value.empty() ? std::string("the value is empty") : std::string(); }, "",
-      "NON_EMPTY");
-  for (CLI::Option* option : command.get_options()) {
-    if (option->get_expected_max() > 0) option->check(non_empty);
-  }
-}
 
 /// Options a user coming from other renderers tries for one clmarch spells otherwise.
 constexpr std::pair<std::string_view, std::string_view> kOptionSynonyms[] = {
@@ -80,38 +67,8 @@ std::string option_suggestion(const CLI::App& app, int argc, char** argv) {
 int run_main(int argc, char** argv) {
   using namespace clmarch;
   install_interrupt_handlers();
-  CLI::App app{"clmarch: a sphere tracer of signed distance fields on OpenCL", "clmarch"};
-  app.set_version_flag("--version", std::string("clmarch ") + CLMARCH_VERSION);
-  app.require_subcommand(1);
-  // Global flags may also follow the subcommand: `clmarch render x.yaml --quiet`.
-  app.fallthrough();
-  bool quiet = false;
-  bool verbose = false;
-  CLI::Option* quiet_flag =
-      app.add_flag("-q,--quiet", quiet, "Print nothing on success: no 'wrote' line, no progress (errors still print)");
-  app.add_flag("-v,--verbose", verbose,
-               "Also print the device, build options and time, driver cache hit or miss, lanes and local size")
-      ->excludes(quiet_flag);
-  app.footer(
-      "Examples:\n"
-      "  clmarch render scenes/torus.yaml                  # writes ./torus.png\n"
-      "  clmarch --verbose render scenes/torus.yaml        # device, build and dispatch details on stderr\n"
-      "  clmarch render scenes/torus.yaml --quiet -o t.png # silent unless it fails\n"
-      "  clmarch check scenes/torus.yaml --size 160x90     # OpenCL against the CPU reference\n"
-      "  clmarch bench scenes/torus.yaml --size 1280x720   # kernel times against the device's ceiling\n"
-      "  clmarch devices                                   # the indices --device takes\n"
-      "  clmarch --version                                 # the version, e.g. clmarch 0.3.0\n"
-      "Exit codes: 0 success, 1 check failed, 2 bad input, 3 OpenCL/device fault, 4 output not written,\n"
-      "70 internal error, 130 interrupted (Ctrl-C; 143 for SIGTERM). See docs/cli.md.\n"
-      "Help on a command: clmarch render --help, clmarch check --help, clmarch bench --help.");
-  RenderCommandOptions render_options;
-  CLI::App* render = add_render_command(app, render_options);
-  CheckCommandOptions check_options;
-  CLI::App* check = add_check_command(app, check_options);
-  CLI::App* devices = add_devices_command(app);
-  BenchCommandOptions bench_options;
-  CLI::App* bench = add_bench_command(app, bench_options);
-  for (CLI::App* command : {render, check, bench}) reject_empty_values(*command);
+  CommandLine line;
+  CLI::App& app = line.app;
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -136,10 +93,10 @@ int run_main(int argc, char** argv) {
     std::cerr << "clmarch: " << one_line(e.what()) << option_suggestion(app, argc, argv) << " (see clmarch --help)\n";
     return kExitBadInput;
   }
-  set_verbosity(quiet ? Verbosity::Quiet : verbose ? Verbosity::Verbose : Verbosity::Normal);
+  set_verbosity(line.quiet ? Verbosity::Quiet : line.verbose ? Verbosity::Verbose : Verbosity::Normal);
   // Under mpirun with several ranks, render and devices share the work out (docs/cli.md#mpi);
   // the other commands run whole on every rank. A plain run never starts MPI.
-  if (render->parsed() || devices->parsed()) start_mpi_if_launched();
+  if (line.render->parsed() || line.devices->parsed()) start_mpi_if_launched();
   const MpiWorld& world = mpi_world();
   if (world.distributed()) {
     set_error_context(rank_label(world.rank, world.host));
@@ -149,9 +106,9 @@ int run_main(int argc, char** argv) {
   }
   bool coordinated = true;
   const int code = run_reporting_errors([&] {
-    if (render->parsed()) {
+    if (line.render->parsed()) {
       try {
-        return run_render_command(render_options);
+        return run_render_command(line.render_options);
       } catch (const RankFailure&) {
         throw;
       } catch (...) {
@@ -161,9 +118,9 @@ int run_main(int argc, char** argv) {
         throw;
       }
     }
-    if (check->parsed()) return run_check_command(check_options);
-    if (devices->parsed()) return run_devices_command();
-    if (bench->parsed()) return run_bench_command(bench_options);
+    if (line.check->parsed()) return run_check_command(line.check_options);
+    if (line.devices->parsed()) return run_devices_command();
+    if (line.bench->parsed()) return run_bench_command(line.bench_options);
     return static_cast<int>(kExitOk);
   });
   if (cancellation_requested().load() && code == interrupted_exit_code()) {

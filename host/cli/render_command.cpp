@@ -52,21 +52,27 @@ CLI::App* add_render_command(CLI::App& app, RenderCommandOptions& options) {
       "  clmarch render scenes/torus.yaml --verbose                # device, build, cache, lanes, local size\n"
       "Ctrl-C stops the render and writes nothing (exit code 130). Options: docs/cli.md.");
   add_scene_options(*render, options.scene);
-  render->add_option("-o,--output", options.output,
-                     "Color image; the format follows the extension (exr, hdr: linear float; png, jpg, tif and the "
-                     "other formats OpenImageIO writes: 8-bit sRGB). "
-                     "Default: SCENE_NAME.png in the current folder (e.g. -o torus.exr)");
-  render->add_option(
-      "--buffers", options.buffers,
-      "Write all buffers to one float EXR: R, G, B, depth, steps, N.x, N.y, N.z (e.g. --buffers torus.exr)");
+  render
+      ->add_option("-o,--output", options.output,
+                   "Color image; the format follows the extension (exr, hdr: linear float; png, jpg, tif and the "
+                   "other formats OpenImageIO writes: 8-bit sRGB). "
+                   "Default: SCENE_NAME.png in the current folder (e.g. -o torus.exr)")
+      ->type_name("FILE");
+  render
+      ->add_option(
+          "--buffers", options.buffers,
+          "Write all buffers to one float EXR: R, G, B, depth, steps, N.x, N.y, N.z (e.g. --buffers torus.exr)")
+      ->type_name("FILE");
   render
       ->add_option("--backend", options.backend,
                    "opencl (default), or reference: the double-precision CPU renderer, which needs no OpenCL "
                    "(e.g. --backend reference)")
       ->check(CLI::IsMember({"opencl", "reference"}));
-  render->add_option("--dump-kernel", options.dump_kernel,
-                     "Write the exact OpenCL C source that is built, before building it; without -o no image is "
-                     "written, and without --buffers or --stats nothing renders (e.g. --dump-kernel torus.cl)");
+  render
+      ->add_option("--dump-kernel", options.dump_kernel,
+                   "Write the exact OpenCL C source that is built, before building it; without -o no image is "
+                   "written, and without --buffers or --stats nothing renders (e.g. --dump-kernel torus.cl)")
+      ->type_name("FILE");
   render->add_flag("--no-image", options.no_image,
                    "Write no color image: for --buffers, --stats or --dump-kernel alone (e.g. --no-image --stats)");
   render->add_option(

@@ -14,7 +14,10 @@
 namespace clmarch {
 
 void add_scene_options(CLI::App& command, SceneOptions& options) {
-  command.add_option("scene", options.scene_path, "Scene file (YAML or JSON), e.g. scenes/torus.yaml")->required();
+  // FILE and DIR value names also tell the completions (cli/docgen/) to offer files or folders.
+  command.add_option("scene", options.scene_path, "Scene file (YAML or JSON), e.g. scenes/torus.yaml")
+      ->required()
+      ->type_name("FILE");
   command.add_option("--size", options.size, "Image size WxH, overriding render.width/height (e.g. --size 320x180)");
   command
       .add_option("--set", options.sets,

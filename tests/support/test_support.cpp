@@ -83,7 +83,6 @@ CommandResult run_clmarch(const std::vector<std::string>& args, const std::vecto
 
 CommandResult run_clmarch_in_shell(const std::string& shell_prefix, const std::vector<std::string>& args,
                                    const std::vector<std::string>& environment) {
-  TempDir capture;
   std::string command = shell_prefix;
   if (!environment.empty()) {
     command.append("env");
@@ -94,10 +93,15 @@ CommandResult run_clmarch_in_shell(const std::string& shell_prefix, const std::v
   }
   command.append(shell_quote(CLMARCH_BINARY));
   for (const std::string& a : args) command.append(" ").append(shell_quote(a));
-  command.append(" >").append(shell_quote((capture / "out").string()));
-  command.append(" 2>").append(shell_quote((capture / "err").string())).append(" </dev/null");
+  return run_shell(command);
+}
+
+CommandResult run_shell(const std::string& command) {
+  TempDir capture;
+  const std::string redirected = "{ " + command + "\n} >" + shell_quote((capture / "out").string()) + " 2>" +
+                                 shell_quote((capture / "err").string()) + " </dev/null";
   CommandResult result;
-  const int status = std::system(command.c_str());
+  const int status = std::system(redirected.c_str());
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   result.out = read_text(capture / "out");
   result.err = read_text(capture / "err");

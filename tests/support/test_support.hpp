@@ -37,6 +37,9 @@ CommandResult run_clmarch(const std::vector<std::string>& args, const std::vecto
 CommandResult run_clmarch_in_shell(const std::string& shell_prefix, const std::vector<std::string>& args,
                                    const std::vector<std::string>& environment = {});
 
+/// Runs a /bin/sh command line with stdin from /dev/null; its stdout, stderr and exit code.
+CommandResult run_shell(const std::string& command);
+
 /// The whole file as text (empty if it cannot be read).
 std::string read_text(const std::filesystem::path& path);
 
