@@ -58,7 +58,8 @@ in_root "cd /tmp && apt-get update -qq && apt-get install -y -q ./$(basename "$d
   >"$root/tmp/apt.log" 2>&1 || { tail -n 30 "$root/tmp/apt.log" >&2; exit 1; }
 grep -E '^(Need to get|After this operation|[0-9]+ upgraded)' "$root/tmp/apt.log" >&2 || true
 in_root 'dpkg-query -W -f="installed: \${Package} \${Version}, Installed-Size \${Installed-Size} KiB\n" clmarch pocl-opencl-icd' >&2
-in_root 'echo "Debian $(cat /etc/debian_version)"' >&2
+in_root 'echo "Debian $(cat /etc/debian_version); the largest packages installed (KiB):" &&
+  dpkg-query -W -f="\${Installed-Size} \${Package}\n" | sort -rn | head -n 8' >&2
 
 say "clmarch --version"
 in_root 'clmarch --version'
