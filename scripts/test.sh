@@ -4,7 +4,8 @@
 #   2. the suite on the Release build (build/),
 #   3. the host-code suites below under AddressSanitizer and UndefinedBehaviorSanitizer
 #      (build-sanitize/, clang), whose build also holds the scene fuzzer,
-#   4. the scene fuzzer for a bounded time (scripts/fuzz.sh; CLMARCH_FUZZ_SECONDS).
+#   4. the scene fuzzer for a bounded time: 30 s (scripts/fuzz.sh; CLMARCH_FUZZ_SECONDS=60 as before
+#      the library layer, the Python module and the mesh tests took that half minute).
 # CLMARCH_QUICK=1 runs steps 1 and 2 only, over a PoCL cache kept between its runs. Each step
 # prints its wall time, and a table of them closes the run. All builds treat warnings as errors
 # (CLMARCH_WERROR): a warning fails CI, not just the log. scripts/test-profile.sh shows where the
@@ -57,7 +58,8 @@ fi
 # 2026-11-27; docs/testing.md): the whole suite runs 7,483 lines of host/, and these 42 suites run
 # 7,354 of them (98.3 %): loading and every input error, code generation, the reference, every
 # kernel purpose, the operand grid, anti-aliasing, check, bench and sweeps, MPI, images, the command
-# line; and the library layer's own suites (RenderSession, SceneRequest, SampleField), added with it.
+# line; and the library layer's and the mesh's own suites (RenderSession, SceneRequest, SampleField,
+# SceneMesh), added with them.
 # Left out: the suites whose lines the chosen ones run too, above all the sweeps that repeat
 # host paths over many programs for the kernels' sake (every kind far away and near, golden images,
 # random operand-grid trees: 0 lines of their own), and four that cost a minute or more under the
@@ -68,7 +70,7 @@ sanitized_suites=(
   ColorPattern HostMemory ExitCodes OutputFailure InstanceFile CheckCli ConePass SdfClosedForm ShadingLayers RayStatus
   ProgramKey OpenClRenderer KernelVariant CheckThresholds NodeBoxes DeviceErrors DevicePrograms ReferenceSdf
   ForwardNormals DebugViews SceneLoader DeviceMemory FrameRange StagedFiles RenderReference FractalKeys SdfCode
-  FuzzRegressions Expression KernelSource SweepSpec RenderSession SceneRequest SampleField
+  FuzzRegressions Expression KernelSource SweepSpec RenderSession SceneRequest SampleField SceneMesh
 )
 # The test sources that declare those suites: the sanitizer build compiles only them.
 sanitized_test_files() {
@@ -92,5 +94,5 @@ step "sanitizer build" sanitize_build
 # executables (tests/sanitize/sanitizer_defaults.cpp).
 step "tests under ASan+UBSan" ctest --test-dir build-sanitize --output-on-failure -j "$jobs" \
   -R "^($(IFS='|'; echo "${sanitized_suites[*]}"))(#[0-9]+)?\$"
-step "fuzzing" env CLMARCH_FUZZ_BUILD_DIR=build-sanitize scripts/fuzz.sh "${CLMARCH_FUZZ_SECONDS:-60}"
+step "fuzzing" env CLMARCH_FUZZ_BUILD_DIR=build-sanitize scripts/fuzz.sh "${CLMARCH_FUZZ_SECONDS:-30}"
 summary

@@ -42,8 +42,8 @@ SceneMesh mesh_on_reference(const Scene& scene, int resolution) {
 }
 
 TEST(SceneMesh, ASphereIsClosedOutwardAndOnItsSurface) {
-  const Scene scene = load_scene_text("sdf: {sphere: {center: [0.3, -0.2, 0.1], radius: 1, color: [0.2, 0.4, 0.6]}}\n",
-                                      "sphere.yaml");
+  const Scene scene =
+      load_scene_text("sdf: {sphere: {center: [0.3, -0.2, 0.1], radius: 1, color: [0.2, 0.4, 0.6]}}\n", "sphere.yaml");
   const SceneMesh result = mesh_on_reference(scene, 32);
   const TriangleMesh& mesh = result.mesh;
   ASSERT_GT(mesh.triangles.size(), 1000u);

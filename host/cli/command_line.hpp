@@ -1,10 +1,11 @@
-// The clmarch command line as CLI11 objects: the global flags, the four commands with their options,
+// The clmarch command line as CLI11 objects: the global flags, the five commands with their options,
 // help texts and footers. clmarch parses with it; clmarch-docgen writes the completions and the man
 // page from the same objects, so they cannot drift from the options.
 #pragma once
 
 #include "cli/bench_command.hpp"
 #include "cli/check_command.hpp"
+#include "cli/mesh_command.hpp"
 #include "cli/render_command.hpp"
 
 #include <CLI/CLI.hpp>
@@ -24,10 +25,12 @@ struct CommandLine {
   RenderCommandOptions render_options;
   CheckCommandOptions check_options;
   BenchCommandOptions bench_options;
+  MeshCommandOptions mesh_options;
   CLI::App* render = nullptr;
   CLI::App* check = nullptr;
   CLI::App* devices = nullptr;
   CLI::App* bench = nullptr;
+  CLI::App* mesh = nullptr;
 };
 
 /// The project's version, e.g. "0.3.0" (CMakeLists.txt's project VERSION).

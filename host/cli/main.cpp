@@ -85,7 +85,7 @@ int run_main(int argc, char** argv) {
       const auto commands = app.get_subcommands([&](const CLI::App* command) { return command->get_name() == word; });
       if (commands.empty()) {
         std::cerr << "clmarch: unknown command '" << one_line(word)
-                  << "' (expected render, check, bench or devices; see clmarch --help)\n";
+                  << "' (expected render, check, bench, mesh or devices; see clmarch --help)\n";
         return kExitBadInput;
       }
       break;
@@ -121,6 +121,7 @@ int run_main(int argc, char** argv) {
     if (line.check->parsed()) return run_check_command(line.check_options);
     if (line.devices->parsed()) return run_devices_command();
     if (line.bench->parsed()) return run_bench_command(line.bench_options);
+    if (line.mesh->parsed()) return run_mesh_command(line.mesh_options);
     return static_cast<int>(kExitOk);
   });
   if (cancellation_requested().load() && code == interrupted_exit_code()) {

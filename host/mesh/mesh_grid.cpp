@@ -70,9 +70,8 @@ ActiveBricks find_active_bricks(const MeshGrid& grid, const FieldAt& field, doub
           for (int x = 0; x < 2; ++x) blocks.push_back(b + glm::ivec3(x, y, z) * half);
     }
   }
-  std::sort(out.bricks.begin(), out.bricks.end(), [](const glm::ivec3& a, const glm::ivec3& b) {
-    return std::tie(a.z, a.y, a.x) < std::tie(b.z, b.y, b.x);
-  });
+  std::sort(out.bricks.begin(), out.bricks.end(),
+            [](const glm::ivec3& a, const glm::ivec3& b) { return std::tie(a.z, a.y, a.x) < std::tie(b.z, b.y, b.x); });
   return out;
 }
 

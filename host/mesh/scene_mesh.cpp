@@ -81,8 +81,8 @@ nlohmann::json MeshStats::to_json() const {
 
 void surface_box(const Scene& scene, double level, glm::dvec3& low, glm::dvec3& high) {
   if (scene.tiling) {
-    throw InputError(fmt::format("{}: tiling repeats the tree without end: a mesh needs a bounded surface",
-                                 scene.source_name));
+    throw InputError(
+        fmt::format("{}: tiling repeats the tree without end: a mesh needs a bounded surface", scene.source_name));
   }
   const std::optional<BoundingBox> box = node_box(scene.sdf);
   if (!box) {
@@ -277,7 +277,8 @@ SceneMesh mesh_scene(const Scene& scene, const MeshSettings& settings,
     stats.evaluations += taps.size();
     for (std::size_t v = first; v < last; ++v) {
       const std::size_t t = 6 * (v - first);
-      const glm::dvec3 gradient(values[t] - values[t + 1], values[t + 2] - values[t + 3], values[t + 4] - values[t + 5]);
+      const glm::dvec3 gradient(values[t] - values[t + 1], values[t + 2] - values[t + 3],
+                                values[t + 4] - values[t + 5]);
       const double length = glm::length(gradient);
       // A vanishing gradient (a crease at the level's extremum): the edge's direction up the field.
       const glm::dvec3 up = glm::normalize(vertices[v].above - vertices[v].below);

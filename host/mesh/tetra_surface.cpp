@@ -13,19 +13,26 @@ glm::ivec3 corner_offset(int bits) { return {bits & 1, (bits >> 1) & 1, (bits >>
 /// one of their six orders, so its corners' bit sets nest (every edge goes from a subset to a
 /// superset: the edge's lower end and step are well defined).
 constexpr std::array<std::array<int, 4>, 6> kTetrahedra = {{
-    {0, 1, 3, 7}, {0, 1, 5, 7}, {0, 2, 3, 7}, {0, 2, 6, 7}, {0, 4, 5, 7}, {0, 4, 6, 7},
+    {0, 1, 3, 7},
+    {0, 1, 5, 7},
+    {0, 2, 3, 7},
+    {0, 2, 6, 7},
+    {0, 4, 5, 7},
+    {0, 4, 6, 7},
 }};
 
 }  // namespace
 
 TetraSurface::TetraSurface(const MeshGrid& grid, double level) : grid_(grid), level_(level) {}
 
-std::uint32_t TetraSurface::vertex(const glm::ivec3& low, int step, const glm::dvec3& below,
-                                   const glm::dvec3& above, float below_value, float above_value) {
+std::uint32_t TetraSurface::vertex(const glm::ivec3& low, int step, const glm::dvec3& below, const glm::dvec3& above,
+                                   float below_value, float above_value) {
   const auto points = glm::u64vec3(grid_.cells + 1);
   const std::uint64_t key =
       ((static_cast<std::uint64_t>(low.z) * points.y + static_cast<std::uint64_t>(low.y)) * points.x +
-       static_cast<std::uint64_t>(low.x)) * 8 + static_cast<std::uint64_t>(step);
+       static_cast<std::uint64_t>(low.x)) *
+          8 +
+      static_cast<std::uint64_t>(step);
   const auto [it, is_new] = by_edge_.try_emplace(key, static_cast<std::uint32_t>(vertices_.size()));
   if (is_new) {
     const double span = static_cast<double>(above_value) - below_value;

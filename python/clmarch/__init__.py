@@ -27,7 +27,7 @@ from . import _clmarch
 __version__: str = _clmarch.__version__
 
 __all__ = [
-    "Scene", "Frame", "Session", "load", "render", "field", "check", "bench", "devices",
+    "Scene", "Frame", "Session", "load", "render", "field", "mesh", "check", "bench", "devices",
     "programs_compiled", "set_verbosity", "__version__",
 ]
 
@@ -228,6 +228,22 @@ def field(scene: Union[Scene, SceneSource], points: np.ndarray, *, backend: str 
     array = np.asarray(points, dtype=np.float64)
     distance, color, ids = _call(_clmarch.field, chosen, array, _backend(backend), device, lanes)
     return {"distance": distance, "color": color, "id": ids}
+
+
+def mesh(scene: Union[Scene, SceneSource], *, resolution: int = 256, set: Overrides = None,
+         time: Optional[float] = None, backend: str = "opencl", precision: str = "float",
+         device: Optional[int] = None) -> dict:
+    """`clmarch mesh`: the scene's surface as a welded, watertight triangle mesh.
+
+    Returns {"vertices": (V, 3) float64, "faces": (F, 3) uint32 (counter-clockwise seen from
+    outside), "normals": (V, 3) float32, "colors": (V, 3) float32 (linear), "stats": dict}.
+    resolution: grid cells along the longest side of the surface's box; precision "double"
+    evaluates the field in double (for scenes far from the origin).
+    """
+    chosen = _scene(scene, set, time, None, None)
+    vertices, faces, normals, colors, stats = _call(_clmarch.mesh, chosen, int(resolution), _backend(backend),
+                                                    precision, device)
+    return {"vertices": vertices, "faces": faces, "normals": normals, "colors": colors, "stats": json.loads(stats)}
 
 
 def check(scene: Union[Scene, SceneSource], *, size: Size = None, set: Overrides = None,

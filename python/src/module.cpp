@@ -15,6 +15,7 @@
 #include "common/cancellation.hpp"
 #include "common/errors.hpp"
 #include "common/log.hpp"
+#include "mesh/scene_mesh.hpp"
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -159,6 +160,47 @@ py::tuple field(const PyScene& scene, const py::array_t<double, py::array::c_sty
                         view_of(samples->id, {n}, owner));
 }
 
+/// An N x 3 array of T over data (no copy), kept alive by owner.
+template <class T>
+py::array_t<T> rows_of_three(const T* data, std::size_t rows, const std::shared_ptr<void>& owner) {
+  py::capsule base(new std::shared_ptr<void>(owner),
+                   [](void* held) { delete static_cast<std::shared_ptr<void>*>(held); });
+  const auto item = static_cast<py::ssize_t>(sizeof(T));
+  return py::array_t<T>({static_cast<py::ssize_t>(rows), py::ssize_t{3}}, {3 * item, item}, data, base);
+}
+
+/// vertices (V x 3 float64), faces (V x 3 uint32), normals and colors (V x 3 float32), stats.
+py::tuple mesh(const PyScene& scene, int resolution, const std::string& backend_name, const std::string& precision,
+               std::optional<int> device) {
+  if (resolution < 8 || resolution > 8192) {
+    throw InputError(fmt::format("resolution must be from 8 to 8192 (got {})", resolution));
+  }
+  if (precision != "float" && precision != "double") {
+    throw InputError(fmt::format("precision must be 'float' or 'double' (got '{}')", precision));
+  }
+  const Backend backend = parse_backend(backend_name, "backend");
+  Scene meshed = scene.scene;
+  if (precision == "double") meshed.render.precision = Precision::Double;
+  OpenClOptions cl;
+  cl.device = device;
+  MeshSettings settings;
+  settings.resolution = resolution;
+  auto result = std::make_shared<SceneMesh>(interruptible([&] {
+    return mesh_scene(
+        meshed, settings,
+        [&](const glm::dvec3& origin) {
+          return backend == Backend::Reference ? reference_field(meshed, origin) : opencl_field(meshed, cl, origin);
+        },
+        fmt::format("resolution {}", resolution));
+  }));
+  const std::shared_ptr<void> owner = result;
+  const TriangleMesh& m = result->mesh;
+  return py::make_tuple(rows_of_three(&m.positions.data()->x, m.positions.size(), owner),
+                        rows_of_three(m.triangles.data()->data(), m.triangles.size(), owner),
+                        rows_of_three(&m.normals.data()->x, m.normals.size(), owner),
+                        rows_of_three(&m.colors.data()->x, m.colors.size(), owner), json_text(result->stats.to_json()));
+}
+
 std::string check(const PyScene& scene, std::optional<int> device, std::optional<int> lanes) {
   const SessionOptions options = session_options(device, lanes);
   const CheckOutcome outcome = interruptible([&] { return check_scene(scene.scene, options); });
@@ -282,6 +324,8 @@ PYBIND11_MODULE(_clmarch, m) {
       .def_property_readonly("source", &PySession::source);
 
   m.def("field", &field, py::arg("scene"), py::arg("points"), py::arg("backend"), py::arg("device"), py::arg("lanes"));
+  m.def("mesh", &mesh, py::arg("scene"), py::arg("resolution"), py::arg("backend"), py::arg("precision"),
+        py::arg("device"));
   m.def("check", &check, py::arg("scene"), py::arg("device"), py::arg("lanes"));
   m.def("bench", &bench, py::arg("scene"), py::arg("repeat"), py::arg("reference"), py::arg("device"),
         py::arg("lanes"));

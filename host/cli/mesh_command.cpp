@@ -1,0 +1,112 @@
+// `clmarch mesh`.
+#include "cli/mesh_command.hpp"
+
+#include "common/atomic_file.hpp"
+#include "common/errors.hpp"
+#include "common/log.hpp"
+#include "mesh/mesh_writers.hpp"
+#include "mesh/scene_mesh.hpp"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+namespace clmarch {
+
+CLI::App* add_mesh_command(CLI::App& app, MeshCommandOptions& options) {
+  CLI::App* mesh = app.add_subcommand("mesh", "Write a scene's surface as a watertight triangle mesh (PLY, STL, OBJ, glTF)");
+  mesh->footer(
+      "The field is sampled on a grid of --resolution cells along the longest side of the surface's box,\n"
+      "only in the bricks of cells the surface can cross; marching tetrahedra give a welded, watertight mesh\n"
+      "whose vertices are moved onto the field. Fractals are meshed at render.epsilon (docs/cli.md#mesh).\n"
+      "Examples:\n"
+      "  clmarch mesh scenes/mechanical_part.yaml -o part.ply              # positions, normals, colours\n"
+      "  clmarch mesh scenes/menger.yaml -o menger.stl --resolution 512 --stats\n"
+      "  clmarch mesh scenes/torus.yaml -o torus.glb --set sdf.torus.minor_radius=0.4\n"
+      "  clmarch mesh scenes/moving_shapes.yaml -o shapes.obj --time 1.5\n"
+      "  clmarch mesh far.yaml -o far.ply --precision double                # far from the origin");
+  mesh->add_option("scene", options.scene.scene_path, "Scene file (YAML or JSON), e.g. scenes/torus.yaml")
+      ->required()
+      ->type_name("FILE");
+  mesh->add_option("-o,--output", options.output,
+                   "Mesh file; the format follows the extension: .ply (binary, positions, normals, colours), .stl "
+                   "(binary, positions), .obj (text, normals, colours), .glb (glTF binary). Default: SCENE_NAME.ply "
+                   "(e.g. -o part.stl)")
+      ->type_name("FILE");
+  mesh->add_option("--resolution", options.resolution,
+                   "Grid cells along the longest side of the surface's bounding box (default 256; e.g. --resolution "
+                   "512)")
+      ->check(CLI::Range(8, 8192));
+  mesh->add_option("--set", options.scene.sets,
+                   "Override any scene key: key.path=value (e.g. --set sdf.torus.minor_radius=0.4)")
+      ->take_all();
+  mesh->add_option("--time", options.scene.time, "Time t in seconds for expressions in the scene (e.g. --time 1.5)")
+      ->check(finite_number([](double) { return true; }, "a finite number of seconds"));
+  mesh->add_option("--device", options.scene.device,
+                   "OpenCL device index from `clmarch devices` (default: first GPU, else first CPU)");
+  mesh->add_option("--precision", options.precision,
+                   "float (default), or double: the field in double on the device (cl_khr_fp64) and positions in "
+                   "double in PLY and OBJ, for scenes far from the origin")
+      ->check(CLI::IsMember({"float", "double"}));
+  mesh->add_option("--backend", options.backend,
+                   "opencl (default), or reference: the field from the double-precision CPU reference")
+      ->check(CLI::IsMember({"opencl", "reference"}));
+  mesh->add_flag("--stats", options.stats,
+                 "Print one JSON line of figures on stdout: cells sampled and pruned, vertices, triangles, time by "
+                 "phase, peak memory");
+  return mesh;
+}
+
+int run_mesh_command(const MeshCommandOptions& options) {
+  std::string output = options.output;
+  if (output.empty()) output = std::filesystem::path(options.scene.scene_path).stem().string() + ".ply";
+  const MeshFormat format = mesh_format_of(output, "--output");
+  check_output_folder(output, "--output");
+  if (options.backend == "reference" && options.scene.device) {
+    throw InputError("--device applies to the OpenCL backend, not to --backend reference");
+  }
+  Scene scene = load_scene_with_options(options.scene);
+  const bool in_double = options.precision == "double";
+  if (in_double) scene.render.precision = Precision::Double;
+  OpenClOptions cl = opencl_options(options.scene);
+  MeshSettings settings;
+  settings.resolution = options.resolution;
+  const auto start = std::chrono::steady_clock::now();
+  SceneMesh result = mesh_scene(
+      scene, settings,
+      [&](const glm::dvec3& origin) {
+        return options.backend == "reference" ? reference_field(scene, origin) : opencl_field(scene, cl, origin);
+      },
+      fmt::format("--resolution {}", options.resolution));
+  if (!result.stats.level_reason.empty()) log_warning(fmt::format("{}: {}", scene.source_name, result.stats.level_reason));
+  if (result.mesh.triangles.empty()) {
+    throw InputError(fmt::format("{}: the surface is nowhere inside its box at --resolution {}: no triangle to write",
+                                 scene.source_name, options.resolution));
+  }
+  const auto written_at = std::chrono::steady_clock::now();
+  StagedFiles files;
+  write_mesh(files, output, result.mesh, format, in_double ? MeshPrecision::Double : MeshPrecision::Float);
+  files.commit();
+  const auto end = std::chrono::steady_clock::now();
+  log_info(fmt::format("wrote {} ({} triangles, {} vertices)", output, result.stats.triangles, result.stats.vertices));
+  if (options.stats) {
+    nlohmann::json line = result.stats.to_json();
+    line["scene"] = options.scene.scene_path;
+    line["output"] = output;
+    line["format"] = kMeshFormatNames[static_cast<int>(format)];
+    line["backend"] = options.backend;
+    line["precision"] = options.precision;
+    line["write_ms"] = std::chrono::duration<double, std::milli>(end - written_at).count();
+    line["total_ms"] = std::chrono::duration<double, std::milli>(end - start).count();
+    std::error_code error;
+    line["bytes"] = std::filesystem::file_size(output, error);
+    std::cout << line.dump() << std::endl;
+  }
+  return kExitOk;
+}
+
+}  // namespace clmarch

@@ -1,0 +1,87 @@
+// `clmarch mesh`: the file a scene's surface becomes, its --stats line, and a one-line error with
+// exit code 2 and no file for every bad input.
+#include "common/errors.hpp"
+#include "support/test_support.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <algorithm>
+#include <fstream>
+
+namespace clmarch {
+namespace {
+
+using testing::CommandResult;
+using testing::run_clmarch;
+using testing::source_path;
+
+std::filesystem::path scratch(const std::string& name) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "clmarch-mesh-command";
+  std::filesystem::create_directories(dir);
+  std::filesystem::remove(dir / name);
+  return dir / name;
+}
+
+TEST(MeshCommand, WritesTheSurfaceAndItsFigures) {
+  const std::filesystem::path out = scratch("torus.stl");
+  const CommandResult result = run_clmarch(
+      {"mesh", source_path("scenes/torus.yaml").string(), "-o", out.string(), "--resolution", "32", "--stats"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const nlohmann::json stats = nlohmann::json::parse(result.out);
+  const auto triangles = stats.at("triangles").get<std::uint64_t>();
+  EXPECT_GT(triangles, 1000u);
+  // Binary STL: an 80-byte header, the count, 50 bytes a triangle.
+  EXPECT_EQ(std::filesystem::file_size(out), 84 + 50 * triangles);
+  EXPECT_EQ(stats.at("bytes").get<std::uint64_t>(), std::filesystem::file_size(out));
+  EXPECT_EQ(stats.at("cells_sampled").get<std::uint64_t>() + stats.at("cells_pruned").get<std::uint64_t>(),
+            stats.at("cells").get<std::uint64_t>());
+  EXPECT_GT(stats.at("cells_pruned").get<std::uint64_t>(), 0u);
+  for (const char* key : {"prune_ms", "sample_ms", "refine_ms", "shade_ms", "write_ms", "peak_resident_bytes",
+                          "predicted_bytes", "vertices", "evaluations"}) {
+    EXPECT_TRUE(stats.contains(key)) << key;
+  }
+  EXPECT_NE(result.err.find("wrote " + out.string()), std::string::npos) << result.err;
+}
+
+TEST(MeshCommand, FractalsAreMeshedAtTheHitThresholdAndSaySo) {
+  const std::filesystem::path out = scratch("bulb.ply");
+  const CommandResult result =
+      run_clmarch({"mesh", source_path("scenes/mandelbulb.yaml").string(), "-o", out.string(), "--resolution", "16"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_NE(result.err.find("is an estimate, whose sign is no inside/outside test: meshed where it falls to "
+                            "render.epsilon"),
+            std::string::npos)
+      << result.err;
+}
+
+TEST(MeshCommand, BadInputIsOneLineAndWritesNothing) {
+  const std::filesystem::path out = scratch("bad.ply");
+  const std::string torus = source_path("scenes/torus.yaml").string();
+  const std::filesystem::path plane = scratch("plane.yaml");
+  std::ofstream(plane) << "sdf: {plane: {normal: [0, 1, 0], offset: 0}}\n";
+  const struct {
+    std::vector<std::string> args;
+    std::string expected;
+  } cases[] = {
+      {{"mesh", torus, "-o", scratch("t.xyz").string()}, "cannot write meshes with extension '.xyz'"},
+      {{"mesh", torus, "-o", out.string(), "--resolution", "4"}, "--resolution"},
+      {{"mesh", torus, "-o", out.string(), "--precision", "half"}, "--precision"},
+      {{"mesh", torus, "-o", out.string(), "--backend", "reference", "--device", "0"},
+       "--device applies to the OpenCL backend"},
+      {{"mesh", plane.string(), "-o", out.string()}, "the surface is unbounded"},
+      {{"mesh", torus, "-o", "/no/such/folder/t.ply"}, "/no/such/folder"},
+      {{"mesh", torus, "-o", out.string(), "--set", "sdf.torus.radius=1"}, "unknown key 'radius'"},
+  };
+  for (const auto& c : cases) {
+    const CommandResult result = run_clmarch(c.args);
+    EXPECT_EQ(result.exit_code, kExitBadInput) << c.expected << ": " << result.err;
+    EXPECT_NE(result.err.find(c.expected), std::string::npos) << result.err;
+    EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+    EXPECT_FALSE(std::filesystem::exists(out)) << c.expected;
+  }
+}
+
+}  // namespace
+}  // namespace clmarch
