@@ -18,7 +18,8 @@
 namespace clmarch {
 
 CLI::App* add_mesh_command(CLI::App& app, MeshCommandOptions& options) {
-  CLI::App* mesh = app.add_subcommand("mesh", "Write a scene's surface as a watertight triangle mesh (PLY, STL, OBJ, glTF)");
+  CLI::App* mesh =
+      app.add_subcommand("mesh", "Write a scene's surface as a watertight triangle mesh (PLY, STL, OBJ, glTF)");
   mesh->footer(
       "The field is sampled on a grid of --resolution cells along the longest side of the surface's box,\n"
       "only in the bricks of cells the surface can cross; marching tetrahedra give a welded, watertight mesh\n"
@@ -82,7 +83,8 @@ int run_mesh_command(const MeshCommandOptions& options) {
         return options.backend == "reference" ? reference_field(scene, origin) : opencl_field(scene, cl, origin);
       },
       fmt::format("--resolution {}", options.resolution));
-  if (!result.stats.level_reason.empty()) log_warning(fmt::format("{}: {}", scene.source_name, result.stats.level_reason));
+  if (!result.stats.level_reason.empty())
+    log_warning(fmt::format("{}: {}", scene.source_name, result.stats.level_reason));
   if (result.mesh.triangles.empty()) {
     throw InputError(fmt::format("{}: the surface is nowhere inside its box at --resolution {}: no triangle to write",
                                  scene.source_name, options.resolution));
