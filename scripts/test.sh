@@ -15,6 +15,9 @@ cd "$(dirname "$0")/.."
 jobs=$(nproc)
 # ccache keys paths relative to the checkout, so that another clone reuses what this one compiled.
 export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$PWD}
+# The precompiled headers (tests/CMakeLists.txt, host/CMakeLists.txt): ccache caches the sources
+# compiled with them only with this sloppiness.
+export CCACHE_SLOPPINESS=${CCACHE_SLOPPINESS:-pch_defines,time_macros,include_file_mtime,include_file_ctime}
 stages=()
 step() {
   local name=$1

@@ -33,7 +33,7 @@ TEST(CommandModel, ReadsCommandsOptionsAndWhatTheirValuesAre) {
   EXPECT_EQ(model.program.name, "clmarch");
   std::vector<std::string> names;
   for (const CommandModel& command : model.commands) names.push_back(command.name);
-  EXPECT_EQ(names, (std::vector<std::string>{"render", "check", "devices", "bench", "mesh"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"render", "check", "devices", "bench", "mesh", "preview"}));
 
   const CommandModel& render = command_named(model, "render");
   ASSERT_EQ(render.positionals.size(), 1u);

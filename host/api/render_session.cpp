@@ -101,18 +101,22 @@ OpenClOptions RenderSession::frame_options(const Scene& scene, const FrameReques
 
 OpenClRenderer& RenderSession::renderer_for(const Scene& scene, const FrameRequest& request) {
   OpenClOptions cl = frame_options(scene, request);
-  if (renderer_ && renderer_->can_render(scene, cl)) {
-    log_verbose("same program as the previous frame: no build");
-    if (request.on_source) request.on_source(renderer_->source());
-    renderer_->set_scene(scene);
-    return *renderer_;
+  for (auto kept = renderers_.begin(); kept != renderers_.end(); ++kept) {
+    if (!(*kept)->can_render(scene, cl)) continue;
+    log_verbose("same program as an earlier frame: no build");
+    renderers_.splice(renderers_.begin(), renderers_, kept);
+    OpenClRenderer& renderer = *renderers_.front();
+    if (request.on_source) request.on_source(renderer.source());
+    renderer.set_scene(scene);
+    return renderer;
   }
   if (request.on_source) cl.before_build = request.on_source;
   const std::uint64_t compiled_before = device_programs_compiled();
-  renderer_.reset();
-  renderer_.emplace(scene, cl);
+  // The least recent renderer goes first: its buffers may be large.
+  if (renderers_.size() >= kKeptRenderers) renderers_.pop_back();
+  renderers_.push_front(std::make_unique<OpenClRenderer>(scene, cl));
   programs_built_ += device_programs_compiled() - compiled_before;
-  return *renderer_;
+  return *renderers_.front();
 }
 
 void RenderSession::prepare(const Scene& scene, const FrameRequest& request) {
@@ -126,7 +130,7 @@ RenderResult RenderSession::render(const Scene& scene, const FrameRequest& reque
 
 const std::string& RenderSession::source() const {
   static const std::string none;
-  return renderer_ ? renderer_->source() : none;
+  return renderers_.empty() ? none : renderers_.front()->source();
 }
 
 }  // namespace clmarch

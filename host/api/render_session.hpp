@@ -10,7 +10,9 @@
 
 #include <cstdint>
 #include <functional>
+#include <list>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -72,7 +74,10 @@ class RenderSession {
   OpenClRenderer& renderer_for(const Scene& scene, const FrameRequest& request);
 
   SessionOptions options_;
-  std::optional<OpenClRenderer> renderer_;
+  /// The renderers of the last kKeptRenderers image sizes or purposes, the current one first (a
+  /// preview alternates a coarse frame and the full one; each keeps its buffers).
+  static constexpr std::size_t kKeptRenderers = 2;
+  std::list<std::unique_ptr<OpenClRenderer>> renderers_;
   bool expecting_frames_ = false;
   VaryingLiterals varying_;
   /// The first literals seen of each shape (code_shape of the march code), and whether a later

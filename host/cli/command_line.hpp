@@ -1,4 +1,4 @@
-// The clmarch command line as CLI11 objects: the global flags, the five commands with their options,
+// The clmarch command line as CLI11 objects: the global flags, the six commands with their options,
 // help texts and footers. clmarch parses with it; clmarch-docgen writes the completions and the man
 // page from the same objects, so they cannot drift from the options.
 #pragma once
@@ -6,6 +6,7 @@
 #include "cli/bench_command.hpp"
 #include "cli/check_command.hpp"
 #include "cli/mesh_command.hpp"
+#include "cli/preview_command.hpp"
 #include "cli/render_command.hpp"
 
 #include <CLI/CLI.hpp>
@@ -26,11 +27,13 @@ struct CommandLine {
   CheckCommandOptions check_options;
   BenchCommandOptions bench_options;
   MeshCommandOptions mesh_options;
+  PreviewCommandOptions preview_options;
   CLI::App* render = nullptr;
   CLI::App* check = nullptr;
   CLI::App* devices = nullptr;
   CLI::App* bench = nullptr;
   CLI::App* mesh = nullptr;
+  CLI::App* preview = nullptr;
 };
 
 /// The project's version, e.g. "0.3.0" (CMakeLists.txt's project VERSION).

@@ -124,6 +124,32 @@ void check_image_path(const std::filesystem::path& path, const std::string& opti
   }
 }
 
+std::vector<unsigned char> encode_color_image(const FrameBuffers& buffers, const std::string& extension) {
+  const std::size_t pixels = static_cast<std::size_t>(buffers.width) * buffers.height;
+  std::vector<unsigned char> rgb(pixels * 3);
+  const Channel channels[] = {Channel::R, Channel::G, Channel::B};
+  for (std::size_t c = 0; c < 3; ++c) {
+    const std::vector<float>& plane = buffers.plane(channels[c]);
+    for (std::size_t i = 0; i < pixels; ++i)
+      rgb[i * 3 + c] = static_cast<unsigned char>(std::lround(linear_to_srgb(plane[i]) * 255.0f));
+  }
+  std::vector<unsigned char> encoded;
+  OIIO::Filesystem::IOVecOutput memory(encoded);
+  auto out = OIIO::ImageOutput::create(extension);
+  if (!out || !out->supports("ioproxy") || !out->set_ioproxy(&memory)) {
+    throw OutputError(
+        fmt::format("cannot encode a .{} image in memory: {}", extension, joined_lines(OIIO::geterror())));
+  }
+  OIIO::ImageSpec spec(buffers.width, buffers.height, 3, OIIO::TypeDesc::UINT8);
+  spec.attribute("oiio:ColorSpace", "sRGB");
+  // Fast rather than small: a preview's frame is sent once over the loopback.
+  spec.attribute("png:compressionLevel", 1);
+  if (!out->open("frame." + extension, spec) || !out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) || !out->close()) {
+    throw OutputError(fmt::format("cannot encode a .{} image: {}", extension, joined_lines(out->geterror())));
+  }
+  return encoded;
+}
+
 void write_color_image(StagedFiles& files, const std::filesystem::path& path, const FrameBuffers& buffers) {
   const std::vector<NamedPlane> rgb = named(buffers, {Channel::R, Channel::G, Channel::B});
   if (is_float_format(path)) {

@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace clmarch {
 
@@ -27,6 +28,10 @@ void write_buffers_exr(StagedFiles& files, const std::filesystem::path& path, co
 /// worldToCamera and worldToNDC (OpenEXR's standard M44f) and clmarch:camera.* (the camera keys).
 void write_buffers_exr(StagedFiles& files, const std::filesystem::path& path, const FrameBuffers& buffers,
                        const Scene& scene);
+
+/// R, G, B encoded in memory as an 8-bit sRGB image of the format named by extension ("png",
+/// "jpg"): the frames of the preview. Throws OutputError when OpenImageIO cannot.
+std::vector<unsigned char> encode_color_image(const FrameBuffers& buffers, const std::string& extension);
 
 /// The sRGB transfer function of a linear value, clamped to [0, 1].
 float linear_to_srgb(float linear);

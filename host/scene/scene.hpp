@@ -423,6 +423,10 @@ struct Scene {
   std::optional<Tiling> tiling;
   /// The time t (seconds) at which expressions in the file were evaluated.
   double time = 0.0;
+  /// Whether a number of the scene is an expression that changes with t.
+  bool animated = false;
+  /// The instance files the scene read its rows from (paths as opened), besides the scene file.
+  std::vector<std::string> instance_files;
   /// Where render.width/height were set ("file:line:col", "file (--set)"), for checks made after
   /// loading (host memory); empty when both are the defaults.
   std::string size_origin;

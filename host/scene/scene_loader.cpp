@@ -67,6 +67,8 @@ class SceneReader {
                    "use method: mod or coarse_pass: none");
       }
     }
+    scene.animated = yaml_.read_time();
+    scene.instance_files = instance_files_;
     return scene;
   }
 
@@ -763,6 +765,7 @@ class SceneReader {
       yaml_.fail(file_key,
                  fmt::format("{}.file: cannot read the instance file {} (no such file)", path, file.string()));
     }
+    instance_files_.push_back(file.string());
     const InstanceTable table = read_instance_table(file.string(), kMaxTreeNodes - node_count_);
     const std::vector<InstanceColumn> columns = instance_columns(table);
     for (std::size_t r = 0; r < table.rows.size(); ++r) {
@@ -825,6 +828,7 @@ class SceneReader {
 
   YamlReader yaml_;
   std::string source_name_;
+  std::vector<std::string> instance_files_;
   /// SDF nodes read so far, and those of them reached again through an alias.
   int node_count_ = 0;
   int aliased_nodes_ = 0;

@@ -183,6 +183,8 @@ double YamlReader::number(const YAML::Node& node, const std::string& what, Range
     try {
       value = evaluate_expression(node.Scalar(), {{"t", time_}});
       shown = fmt::format("{} = {:g} at t = {:g}", node.Scalar(), value, time_);
+      // A second time a second later tells whether the number moves with t (a preview's slider).
+      if (!read_time_ && evaluate_expression(node.Scalar(), {{"t", time_ + 1.0}}) != value) read_time_ = true;
     } catch (const ExpressionError& e) {
       fail(node, fmt::format("{} must be a number or an expression of the time t (got '{}': {}){}", what, node.Scalar(),
                              e.what(), split_expression_hint(node.Scalar())));

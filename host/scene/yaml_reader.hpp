@@ -25,6 +25,8 @@ class YamlReader {
 
   /// The value of t in expressions.
   double time() const { return time_; }
+  /// Whether a number read so far is an expression whose value depends on t (an animation).
+  bool read_time() const { return read_time_; }
   /// The document the nodes come from; lets where() place an empty value at its key.
   void set_document(const YAML::Node& root) { document_ = root; }
   /// "file:line:col" of a node, or "file (--set)" for values that came from an override.
@@ -71,6 +73,7 @@ class YamlReader {
   YAML::Mark mark_of(const YAML::Node& node) const;
   std::string source_;
   double time_;
+  mutable bool read_time_ = false;
   std::optional<YAML::Node> document_;
 };
 
