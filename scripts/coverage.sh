@@ -18,7 +18,7 @@ case "${1:-}" in
 esac
 scripts/setup.sh
 cmake -S . -B build-coverage -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
-  -DCLMARCH_COVERAGE=ON -DCLMARCH_PYTHON=OFF >/dev/null
+  -DCLMARCH_COVERAGE=ON -DCLMARCH_PYTHON=OFF -DCLMARCH_UNITY=OFF >/dev/null
 # Counts of an earlier build would clash with the new objects' (the test listing after the build
 # writes some): start without any.
 find build-coverage -name '*.gcda' -delete 2>/dev/null || true

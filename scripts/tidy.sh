@@ -17,7 +17,7 @@ else
   mapfile -t files < <(git ls-files -- 'host/*.cpp')
 fi
 start=$SECONDS
-cmake -S . -B build-tidy -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_EXPORT_COMPILE_COMMANDS=ON \
+cmake -S . -B build-tidy -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_EXPORT_COMPILE_COMMANDS=ON -DCLMARCH_UNITY=OFF \
   -DCLMARCH_BUILD_TESTS=OFF >/dev/null
 logs=build-tidy/tidy-logs
 rm -rf "$logs"
