@@ -56,6 +56,21 @@ TEST(MeshCommand, FractalsAreMeshedAtTheHitThresholdAndSaySo) {
       << result.err;
 }
 
+TEST(MeshCommand, AMeshTooLargeForTheMachineIsRefusedBeforeSampling) {
+  // At 2048 cells the unit sphere's surface crosses about 2e5 bricks: some 20 GiB of vertices,
+  // predicted from the bricks pruning kept, against the 3 GiB a 4 GB address space leaves.
+  const std::filesystem::path scene = scratch("big.yaml");
+  std::ofstream(scene) << "sdf: {sphere: {radius: 1}}\n";
+  const std::filesystem::path out = scratch("big.ply");
+  const testing::CommandResult result = testing::run_clmarch_in_shell(
+      "ulimit -v 4000000; ", {"mesh", scene.string(), "-o", out.string(), "--resolution", "2048"});
+  EXPECT_EQ(result.exit_code, kExitBadInput) << result.err;
+  EXPECT_NE(result.err.find("--resolution 2048: the mesh needs about"), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find("choose a lower resolution"), std::string::npos) << result.err;
+  EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
 TEST(MeshCommand, BadInputIsOneLineAndWritesNothing) {
   const std::filesystem::path out = scratch("bad.ply");
   const std::string torus = source_path("scenes/torus.yaml").string();

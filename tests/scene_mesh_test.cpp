@@ -146,5 +146,26 @@ TEST(SceneMesh, TheDeviceMeshIsTheReferences) {
   for (const glm::dvec3& p : device.mesh.positions) ASSERT_NEAR(reference_distance(scene.sdf, p), 0.0, tolerance);
 }
 
+TEST(SceneMesh, FarFromTheOriginADoubleFieldKeepsTheSurface) {
+  Scene scene = load_scene_text("sdf: {sphere: {center: [1000000, 0, 0], radius: 1}}\n", "far.yaml");
+  const glm::dvec3 centre(1e6, 0, 0);
+  MeshSettings settings;
+  settings.resolution = 16;
+  const auto worst_offset = [&](const Scene& s) {
+    const SceneMesh result = mesh_scene(
+        s, settings, [&](const glm::dvec3& origin) { return opencl_field(s, OpenClOptions{}, origin); },
+        "--resolution");
+    double worst = 0.0;
+    for (const glm::dvec3& p : result.mesh.positions) worst = std::max(worst, std::abs(glm::length(p - centre) - 1.0));
+    return worst;
+  };
+  // In float the points 1e6 away are 1/16 apart: the vertices land anywhere within a few of them.
+  EXPECT_GT(worst_offset(scene), 0.01);
+  // In double the grid's offsets are added to its origin exactly: the root finding's 1e-6 of a
+  // cell, plus float rounding of the offsets (under 1.5 from the origin).
+  scene.render.precision = Precision::Double;
+  EXPECT_LT(worst_offset(scene), 1e-6 * 0.17 + 8 * std::numeric_limits<float>::epsilon() * 1.5);
+}
+
 }  // namespace
 }  // namespace clmarch

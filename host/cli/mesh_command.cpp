@@ -25,8 +25,8 @@ CLI::App* add_mesh_command(CLI::App& app, MeshCommandOptions& options) {
       "only in the bricks of cells the surface can cross; marching tetrahedra give a welded, watertight mesh\n"
       "whose vertices are moved onto the field. Fractals are meshed at render.epsilon (docs/cli.md#mesh).\n"
       "Examples:\n"
-      "  clmarch mesh scenes/mechanical_part.yaml -o part.ply              # positions, normals, colours\n"
-      "  clmarch mesh scenes/menger.yaml -o menger.stl --resolution 512 --stats\n"
+      "  clmarch mesh scenes/torus.yaml -o torus.ply                       # positions, normals, colours\n"
+      "  clmarch mesh scenes/mandelbulb.yaml -o bulb.stl --resolution 512 --stats\n"
       "  clmarch mesh scenes/torus.yaml -o torus.glb --set sdf.torus.minor_radius=0.4\n"
       "  clmarch mesh scenes/moving_shapes.yaml -o shapes.obj --time 1.5\n"
       "  clmarch mesh far.yaml -o far.ply --precision double                # far from the origin");

@@ -7,6 +7,8 @@
 #include <fmt/format.h>
 
 #include <cstdio>
+#include <mutex>
+#include <utility>
 
 #include <unistd.h>
 
@@ -14,6 +16,14 @@ namespace clmarch {
 
 namespace {
 bool g_draw_anyway = false;
+std::mutex g_sink_mutex;
+ProgressSink g_sink;
+
+/// The sink, if one is set (a copy: it may be replaced meanwhile).
+ProgressSink current_sink() {
+  const std::lock_guard lock(g_sink_mutex);
+  return g_sink;
+}
 /// Progress lines alive: under MPI only the outermost one draws (the frames or tiles of all ranks,
 /// not the chunks of rank 0's own render).
 std::atomic<int> g_live_lines{0};
@@ -22,6 +32,11 @@ std::atomic<int> g_live_lines{0};
 bool progress_enabled() { return verbosity() != Verbosity::Quiet && (g_draw_anyway || isatty(STDERR_FILENO) == 1); }
 
 void draw_progress_anyway() { g_draw_anyway = true; }
+
+void set_progress_sink(ProgressSink sink) {
+  const std::lock_guard lock(g_sink_mutex);
+  g_sink = std::move(sink);
+}
 
 ProgressLine::ProgressLine(std::string label, long long total, double rays_per_unit)
     : label_(std::move(label)),
@@ -46,6 +61,21 @@ void ProgressLine::advance(long long done) {
 
 void ProgressLine::count(long long done) {
   const long long now_done = done_ += done;
+  if (const ProgressSink sink = current_sink()) {
+    // Other threads skip a report while one is being made, but the last one always comes.
+    const bool last = now_done >= total_;
+    std::unique_lock lock(draw_, std::defer_lock);
+    if (last) {
+      lock.lock();
+    } else if (!lock.try_lock()) {
+      return;
+    }
+    const auto now = std::chrono::steady_clock::now();
+    if (!last && now - last_draw_ < std::chrono::milliseconds(250)) return;
+    last_draw_ = now;
+    sink(label_, now_done, total_);
+    return;
+  }
   if (!enabled_) return;
   std::unique_lock lock(draw_, std::try_to_lock);
   if (!lock) return;

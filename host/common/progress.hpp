@@ -5,7 +5,9 @@
 #include <atomic>
 #include <chrono>
 #include <mutex>
+#include <functional>
 #include <string>
+#include <string_view>
 
 namespace clmarch {
 
@@ -16,6 +18,12 @@ bool progress_enabled();
 /// forwards to its own through a pipe. Then progress comes as whole lines, at most one every 2 s,
 /// from the outermost progress line only (the frames or tiles of all ranks).
 void draw_progress_anyway();
+
+/// Where a library's caller takes progress instead of the line on stderr (the Python module hands
+/// it to a Python function): called with the work's label and its units done and in all, at most
+/// four times a second and once when all are done, from any thread; an empty sink restores the line.
+using ProgressSink = std::function<void(std::string_view label, long long done, long long total)>;
+void set_progress_sink(ProgressSink sink);
 
 class ProgressLine {
  public:

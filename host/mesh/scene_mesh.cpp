@@ -47,9 +47,8 @@ constexpr std::uint64_t kBytesPerBatchPoint = 24 + 2 * 36 + 4;
 // and colour (48) and the refinement's batch (24 + 72); per triangle 12.
 constexpr std::uint64_t kBytesPerVertex = 80 + 40 + 48 + 96;
 constexpr std::uint64_t kBytesPerTriangle = 12;
-// Vertices and triangles per active brick, at most, measured (scripts/mesh-bench.sh, 2026-11-27):
-// the sphere, the torus, mechanical_part and the Menger sponge gave 130-260 vertices and 260-520
-// triangles per active brick of 8^3 cells; the figures keep a margin over the largest.
+// Vertices and triangles per active brick of 8^3 cells: the torus at 128 cells had 194 and 387
+// (`clmarch mesh --stats`, 2026-11-28); twice that is kept as the margin for curvier surfaces.
 constexpr std::uint64_t kVerticesPerBrick = 400;
 constexpr std::uint64_t kTrianglesPerBrick = 800;
 // A vertex is on the level once the field there is within this share of a cell of it: far below

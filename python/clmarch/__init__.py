@@ -14,6 +14,7 @@ usable). See docs/python.md.
 
 from __future__ import annotations
 
+import atexit
 import json
 import logging
 import os
@@ -28,7 +29,7 @@ __version__: str = _clmarch.__version__
 
 __all__ = [
     "Scene", "Frame", "Session", "load", "render", "field", "mesh", "check", "bench", "devices",
-    "programs_compiled", "set_verbosity", "__version__",
+    "programs_compiled", "set_verbosity", "set_progress", "__version__",
 ]
 
 _log = logging.getLogger("clmarch")
@@ -275,3 +276,14 @@ def programs_compiled() -> int:
 def set_verbosity(level: str) -> None:
     """"quiet", "normal" (default) or "verbose": which lines go to the logger "clmarch"."""
     _clmarch.set_verbosity(level)
+
+
+def set_progress(callback) -> None:
+    """callback(label, done, total) receives the progress of long work (the reference's rows, a
+    render's chunks, a mesh's bricks, the frames of a sweep) at most four times a second and once
+    at its end, instead of the line the CLI draws; None stops it. An exception in the callback is
+    reported as unraisable and stops the work as Ctrl-C does (the call raises KeyboardInterrupt)."""
+    _clmarch.set_progress(callback)
+
+
+atexit.register(_clmarch.set_progress, None)

@@ -15,6 +15,7 @@
 #include "common/cancellation.hpp"
 #include "common/errors.hpp"
 #include "common/log.hpp"
+#include "common/progress.hpp"
 #include "mesh/scene_mesh.hpp"
 
 #include <pybind11/numpy.h>
@@ -276,6 +277,28 @@ PYBIND11_MODULE(_clmarch, m) {
       PyErr_SetNone(PyExc_KeyboardInterrupt);
     }
   });
+  m.def(
+      "set_progress",
+      [](const py::object& callback) {
+        if (callback.is_none()) return set_progress_sink({});
+        if (!PyCallable_Check(callback.ptr())) throw InputError("set_progress: expected a callable or None");
+        // Held by the sink; released (with the GIL) when the sink is replaced.
+        auto held = std::shared_ptr<py::object>(new py::object(callback), [](py::object* f) {
+          const py::gil_scoped_acquire gil;
+          delete f;
+        });
+        set_progress_sink([held](std::string_view label, long long done, long long total) {
+          const py::gil_scoped_acquire gil;
+          try {
+            (*held)(std::string(label), done, total);
+          } catch (py::error_already_set& e) {
+            // An exception of the callback stops the work, as Ctrl-C would, and is reported.
+            e.discard_as_unraisable("clmarch progress callback");
+            cancellation_requested().store(true);
+          }
+        });
+      },
+      py::arg("callback"));
   set_log_sink([](LogLevel level, std::string_view line) {
     LogLines& log = log_lines();
     const std::lock_guard lock(log.mutex);

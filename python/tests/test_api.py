@@ -6,6 +6,7 @@ import inspect
 import pathlib
 
 import numpy as np
+import pytest
 
 import clmarch
 from clmarch import _clmarch
@@ -92,3 +93,17 @@ def test_the_package_version_is_the_projects():
     pyproject = tomllib.loads((root / "pyproject.toml").read_text())["project"]["version"]
     assert clmarch.__version__ == cmake == pyproject
     assert run_cli("--version").stdout.strip() == f"clmarch {cmake}"
+
+
+def test_progress_goes_to_a_callback():
+    calls = []
+    clmarch.set_progress(lambda label, done, total: calls.append((label, done, total)))
+    try:
+        clmarch.render(SCENES / "mandelbulb.yaml", size=(320, 320), backend="reference")
+    finally:
+        clmarch.set_progress(None)
+    assert calls, "the reference's rows report progress"
+    label, done, total = calls[-1]
+    assert done == total and all(d <= t for _, d, t in calls)
+    with pytest.raises(ValueError, match="expected a callable or None"):
+        clmarch.set_progress(42)
