@@ -87,6 +87,7 @@ extrude|3|exact for an exact profile|2D box of (d(p.x, p.y, 0), abs(p.z) − h)|
 twist|3.4|bound (Lipschitz factor of the turn)|the child turned about y by rate · y, over (a + √(a² + 4)) / 2|twist: {rate: 60, children: [{box: {half_size: [0.5, 0.8, 0.25], color: [0.5, 0.8, 0.4]}}]}
 bend|3.4|bound (Lipschitz factor of the turn)|the child turned about z by rate · x, over 1 + a|bend: {rate: 40, children: [{box: {half_size: [1, 0.15, 0.3], color: [0.9, 0.7, 0.3]}}]}
 nonuniform_scale|3|bound (times the smallest factor)|min(f) d(p / f)|nonuniform_scale: {factors: [1.6, 0.7, 1], children: [{torus: {major_radius: 0.5, minor_radius: 0.2, color: [0.6, 0.4, 0.8]}}]}
+glsl|3|bound with a right lipschitz|your GLSL map(p), divided by lipschitz|glsl: {code: 'float map(vec3 p) { p.xz *= mat2(0.8, 0.6, -0.6, 0.8); vec3 q = abs(p) - vec3(0.5, 0.4, 0.6); return length(max(q, 0.0)) + min(max(q.x, max(q.y, q.z)), 0.0) - 0.1 + 0.03 * sin(12.0 * p.y); }', lipschitz: 1.4, color: [0.3, 0.7, 0.5]}
 EOF
 )
 

@@ -366,6 +366,14 @@ const std::vector<SdfCase>& sdf_cases() {
       {"nonuniform_scale",
        "nonuniform_scale: {factors: [2, 1, 1], children: [{sphere: {radius: 1}}]}",
        {{{3, 0, 0}, 0.5}, {{0, 3, 0}, 2.0}, {{0, 0, 0}, -1.0}}},
+      // User GLSL: a box turned by p.xz *= rot(a) (vector x matrix, transpose(m)·p), over lipschitz
+      // 2. At (0, 0, 2) the turned point is (sin a · 2, 0, cos a · 2) with a = 30°: (1, 0, 1.732),
+      // 0.732 beyond the box's face z = 1, halved.
+      {"glsl",
+       "glsl: {code: 'mat2 rot(float a) { float c = cos(a), s = sin(a); return mat2(c, s, -s, c); } float map(vec3 p) "
+       "{ p.xz *= rot(radians(30.0)); vec3 q = abs(p) - vec3(1.0); return length(max(q, 0.0)) + min(max(q.x, "
+       "max(q.y, q.z)), 0.0); }', lipschitz: 2}",
+       {{{0, 0, 2}, 0.5 * (std::sqrt(3.0) - 1.0)}, {{0, 0, 0}, -0.5}, {{0, 3, 0}, 1.0}}},
       {"union",
        "union: [{sphere: {radius: 1}}, {sphere: {center: [1.5, 0, 0], radius: 1}}]",
        {{{0, 0, 0}, -1.0}, {{3, 0, 0}, 0.5}}},

@@ -4,6 +4,7 @@
 
 #include "codegen/blend_code.hpp"
 #include "codegen/color_pattern_code.hpp"
+#include "codegen/glsl_code.hpp"
 
 #include "codegen/cl_literals.hpp"
 #include "codegen/embedded_kernels.hpp"
@@ -67,8 +68,11 @@ std::string declared_call(std::string_view name, const Params& params, const std
   std::string function = fmt::format("sd_{}", name);
   std::string arguments = p;
   for_each_param(params, [&](const ParamSpec& spec, const auto& value) {
-    if constexpr (std::is_enum_v<std::decay_t<decltype(value)>>) {
+    using Value = std::decay_t<decltype(value)>;
+    if constexpr (std::is_enum_v<Value>) {
       function += fmt::format("_{}", spec.choices[static_cast<std::size_t>(value)]);
+    } else if constexpr (std::is_same_v<Value, std::shared_ptr<const GlslProgram>>) {
+      throw std::logic_error("a glsl node's call is glsl_call's, not a declared one");
     } else {
       arguments += ", " + argument(spec, value, offset, lit);
     }
@@ -360,14 +364,31 @@ class SdfEmitter {
     return call;
   }
 
+  /// A glsl node's call of its translated code (glsl_code.hpp), at its local point, with the time
+  /// a literal so that frames of an animation share the program.
+  std::string glsl_call(const Node& node, const std::string& p, const glm::dvec3& offset, const char* function) {
+    const Glsl& glsl = params_of<Glsl>(node);
+    return fmt::format("{}_{}_lanes({}, {})", glsl.program->name, function, absolute_point(p, offset),
+                       lit_.f(glsl.program->time));
+  }
+
   Value emit_primitive(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
     Value value{fresh("d"), "", "", "", ""};
-    const std::string call =
-        node.kind == NodeKind::Terrain ? terrain_call(node, p, offset) : primitive_call(node, p, offset, lit_);
+    std::string call;
+    if (node.kind == NodeKind::Terrain) {
+      call = terrain_call(node, p, offset);
+    } else if (node.kind == NodeKind::Glsl) {
+      call =
+          fmt::format("{} * {}", glsl_call(node, p, offset, "distance"), lit_.f(1.0 / params_of<Glsl>(node).lipschitz));
+    } else {
+      call = primitive_call(node, p, offset, lit_);
+    }
     line(fmt::format("vfloat {} = {};  /* {} */", value.distance, call, node_kind_name(node.kind)));
     if (with_color_) {
       value.color = fresh("c");
-      if (color.pattern) {
+      if (node.kind == NodeKind::Glsl && params_of<Glsl>(node).program->module.color_function >= 0) {
+        line(fmt::format("vec3v {} = {};  /* the code's colour */", value.color, glsl_call(node, p, offset, "color")));
+      } else if (color.pattern) {
         line(fmt::format("vec3v {} = {};  /* color pattern */", value.color,
                          pattern_color_code(*color.pattern, pattern_frame_, lit_)));
       } else {
@@ -1007,7 +1028,7 @@ std::string sdf_functions(const Node& root, const glm::dvec3& frame_origin, bool
             " * (render.literals, or those an animation changes) let scenes that differ in them share this\n"
             " * program. */\n"
             "typedef __constant const float* SceneValues;\n\n";
-  return frame + values_type + grid.functions +
+  return frame + values_type + glsl_functions(root) + grid.functions +
          fmt::format(
              "/* Distance to the scene. */\n"
              "SDF_INLINE vfloat map(SceneValues values, vec3v p) {{\n{}  return {};\n}}\n\n"

@@ -229,6 +229,11 @@ SdfSample sample_node(const Node& node, const glm::dvec3& p_parent, const Materi
     material.pattern = nullptr;
   }
   SdfSample s = sample_local(node, p, material, colored);
+  if (node.kind == NodeKind::Glsl && colored) {
+    // The code's colour function, where it has one, over the node's color.
+    const GlslProgram& program = *params_of<Glsl>(node).program;
+    if (program.module.color_function >= 0) s.color = program.interpreter->color(p, program.time);
+  }
   if (is_primitive(node.kind)) {
     s.surface = {material.metallic, material.roughness, material.reflectivity};
     s.finish = {material.specular, material.shininess};

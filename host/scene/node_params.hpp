@@ -5,11 +5,13 @@
 // read the table through it).
 #pragma once
 
+#include "scene/glsl_program.hpp"
 #include "scene/value_range.hpp"
 
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <variant>
 
@@ -50,6 +52,8 @@ enum class ParamType {
   IntegerVector,
   /// Four numbers (a quaternion), each in the range.
   Vector4,
+  /// User GLSL: a glsl node's program, read from several keys (scene/glsl_program.hpp).
+  Program,
 };
 
 /// One row of a kind's parameter table.
@@ -77,6 +81,7 @@ struct ParamSpec {
 #define CLMARCH_REQUIRED_INTEGER(member, low, high) int member = 0;
 #define CLMARCH_REQUIRED_INTEGERS(member, low, high) glm::ivec3 member{0};
 #define CLMARCH_REQUIRED_AXES(member) glm::bvec3 member{false};
+#define CLMARCH_GLSL_PROGRAM(member) std::shared_ptr<const GlslProgram> member = default_glsl_program();
 #define CLMARCH_PRIMITIVE(Kind, name, quality, cost, params) \
   struct Kind {                                              \
     params                                                   \
@@ -124,6 +129,7 @@ using NodeParams = VariantBeforeVoid<TypeList<
 #define CLMARCH_REQUIRED_INTEGERS(member, low, high) \
   visit(ParamSpec{#member, ParamType::IntegerVector, Range::closed(low, high), true}, params.member);
 #define CLMARCH_REQUIRED_AXES(member) visit(ParamSpec{#member, ParamType::Axes, Range::any(), true}, params.member);
+#define CLMARCH_GLSL_PROGRAM(member) visit(ParamSpec{#member, ParamType::Program, Range::any()}, params.member);
 // Kind names a type here, which parentheses would break.
 // NOLINTBEGIN(bugprone-macro-parentheses)
 #define CLMARCH_KIND_PARAMS(Kind, params_list)                                               \

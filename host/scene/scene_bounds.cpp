@@ -148,6 +148,11 @@ std::optional<BoundingSphere> primitive_bounds(const NodeParams& params) {
       return BoundingSphere{j.center, julia_radius(j.c)};
     }
     std::optional<BoundingSphere> operator()(const Terrain&) const { return std::nullopt; }
+    // User code is bounded where its scene file says so (`bounds:`), else nowhere.
+    std::optional<BoundingSphere> operator()(const Glsl& g) const {
+      if (!g.program->bounds_center) return std::nullopt;
+      return BoundingSphere{*g.program->bounds_center, g.program->bounds_radius};
+    }
     // A profile alone is a prism along z without end; revolve and extrude bound its section
     // (section_bounds).
 #define CLMARCH_PROFILE(Kind, name, quality, cost, params_list) \

@@ -5,6 +5,7 @@
 #include "common/errors.hpp"
 #include "common/nearest_name.hpp"
 #include "scene/color_pattern_reader.hpp"
+#include "scene/glsl_node_reader.hpp"
 #include "scene/instance_file.hpp"
 #include "scene/scene_bounds.hpp"
 #include "scene/yaml_reader.hpp"
@@ -29,6 +30,14 @@
 namespace clmarch {
 namespace {
 
+/// Whether user code reads the time (iTime, iFrame): its scene is then an animation.
+bool uses_time(const glsl::Module& module) {
+  for (const glsl::Variable& variable : module.variables) {
+    if (variable.uniform == glsl::UniformKind::Time || variable.uniform == glsl::UniformKind::Frame) return true;
+  }
+  return false;
+}
+
 constexpr int kMaxStepBudget = 1000000;
 
 // Keys every SDF node accepts besides its own parameters.
@@ -38,7 +47,9 @@ constexpr int kMaxStepBudget = 1000000;
 
 class SceneReader {
  public:
-  SceneReader(const std::string& source_name, double time) : yaml_(source_name, time), source_name_(source_name) {}
+  SceneReader(const std::string& source_name, double time) : yaml_(source_name, time), source_name_(source_name) {
+    glsl_context_.scene_file = source_name;
+  }
 
   Scene read(const YAML::Node& root, const std::string& source_name) {
     Scene scene;
@@ -49,6 +60,8 @@ class SceneReader {
     if (const YAML::Node camera = root["camera"]) scene.camera = read_camera(camera);
     if (const YAML::Node render = root["render"]) {
       scene.render = read_render(render);
+      glsl_context_.width = scene.render.width;
+      glsl_context_.height = scene.render.height;
       if (const YAML::Node side = render["width"] ? render["width"] : render["height"])
         scene.size_origin = yaml_.where(side);
     }
@@ -396,7 +409,9 @@ class SceneReader {
   }
 
   void read_common(Node& node, const YAML::Node& params, const std::string& path) {
-    if (params["color"]) read_node_color(yaml_, params["color"], path + ".color", node);
+    // A glsl node's color may name its code's colour function, which its program took.
+    const bool color_is_code = node.kind == NodeKind::Glsl && params["color"] && names_glsl_function(params["color"]);
+    if (params["color"] && !color_is_code) read_node_color(yaml_, params["color"], path + ".color", node);
     if (params["metallic"])
       node.metallic = yaml_.number(params["metallic"], path + ".metallic", Range::closed(0.0, 1.0));
     if (params["roughness"])
@@ -421,7 +436,14 @@ class SceneReader {
   /// operator, and the common ones.
   static std::vector<std::string_view> node_keys(const Node& node) {
     std::vector<std::string_view> keys;
-    for (const ParamSpec& spec : param_table(node.kind)) keys.emplace_back(spec.key);
+    for (const ParamSpec& spec : param_table(node.kind)) {
+      // A program is read from several keys of its own.
+      if (spec.type == ParamType::Program) {
+        keys.insert(keys.end(), std::begin(kGlslNodeKeys), std::end(kGlslNodeKeys));
+      } else {
+        keys.emplace_back(spec.key);
+      }
+    }
     if (!is_primitive(node.kind)) keys.emplace_back("children");
     for (std::string_view common : {CLMARCH_COMMON_NODE_KEYS}) {
       if (!has_param(node, common)) keys.push_back(common);
@@ -444,13 +466,18 @@ class SceneReader {
     std::visit(
         [&](auto& params) {
           for_each_param(params, [&](const ParamSpec& spec, auto& value) {
-            const std::string what = path + "." + spec.key;
-            const YAML::Node given = map[spec.key];
-            if (!given) {
-              if (spec.required) yaml_.required(map, spec.key, what);
-              return;
+            if constexpr (std::is_same_v<std::decay_t<decltype(value)>, std::shared_ptr<const GlslProgram>>) {
+              value = read_glsl_program(yaml_, map, path, glsl_context_, instance_files_);
+              if (uses_time(value->module)) yaml_.note_time_read();
+            } else {
+              const std::string what = path + "." + spec.key;
+              const YAML::Node given = map[spec.key];
+              if (!given) {
+                if (spec.required) yaml_.required(map, spec.key, what);
+                return;
+              }
+              read_param(spec, given, what, value);
             }
-            read_param(spec, given, what, value);
           });
           check_params(params, map, path);
         },
@@ -829,6 +856,7 @@ class SceneReader {
   YamlReader yaml_;
   std::string source_name_;
   std::vector<std::string> instance_files_;
+  GlslNodeContext glsl_context_;
   /// SDF nodes read so far, and those of them reached again through an alias.
   int node_count_ = 0;
   int aliased_nodes_ = 0;

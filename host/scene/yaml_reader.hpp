@@ -27,6 +27,8 @@ class YamlReader {
   double time() const { return time_; }
   /// Whether a number read so far is an expression whose value depends on t (an animation).
   bool read_time() const { return read_time_; }
+  /// Notes a read of the time other than through a number (user code that reads iTime).
+  void note_time_read() const { read_time_ = true; }
   /// The document the nodes come from; lets where() place an empty value at its key.
   void set_document(const YAML::Node& root) { document_ = root; }
   /// "file:line:col" of a node, or "file (--set)" for values that came from an override.

@@ -32,6 +32,7 @@ std::string required_value(const ParamSpec& spec, int integer_vectors_before) {
     case ParamType::Direction:
     case ParamType::Choice:
     case ParamType::Vector4:
+    case ParamType::Program:
       break;
   }
   throw std::logic_error(fmt::format("no value for a required parameter {}", spec.key));
@@ -42,7 +43,16 @@ std::string required_value(const ParamSpec& spec, int integer_vectors_before) {
 /// (CheckFeatures.TheMandelboxAndTheJuliaSet compares scale 2 at 6 iterations). At scale -1.5 its
 /// faces are dust finer than a pixel, which rays at a fixed epsilon pass through or not by
 /// rounding; the pixel cone stops them at the dust's pixel-sized envelope.
-std::string kind_settings(NodeKind kind) { return kind == NodeKind::Mandelbox ? "scale: -1.5, " : ""; }
+std::string kind_settings(NodeKind kind) {
+  if (kind == NodeKind::Mandelbox) return "scale: -1.5, ";
+  // A rounded box in user code, with a helper function, bounded by the sphere about its corners.
+  if (kind == NodeKind::Glsl) {
+    return "code: 'float box(vec3 p, vec3 b) { vec3 q = abs(p) - b; return length(max(q, 0.0)) + "
+           "min(max(q.x, max(q.y, q.z)), 0.0); } float map(vec3 p) { return box(p, vec3(0.5, 0.4, 0.3)) - 0.1; }', "
+           "bounds: {radius: 0.9}, ";
+  }
+  return "";
+}
 
 }  // namespace
 
