@@ -766,7 +766,7 @@ class SceneReader {
                  fmt::format("{}.file: cannot read the instance file {} (no such file)", path, file.string()));
     }
     instance_files_.push_back(file.string());
-    const InstanceTable table = read_instance_table(file.string(), kMaxTreeNodes - node_count_);
+    const InstanceTable table = read_instance_table(file.string(), kMaxTreeNodes - node_count_, "instance file");
     const std::vector<InstanceColumn> columns = instance_columns(table);
     for (std::size_t r = 0; r < table.rows.size(); ++r) {
       YAML::Node keys(YAML::NodeType::Map);
