@@ -382,8 +382,9 @@ class SceneReader {
     if (!kind) {
       std::vector<std::string_view> names;
       for (NodeKind k : kAllNodeKinds) names.push_back(node_kind_name(k));
-      yaml_.fail(entry->first, fmt::format("{}: unknown node kind '{}'{} (expected one of: {})", path, name,
-                                           did_you_mean(name, names), fmt::join(names, ", ")));
+      // Every kind, however long the name before them: a list cut in the middle hides the one wanted.
+      yaml_.fail(entry->first, fmt::format("{}: unknown node kind '{}'{}", path, name, did_you_mean(name, names)),
+                 fmt::format(" (expected one of: {})", fmt::join(names, ", ")));
     }
     Node node = node_of_kind(*kind);
     const std::string node_path = path + "." + name;
@@ -755,8 +756,8 @@ class SceneReader {
       for (NodeKind k : kAllNodeKinds) {
         if (is_primitive(k)) names.push_back(node_kind_name(k));
       }
-      yaml_.fail(primitive_key, fmt::format("{}.primitive: '{}' is not a primitive (expected one of: {})", path,
-                                            primitive, fmt::join(names, ", ")));
+      yaml_.fail(primitive_key, fmt::format("{}.primitive: '{}' is not a primitive", path, primitive),
+                 fmt::format(" (expected one of: {})", fmt::join(names, ", ")));
     }
     std::filesystem::path file = yaml_.text(file_key, path + ".file");
     if (file.is_relative()) file = std::filesystem::path(source_name_).parent_path() / file;
