@@ -544,6 +544,21 @@ class SceneReader {
     }
   }
 
+  void check_params(CappedCylinder& cylinder, const YAML::Node& map, const std::string& path) {
+    if (cylinder.a == cylinder.b) {
+      yaml_.fail(map, path + ".a and " + path + ".b must differ (the cylinder runs from a to b)");
+    }
+  }
+
+  void check_params(Frustum& frustum, const YAML::Node& map, const std::string& path) {
+    if (frustum.a == frustum.b) {
+      yaml_.fail(map, path + ".a and " + path + ".b must differ (the frustum runs from a to b)");
+    }
+    if (frustum.radius_a == 0.0 && frustum.radius_b == 0.0) {
+      yaml_.fail(map, path + ".radius_a and " + path + ".radius_b must not both be 0 (that is a segment)");
+    }
+  }
+
   void check_params(RoundedCylinder& cylinder, const YAML::Node& map, const std::string& path) {
     limit_rounding(cylinder.edge_radius, std::min(cylinder.radius, cylinder.half_height), map, "edge_radius", path);
   }
