@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 
 namespace clmarch {
 namespace {
@@ -24,6 +25,8 @@ struct BadInputCase {
   /// Text the one-line message must contain ("DIR" replaced too).
   std::vector<std::string> message_parts;
   int exit_code = kExitBadInput;
+  /// `clmarch field`'s points file, written to DIR/points.csv; absent: no file is written.
+  std::optional<std::string> points = std::nullopt;
 };
 
 const std::string kValidScene = "sdf: {sphere: {radius: 1}}\nrender: {width: 16, height: 8}\n";
@@ -646,6 +649,106 @@ const std::vector<BadInputCase>& bad_input_cases() {
        kValidScene,
        {"bench", "DIR/scene.yaml", "--set", "render.x=1"},
        {"(--set)", "unknown key 'x'"}},
+      // clmarch field's points file and output.
+      {"field_two_numbers",
+       kValidScene,
+       {"field", "DIR/scene.yaml", "--points", "DIR/points.csv", "-o", "DIR/out.csv"},
+       {"DIR/points.csv:3: the row has 2 values (expected 3, one per column of the header: x,y,z)"},
+       kExitBadInput,
+       "x,y,z\n0,0,0\n1,2\n"},
+      {"field_four_numbers",
+       kValidScene,
+       {"field", "DIR/scene.yaml", "--points", "DIR/points.csv", "-o", "DIR/out.csv"},
+       {"DIR/points.csv:2: the row has 4 values"},
+       kExitBadInput,
+       "x,y,z\n1,2,3,4\n"},
+      {"field_wrong_header",
+       kValidScene,
+       {"field", "DIR/scene.yaml", "--points", "DIR/points.csv", "-o", "DIR/out.csv"},
+       {"DIR/points.csv:1: the header must be x,y,z (got x,y)"},
+       kExitBadInput,
+       "x,y\n1,2\n"},
+      {"field_header_out_of_order",
+       kValidScene,
+       {"field", "DIR/scene.yaml", "--points", "DIR/points.csv", "-o", "DIR/out.csv"},
+       {"DIR/points.csv:1:", "(got z,y,x)"},
+       kExitBadInput,
+       "z,y,x\n1,2,3\n"},
+      {"field_no_header",
+       kValidScene,
+       {"field", "DIR/scene.yaml", "--points", "DIR/points.csv", "-o", "DIR/out.csv"},
+       {"DIR/points.csv:1: the header must be x,y,z (got 1,2,3)"},
+       kExitBadInput,
+       "1,2,3\n"},
+      {"field_not_a_number",
+       kValidScene,
+       {"field", "DIR/scene.yaml", "--points", "DIR/points.csv", "-o", "DIR/out.csv"},
+       {"DIR/points.csv:3:3: y must be a finite number (got 'two')"},
+       kExitBadInput,
+       "x,y,z\n0,0,0\n1,two,3\n"},
+      {"field_not_finite",
+       kValidScene,
+       {"field", "DIR/scene.yaml", "--points", "DIR/points.csv", "-o", "DIR/out.csv"},
+       {"DIR/points.csv:2:5: z must be a finite number (got 'inf')"},
+       kExitBadInput,
+       "x,y,z\n1,2,inf\n"},
+      {"field_empty_points",
+       kValidScene,
+       {"field", "DIR/scene.yaml", "--points", "DIR/points.csv", "-o", "DIR/out.csv"},
+       {"DIR/points.csv: the points file is empty"},
+       kExitBadInput,
+       ""},
+      {"field_missing_points",
+       kValidScene,
+       {"field", "DIR/scene.yaml", "--points", "DIR/points.csv", "-o", "DIR/out.csv"},
+       {"DIR/points.csv: cannot read the points file"}},
+      {"field_no_points_option",
+       kValidScene,
+       {"field", "DIR/scene.yaml", "-o", "DIR/out.csv"},
+       {"--points is required"}},
+      {"field_output_folder_missing",
+       kValidScene,
+       {"field", "DIR/scene.yaml", "--points", "DIR/points.csv", "-o", "DIR/no/out.csv"},
+       {"--output DIR/no/out.csv", "does not exist"},
+       kExitBadInput,
+       "x,y,z\n0,0,0\n"},
+      {"field_output_takes_no_files",
+       kValidScene,
+       {"field", "DIR/scene.yaml", "--points", "DIR/points.csv", "-o", "/proc/out.csv"},
+       {"--output /proc/out.csv: cannot create files in folder /proc"},
+       kExitBadInput,
+       "x,y,z\n0,0,0\n"},
+      {"field_output_is_a_folder",
+       kValidScene,
+       {"field", "DIR/scene.yaml", "--points", "DIR/points.csv", "-o", "DIR"},
+       {"--output DIR: is a folder"},
+       kExitBadInput,
+       "x,y,z\n0,0,0\n"},
+      {"field_output_dev_null",
+       kValidScene,
+       {"field", "DIR/scene.yaml", "--points", "DIR/points.csv", "-o", "/dev/null"},
+       {"--output /dev/null: is a device, pipe or socket"},
+       kExitBadInput,
+       "x,y,z\n0,0,0\n"},
+      {"field_device_on_reference",
+       kValidScene,
+       {"field", "DIR/scene.yaml", "--points", "DIR/points.csv", "-o", "DIR/out.csv", "--backend", "reference",
+        "--device", "0"},
+       {"--device applies to the OpenCL backend"},
+       kExitBadInput,
+       "x,y,z\n0,0,0\n"},
+      {"field_unknown_precision",
+       kValidScene,
+       {"field", "DIR/scene.yaml", "--points", "DIR/points.csv", "-o", "DIR/out.csv", "--precision", "half"},
+       {"--precision"},
+       kExitBadInput,
+       "x,y,z\n0,0,0\n"},
+      {"field_bad_set",
+       kValidScene,
+       {"field", "DIR/scene.yaml", "--points", "DIR/points.csv", "-o", "DIR/out.csv", "--set", "sdf.sphere.radius=-1"},
+       {"(--set)", "sdf.sphere.radius must be > 0 (got -1)"},
+       kExitBadInput,
+       "x,y,z\n0,0,0\n"},
       {"camera_up_parallel",
        "sdf: {sphere: {}}\ncamera: {position: [0, 5, 0], look_at: [0, 0, 0], up: [0, 1, 0]}\n",
        {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
@@ -662,6 +765,7 @@ TEST_P(BadInput, OneLineErrorNoOutput) {
   const BadInputCase& c = GetParam();
   TempDir dir;
   if (!c.scene.empty()) std::ofstream(dir / "scene.yaml") << c.scene;
+  if (c.points) std::ofstream(dir / "points.csv") << *c.points;
   const std::vector<std::string> before = dir.files();
   std::vector<std::string> args;
   for (const std::string& a : c.args) args.push_back(expand(a, dir.path().string()));

@@ -1,12 +1,10 @@
 // `clmarch field` through the real executable: closed forms on both backends, the input's order,
-// values that read back exactly, and one line with exit code 2 and no file for every bad input.
+// values that read back exactly (its bad inputs are in cli_errors_test.cpp).
 #include "api/field.hpp"
-#include "common/errors.hpp"
 #include "support/test_support.hpp"
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <charconv>
 #include <fstream>
 #include <sstream>
@@ -137,98 +135,6 @@ TEST(FieldCommand, EveryNumberReadsBackAsTheValueSampled) {
     }
   }
 }
-
-struct BadFieldCase {
-  std::string name;
-  /// The points file's text written to DIR/points.csv; empty: no file is written.
-  std::string points;
-  /// Arguments after `field DIR/scene.yaml`; "DIR" is replaced by the temp folder.
-  std::vector<std::string> args;
-  /// Text the one-line message must contain ("DIR" replaced too).
-  std::vector<std::string> message_parts;
-};
-
-std::string expand(std::string s, const std::string& dir) {
-  for (std::size_t at; (at = s.find("DIR")) != std::string::npos;) s.replace(at, 3, dir);
-  return s;
-}
-
-const std::vector<std::string> kPointsToOut = {"--points", "DIR/points.csv", "-o", "DIR/out.csv"};
-
-std::vector<std::string> with(std::vector<std::string> args, const std::vector<std::string>& more) {
-  args.insert(args.end(), more.begin(), more.end());
-  return args;
-}
-
-const std::vector<BadFieldCase>& bad_field_cases() {
-  static const std::vector<BadFieldCase> cases = {
-      {"two_numbers",
-       "x,y,z\n0,0,0\n1,2\n",
-       kPointsToOut,
-       {"DIR/points.csv:3: the row has 2 values (expected 3, one per column of the header: x,y,z)"}},
-      {"four_numbers", "x,y,z\n1,2,3,4\n", kPointsToOut, {"DIR/points.csv:2: the row has 4 values"}},
-      {"wrong_header", "x,y\n1,2\n", kPointsToOut, {"DIR/points.csv:1: the header must be x,y,z (got x,y)"}},
-      {"header_out_of_order", "z,y,x\n1,2,3\n", kPointsToOut, {"DIR/points.csv:1:", "(got z,y,x)"}},
-      {"no_header", "1,2,3\n", kPointsToOut, {"DIR/points.csv:1: the header must be x,y,z (got 1,2,3)"}},
-      {"not_a_number",
-       "x,y,z\n0,0,0\n1,two,3\n",
-       kPointsToOut,
-       {"DIR/points.csv:3:3: y must be a finite number (got 'two')"}},
-      {"not_finite", "x,y,z\n1,2,inf\n", kPointsToOut, {"DIR/points.csv:2:5: z must be a finite number (got 'inf')"}},
-      {"empty_file", "", kPointsToOut, {"DIR/points.csv: the points file is empty"}},
-      {"missing_file", "-", kPointsToOut, {"DIR/points.csv: cannot read the points file"}},
-      {"output_folder_missing",
-       "x,y,z\n0,0,0\n",
-       {"--points", "DIR/points.csv", "-o", "DIR/no/out.csv"},
-       {"--output DIR/no/out.csv", "does not exist"}},
-      {"output_takes_no_files",
-       "x,y,z\n0,0,0\n",
-       {"--points", "DIR/points.csv", "-o", "/proc/out.csv"},
-       {"--output /proc/out.csv: cannot create files in folder /proc"}},
-      {"output_is_a_folder",
-       "x,y,z\n0,0,0\n",
-       {"--points", "DIR/points.csv", "-o", "DIR"},
-       {"--output DIR: is a folder"}},
-      {"no_points_option", "x,y,z\n0,0,0\n", {"-o", "DIR/out.csv"}, {"--points is required"}},
-      {"device_on_reference",
-       "x,y,z\n0,0,0\n",
-       with(kPointsToOut, {"--backend", "reference", "--device", "0"}),
-       {"--device applies to the OpenCL backend"}},
-      {"unknown_precision", "x,y,z\n0,0,0\n", with(kPointsToOut, {"--precision", "half"}), {"--precision"}},
-      {"bad_set",
-       "x,y,z\n0,0,0\n",
-       with(kPointsToOut, {"--set", "sdf.sphere.radius=-1"}),
-       {"(--set)", "sdf.sphere.radius must be > 0 (got -1)"}},
-  };
-  return cases;
-}
-
-void PrintTo(const BadFieldCase& c, std::ostream* os) { *os << c.name; }
-
-class BadFieldInput : public ::testing::TestWithParam<BadFieldCase> {};
-
-TEST_P(BadFieldInput, OneLineExitTwoAndNoFile) {
-  const BadFieldCase& c = GetParam();
-  TempDir dir;
-  std::ofstream(dir / "scene.yaml") << "sdf: {sphere: {radius: 1}}\n";
-  // "-": no points file at all.
-  if (c.points != "-") std::ofstream(dir / "points.csv") << c.points;
-  const std::vector<std::string> before = dir.files();
-  std::vector<std::string> args = {"field", (dir / "scene.yaml").string()};
-  for (const std::string& a : c.args) args.push_back(expand(a, dir.path().string()));
-  const CommandResult result = run_clmarch(args);
-  EXPECT_EQ(result.exit_code, kExitBadInput) << result.err;
-  EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << "expected one line, got:\n" << result.err;
-  for (const std::string& part : c.message_parts) {
-    EXPECT_NE(result.err.find(expand(part, dir.path().string())), std::string::npos)
-        << "message lacks '" << part << "':\n"
-        << result.err;
-  }
-  EXPECT_EQ(dir.files(), before) << "a failed run must leave no file behind";
-}
-
-INSTANTIATE_TEST_SUITE_P(FieldCommand, BadFieldInput, ::testing::ValuesIn(bad_field_cases()),
-                         [](const auto& info) { return info.param.name; });
 
 }  // namespace
 }  // namespace clmarch
