@@ -193,6 +193,46 @@ SDF_INLINE vfloat sd_round_cone(vec3v p, float4 a, float4 b, float radius_a, flo
   return select(d, near_b, MASK(sign(z) * a2 * z2 > k));
 }
 
+/* Exact (Inigo Quilez's sdCappedCylinder between two points): x is the distance from the axis
+ * less radius, y the distance beyond the nearer cap, both times |b - a|^2 (one division at the end);
+ * inside both it is the nearer, outside the length of their positive parts. */
+SDF_INLINE vfloat sd_capped_cylinder(vec3v p, float4 a, float4 b, float radius) {
+  float4 ba = b - a;
+  float baba = dot(ba.xyz, ba.xyz);
+  vec3v pa = v3_sub(p, v3_from(a));
+  vfloat paba = v3_dot(pa, v3_from(ba));
+  vfloat x = v3_length(v3_sub(v3_scale(pa, (vfloat)(baba)), v3_scale(v3_from(ba), paba))) - radius * baba;
+  vfloat y = fabs(paba - 0.5f * baba) - 0.5f * baba;
+  vfloat x2 = x * x;
+  vfloat y2 = y * y * baba;
+  vfloat outside = select((vfloat)(0.0f), x2, MASK(x > 0.0f)) + select((vfloat)(0.0f), y2, MASK(y > 0.0f));
+  vfloat d = select(outside, -fmin(x2, y2), MASK(fmax(x, y) < 0.0f));
+  return sign(d) * vsqrt(fabs(d)) / baba;
+}
+
+/* Exact (Inigo Quilez's sdCappedCone between two points): in the half plane of (x, the distance
+ * from the axis; t, the position along a-b from 0 to 1), ca is the offset to the nearer cap disc
+ * and cb to the slanted side segment, their lengths measured with t scaled back by |b - a|; inside
+ * where both say so. */
+SDF_INLINE vfloat sd_frustum(vec3v p, float4 a, float4 b, float radius_a, float radius_b) {
+  float4 ba = b - a;
+  float rba = radius_b - radius_a;
+  float baba = dot(ba.xyz, ba.xyz);
+  vec3v pa = v3_sub(p, v3_from(a));
+  vfloat papa = v3_dot(pa, pa);
+  vfloat t = v3_dot(pa, v3_from(ba)) / baba;
+  vfloat x = vsqrt(fmax(papa - t * t * baba, 0.0f));
+  vfloat cap_radius = select((vfloat)(radius_b), (vfloat)(radius_a), MASK(t < 0.5f));
+  vfloat ca_x = fmax(x - cap_radius, 0.0f);
+  vfloat ca_y = fabs(t - 0.5f) - 0.5f;
+  float k = rba * rba + baba;
+  vfloat f = clamp((rba * (x - radius_a) + t * baba) / k, 0.0f, 1.0f);
+  vfloat cb_x = x - radius_a - f * rba;
+  vfloat cb_y = t - f;
+  vfloat s = select((vfloat)(1.0f), (vfloat)(-1.0f), MASK(cb_x < 0.0f) & MASK(ca_y < 0.0f));
+  return s * vsqrt(fmin(ca_x * ca_x + ca_y * ca_y * baba, cb_x * cb_x + cb_y * cb_y * baba));
+}
+
 /* Exact (Inigo Quilez's sdCappedTorus, his xy plane laid on our xz): k is the distance along
  * the spine's plane to the nearest spine point's direction, the arc itself within angle of +z,
  * else the end's. The square's argument is clamped at 0: it is a squared distance that

@@ -29,6 +29,8 @@ ellipsoid|3|bound outside (Quilez's k0 (k0 − 1) / k1)|k0 = length(q / radii), 
 cone|3|exact|apex at centre, base disc height below; (r, y) triangle turned about y|cone: {center: [0, 0.6, 0], angle: 30, height: 1.2}
 rounded_cylinder|3|exact|2D box of (length(q.xz), q.y) with its corners rounded by edge_radius|rounded_cylinder: {radius: 0.6, half_height: 0.6, edge_radius: 0.15}
 round_cone|3|exact|the hull of the balls of radius_a at a and radius_b at b|round_cone: {a: [0, -0.5, 0], b: [0, 0.6, 0], radius_a: 0.5, radius_b: 0.2}
+capped_cylinder|3|exact|the cylinder of radius about the segment a–b, capped flat|capped_cylinder: {a: [-0.4, -0.5, 0.2], b: [0.4, 0.5, -0.2], radius: 0.35}
+frustum|3|exact|the cone from radius_a at a to radius_b at b, capped flat|frustum: {a: [-0.3, -0.5, 0.2], b: [0.3, 0.5, -0.2], radius_a: 0.55, radius_b: 0.2}
 capped_torus|3.2|exact|the torus's arc of the given half angle about +z|capped_torus: {angle: 120, major_radius: 0.8, minor_radius: 0.2}
 link|3.2|exact|a torus stretched by half_length along y (a chain link)|link: {half_length: 0.4, major_radius: 0.45, minor_radius: 0.12}
 cut_sphere|3|exact|the sphere above y = cut_height|cut_sphere: {radius: 0.8, cut_height: -0.3}

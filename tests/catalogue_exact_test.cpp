@@ -27,6 +27,8 @@ const ShapeCase kShapes[] = {
     {"cone", "cone: {center: [0, 0.5, 0], angle: 35, height: 1}", 1.2, true},
     {"rounded_cylinder", "rounded_cylinder: {radius: 0.7, half_height: 0.5, edge_radius: 0.2}", 1.0, true},
     {"round_cone", "round_cone: {a: [-0.3, -0.4, 0.1], b: [0.4, 0.5, -0.2], radius_a: 0.45, radius_b: 0.2}", 1.2, true},
+    {"capped_cylinder", "capped_cylinder: {a: [-0.4, -0.5, 0.2], b: [0.3, 0.4, -0.3], radius: 0.35}", 1.0, true},
+    {"frustum", "frustum: {a: [-0.3, -0.5, 0.2], b: [0.3, 0.5, -0.2], radius_a: 0.55, radius_b: 0.2}", 1.0, true},
     {"capped_torus", "capped_torus: {angle: 110, major_radius: 0.7, minor_radius: 0.2}", 1.2, true},
     {"link", "link: {half_length: 0.3, major_radius: 0.4, minor_radius: 0.15}", 1.2, true},
     {"cut_sphere", "cut_sphere: {radius: 0.9, cut_height: -0.3}", 1.0, true},

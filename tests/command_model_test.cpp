@@ -33,7 +33,7 @@ TEST(CommandModel, ReadsCommandsOptionsAndWhatTheirValuesAre) {
   EXPECT_EQ(model.program.name, "clmarch");
   std::vector<std::string> names;
   for (const CommandModel& command : model.commands) names.push_back(command.name);
-  EXPECT_EQ(names, (std::vector<std::string>{"render", "check", "devices", "bench", "mesh", "preview"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"render", "check", "devices", "bench", "mesh", "field", "preview"}));
 
   const CommandModel& render = command_named(model, "render");
   ASSERT_EQ(render.positionals.size(), 1u);
@@ -53,6 +53,9 @@ TEST(CommandModel, ReadsCommandsOptionsAndWhatTheirValuesAre) {
   EXPECT_EQ(option_named(command_named(model, "check"), "--out-dir").kind, ValueKind::Directory);
   EXPECT_EQ(option_named(command_named(model, "bench"), "--csv").kind, ValueKind::File);
   EXPECT_TRUE(command_named(model, "devices").positionals.empty());
+  EXPECT_EQ(option_named(command_named(model, "field"), "--points").kind, ValueKind::File);
+  EXPECT_EQ(option_named(command_named(model, "field"), "--precision").choices,
+            (std::vector<std::string>{"float", "double"}));
 
   // The global flags may follow a command: its completion offers them, but not --version.
   ASSERT_TRUE(model.global_options_anywhere);

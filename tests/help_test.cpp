@@ -55,7 +55,7 @@ void expect_every_option_in_an_example(const std::vector<std::string>& command, 
 TEST(Help, TopLevelShowsGlobalFlagsEveryCommandAndExitCodes) {
   expect_every_option_in_an_example({"--help"}, 2);
   const auto result = run_clmarch({"--help"});
-  for (const char* command : {"clmarch render ", "clmarch check ", "clmarch devices"}) {
+  for (const char* command : {"clmarch render ", "clmarch check ", "clmarch field ", "clmarch devices"}) {
     EXPECT_NE(result.out.find(command), std::string::npos) << command << " has no example:\n" << result.out;
   }
   EXPECT_NE(result.out.find("Exit codes: 0 success"), std::string::npos) << result.out;
@@ -73,6 +73,8 @@ TEST(Help, RenderExplainsEveryOptionWithAnExample) { expect_every_option_in_an_e
 TEST(Help, CheckExplainsEveryOptionWithAnExample) { expect_every_option_in_an_example({"check", "--help"}, 6); }
 
 TEST(Help, BenchExplainsEveryOptionWithAnExample) { expect_every_option_in_an_example({"bench", "--help"}, 8); }
+
+TEST(Help, FieldExplainsEveryOptionWithAnExample) { expect_every_option_in_an_example({"field", "--help"}, 7); }
 
 }  // namespace
 }  // namespace clmarch

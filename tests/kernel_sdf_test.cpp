@@ -160,6 +160,34 @@ const std::vector<SdfCase>& sdf_cases() {
         {{1, 1, -3}, (3.0 * std::sqrt(15.0) - 3.0) / 4.0},
         {{-2, 1, 0}, (3.0 * std::sqrt(15.0) - 3.0) / 4.0},
         {{1, 0, 0}, -1.0}}},
+      // Radius 0.5 about x = 1, z = 0, from y = 0 to 2; then one along (2, 2, 1) / 3 of length 3.
+      {"capped_cylinder",
+       "capped_cylinder: {a: [1, 0, 0], b: [1, 2, 0], radius: 0.5}",
+       {{{1, 3, 0}, 1.0},
+        {{1, -2, 0}, 2.0},
+        {{3, 1, 0}, 1.5},
+        {{1, 1, -2}, 1.5},
+        {{-1, 1, 0}, 1.5},
+        {{2, 3, 0}, std::sqrt(1.25)},
+        {{1, 1, 0}, -0.5},
+        {{1, 1.8, 0}, -0.2}}},
+      {"capped_cylinder_slanted",
+       "capped_cylinder: {a: [0, 0, 0], b: [2, 2, 1], radius: 1}",
+       {{{-2.0 / 3, -2.0 / 3, -1.0 / 3}, 1.0}, {{8.0 / 3, 8.0 / 3, 4.0 / 3}, 1.0}, {{1, 1, 0.5}, -1.0}}},
+      // Radius 1 at the origin to 0.5 at (0, 2, 0): capped_cone_frustum's shape; its side's outward
+      // normal in (r, y) is (2, 0.5) / sqrt(4.25).
+      {"frustum",
+       "frustum: {a: [0, 0, 0], b: [0, 2, 0], radius_a: 1, radius_b: 0.5}",
+       {{{0, -1, 0}, 1.0},
+        {{0, 3, 0}, 1.0},
+        {{0.25, 3, 0}, 1.0},
+        {{3, 0, 0}, 2.0},
+        {{0, 0, -3}, 2.0},
+        {{0, 1, 0}, -1.5 / std::sqrt(4.25)}}},
+      // A cone along z: apex at (1, 1, 3), base of radius 0.5 about (1, 1, 1).
+      {"frustum_cone",
+       "frustum: {a: [1, 1, 1], b: [1, 1, 3], radius_a: 0.5, radius_b: 0}",
+       {{{1, 1, 4}, 1.0}, {{1, 1, 0}, 1.0}, {{1, 1.25, 0.5}, 0.5}}},
       // The half ring z >= 0 of radius 1: its ends at (+-1, 0, 0).
       {"capped_torus",
        "capped_torus: {angle: 90, major_radius: 1, minor_radius: 0.25}",
@@ -614,9 +642,10 @@ TEST(SdfClosedForm, CatalogueKernelMatchesTheReferenceEverywhere) {
       "octahedron", "hex_prism", "capped_cone", "capped_cone_frustum", "ellipsoid", "elongate", "onion", "round",
       "mirror", "repeat_polar", "repeat_limited",
       // Later catalogue primitives.
-      "cone", "rounded_cylinder", "round_cone", "capped_torus", "capped_torus_full", "link", "cut_sphere",
-      "cut_sphere_below_centre", "pyramid", "triangle", "quad", "quad_tilted", "triangular_prism", "solid_angle",
-      "solid_angle_wide", "cut_hollow_sphere", "death_star", "rhombus",
+      "cone", "rounded_cylinder", "round_cone", "capped_cylinder", "capped_cylinder_slanted", "frustum", "frustum_cone",
+      "capped_torus", "capped_torus_full", "link", "cut_sphere", "cut_sphere_below_centre", "pyramid", "triangle",
+      "quad", "quad_tilted", "triangular_prism", "solid_angle", "solid_angle_wide", "cut_hollow_sphere", "death_star",
+      "rhombus",
       // Profiles and modifiers.
       "circle", "rectangle", "rounded_rectangle", "segment", "regular_polygon", "revolve", "extrude", "twist", "bend",
       "nonuniform_scale"};

@@ -47,6 +47,8 @@ const BoundCase kBoundedCases[] = {
     {"rounded_cylinder",
      "  rounded_cylinder: {radius: 0.6, half_height: 0.3, edge_radius: 0.1, translate: [0, 0.5, 0]}"},
     {"round_cone", "  round_cone: {a: [-1, 0, 0], b: [1, 0.5, 0], radius_a: 0.5, radius_b: 0.2}"},
+    {"capped_cylinder", "  capped_cylinder: {a: [-1, 0, 0.5], b: [1, 0.5, 0], radius: 0.3}"},
+    {"frustum", "  frustum: {a: [-1, 0, 0.5], b: [1, 0.5, 0], radius_a: 0.6, radius_b: 0.1}"},
     {"capped_torus", "  capped_torus: {angle: 100, major_radius: 1, minor_radius: 0.2, rotate: [30, 0, 0]}"},
     {"link", "  link: {half_length: 0.5, major_radius: 0.5, minor_radius: 0.15}"},
     {"cut_sphere", "  cut_sphere: {radius: 1, cut_height: 0.5}"},

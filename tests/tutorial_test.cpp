@@ -5,6 +5,8 @@
 #include "scene/scene_loader.hpp"
 #include "support/test_support.hpp"
 
+#include <OpenImageIO/imageio.h>
+#include <fmt/ranges.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -77,6 +79,22 @@ TEST(Tutorial, ReferencedFilesExist) {
     EXPECT_TRUE(std::filesystem::exists(source_path(path))) << path;
   }
   EXPECT_GE(references, 2 * static_cast<int>(tutorial_steps().size()));
+}
+
+TEST(Tutorial, TheBuffersItListsAreTheOnesWritten) {
+  testing::TempDir dir;
+  const std::filesystem::path exr = dir / "step_7.exr";
+  const auto result = testing::run_clmarch({"render", source_path("docs/tutorial/step_7.yaml").string(), "--size",
+                                            "16x9", "--no-image", "--buffers", exr.string()});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  const auto input = OIIO::ImageInput::open(exr.string());
+  ASSERT_TRUE(input);
+  const OIIO::ImageSpec& spec = input->spec();
+  const std::string page = read_text(source_path("docs/tutorial.md"));
+  EXPECT_NE(page.find(fmt::format("{} channel, float openexr", spec.nchannels)), std::string::npos)
+      << "docs/tutorial.md section 8 must give the EXR's " << spec.nchannels << " channels";
+  EXPECT_NE(page.find(fmt::format("channel list: {}\n", fmt::join(spec.channelnames, ", "))), std::string::npos)
+      << "docs/tutorial.md section 8 must list: " << fmt::format("{}", fmt::join(spec.channelnames, ", "));
 }
 
 }  // namespace

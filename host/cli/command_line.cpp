@@ -42,20 +42,22 @@ CommandLine::CommandLine() : app("clmarch: a sphere tracer of signed distance fi
       "  clmarch check scenes/torus.yaml --size 160x90     # OpenCL against the CPU reference\n"
       "  clmarch bench scenes/torus.yaml --size 1280x720   # kernel times against the device's ceiling\n"
       "  clmarch mesh scenes/torus.yaml -o torus.ply       # the surface as a watertight mesh\n"
+      "  clmarch field scenes/torus.yaml --points p.csv -o f.csv  # distance and colour at points\n"
       "  clmarch preview scenes/torus.yaml                 # a live view at http://127.0.0.1:8000/\n"
       "  clmarch devices                                   # the indices --device takes\n"
       "  clmarch --version                                 # the version, e.g. clmarch 0.3.0\n"
       "Exit codes: 0 success, 1 check failed, 2 bad input, 3 OpenCL/device fault, 4 output not written,\n"
       "70 internal error, 130 interrupted (Ctrl-C; 143 for SIGTERM). See docs/cli.md.\n"
       "Help on a command: clmarch render --help, clmarch check --help, clmarch bench --help, clmarch mesh --help,\n"
-      "clmarch preview --help.");
+      "clmarch field --help, clmarch preview --help.");
   render = add_render_command(app, render_options);
   check = add_check_command(app, check_options);
   devices = add_devices_command(app);
   bench = add_bench_command(app, bench_options);
   mesh = add_mesh_command(app, mesh_options);
+  field = add_field_command(app, field_options);
   preview = add_preview_command(app, preview_options);
-  for (CLI::App* command : {render, check, bench, mesh, preview}) reject_empty_values(*command);
+  for (CLI::App* command : {render, check, bench, mesh, field, preview}) reject_empty_values(*command);
 }
 
 }  // namespace clmarch

@@ -1,10 +1,11 @@
-// The clmarch command line as CLI11 objects: the global flags, the six commands with their options,
+// The clmarch command line as CLI11 objects: the global flags, the seven commands with their options,
 // help texts and footers. clmarch parses with it; clmarch-docgen writes the completions and the man
 // page from the same objects, so they cannot drift from the options.
 #pragma once
 
 #include "cli/bench_command.hpp"
 #include "cli/check_command.hpp"
+#include "cli/field_command.hpp"
 #include "cli/mesh_command.hpp"
 #include "cli/preview_command.hpp"
 #include "cli/render_command.hpp"
@@ -27,12 +28,14 @@ struct CommandLine {
   CheckCommandOptions check_options;
   BenchCommandOptions bench_options;
   MeshCommandOptions mesh_options;
+  FieldCommandOptions field_options;
   PreviewCommandOptions preview_options;
   CLI::App* render = nullptr;
   CLI::App* check = nullptr;
   CLI::App* devices = nullptr;
   CLI::App* bench = nullptr;
   CLI::App* mesh = nullptr;
+  CLI::App* field = nullptr;
   CLI::App* preview = nullptr;
 };
 

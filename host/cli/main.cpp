@@ -85,7 +85,7 @@ int run_main(int argc, char** argv) {
       const auto commands = app.get_subcommands([&](const CLI::App* command) { return command->get_name() == word; });
       if (commands.empty()) {
         std::cerr << "clmarch: unknown command '" << one_line(word)
-                  << "' (expected render, check, bench, mesh, preview or devices; see clmarch --help)\n";
+                  << "' (expected render, check, bench, mesh, field, preview or devices; see clmarch --help)\n";
         return kExitBadInput;
       }
       break;
@@ -122,6 +122,7 @@ int run_main(int argc, char** argv) {
     if (line.devices->parsed()) return run_devices_command();
     if (line.bench->parsed()) return run_bench_command(line.bench_options);
     if (line.mesh->parsed()) return run_mesh_command(line.mesh_options);
+    if (line.field->parsed()) return run_field_command(line.field_options);
     if (line.preview->parsed()) return run_preview_command(line.preview_options);
     return static_cast<int>(kExitOk);
   });

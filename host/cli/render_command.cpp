@@ -112,6 +112,13 @@ void check_distinct_outputs(const std::string& output, const std::string& buffer
 
 /// Refuses option combinations that cannot apply, before anything is loaded or written.
 void check_render_options(const RenderCommandOptions& options, const std::string& output) {
+  // Other tools take -o /dev/null for "no image"; here the image would be renamed over the device.
+  if (is_special_file(output)) {
+    throw InputError(
+        fmt::format("--output {}: is a device, pipe or socket, not an image file: to render without "
+                    "writing an image, use --no-image (with --stats, --buffers or --dump-kernel)",
+                    output));
+  }
   if (!output.empty()) check_image_path(output, "--output");
   if (options.backend == "reference") {
     for (const auto& [given, name] : {std::pair{options.scene.device.has_value(), "--device"},

@@ -120,10 +120,23 @@ void write_file_atomically(const std::filesystem::path& path, const std::string&
   write_atomically(path, [&](const std::filesystem::path& temp) { write_bytes(temp, text.data(), text.size(), path); });
 }
 
+bool is_special_file(const std::filesystem::path& path) {
+  std::error_code error;
+  const std::filesystem::file_type type = std::filesystem::status(path, error).type();
+  return type == std::filesystem::file_type::character || type == std::filesystem::file_type::block ||
+         type == std::filesystem::file_type::fifo || type == std::filesystem::file_type::socket;
+}
+
 void check_output_name(const std::filesystem::path& path, const std::string& option) {
   std::error_code error;
   if (std::filesystem::is_directory(path, error)) {
     throw InputError(fmt::format("{} {}: is a folder, expected a file name", option, path.string()));
+  }
+  if (is_special_file(path)) {
+    throw InputError(
+        fmt::format("{} {}: is a device, pipe or socket, expected a file name (outputs are written "
+                    "beside their file and renamed over it)",
+                    option, path.string()));
   }
   if (path.filename().native().size() > kMaxFileNameLength) {
     throw InputError(fmt::format("{} {}: the file name has {} characters, more than the {} a folder takes", option,
@@ -138,10 +151,12 @@ void check_output_folder(const std::filesystem::path& path, const std::string& o
   if (!std::filesystem::is_directory(folder, error)) {
     throw InputError(fmt::format("{} {}: folder {} does not exist", option, path.string(), folder.string()));
   }
+  // Before the folder's own checks: /dev/null's folder is not writable to most users, which would
+  // hide what is really wrong.
+  check_output_name(path, option);
   if (access(folder.c_str(), W_OK) != 0) {
     throw InputError(fmt::format("{} {}: folder {} is not writable", option, path.string(), folder.string()));
   }
-  check_output_name(path, option);
   // access() says yes to root everywhere, and to anyone on /proc or a read-only mount: creating
   // a file is the only test that a render's result will find a place.
   const std::filesystem::path probe = folder / fmt::format(".clmarch-probe-{}", getpid());

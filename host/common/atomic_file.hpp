@@ -53,9 +53,13 @@ void write_file_atomically(const std::filesystem::path& path, const std::string&
 /// path costs nothing.
 void check_output_folder(const std::filesystem::path& path, const std::string& option);
 
-/// Fails with InputError (naming option) if path is a folder or its file name is longer than a
-/// folder takes; part of check_output_folder, and alone for the numbered files of a sequence,
-/// whose folder is the same for every frame.
+/// Fails with InputError (naming option) if path is a folder, a device, pipe or socket (the file
+/// written beside it would be renamed over it), or its file name is longer than a folder takes;
+/// part of check_output_folder, and alone for the numbered files of a sequence, whose folder is
+/// the same for every frame.
 void check_output_name(const std::filesystem::path& path, const std::string& option);
+
+/// Whether path is a device, pipe or socket (/dev/null, /dev/stdout), not a file to write over.
+bool is_special_file(const std::filesystem::path& path);
 
 }  // namespace clmarch

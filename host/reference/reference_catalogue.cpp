@@ -48,6 +48,22 @@ glm::dvec3 closest_on_triangle(const glm::dvec3& p, const glm::dvec3& a, const g
   return a + ab * (vb * denominator) + ac * (vc * denominator);
 }
 
+/// The solid of revolution about the segment from a to b of the trapezoid with the radius ra at
+/// a and rb at b, capped flat: in the half plane of p and the axis (distance from the axis, position
+/// along it from a), the distance to the trapezoid's cap and side segments, negative inside. Its
+/// edge on the axis is no boundary of the solid.
+double capped_solid_of_revolution(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b, double ra, double rb) {
+  const double length = glm::length(b - a);
+  const glm::dvec3 u = (b - a) / length;
+  const double along = glm::dot(p - a, u);
+  const glm::dvec2 q(glm::length(p - a - along * u), along);
+  const glm::dvec2 axis_a(0.0, 0.0), rim_a(ra, 0.0), rim_b(rb, length), axis_b(0.0, length);
+  const double nearest = std::min({distance_to_segment(q, axis_a, rim_a), distance_to_segment(q, rim_a, rim_b),
+                                   distance_to_segment(q, rim_b, axis_b)});
+  const bool inside = q.y >= 0.0 && q.y <= length && q.x <= ra + (rb - ra) * q.y / length;
+  return inside ? -nearest : nearest;
+}
+
 double triangle_distance(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
   return glm::length(p - closest_on_triangle(p, a, b, c));
 }
@@ -107,6 +123,14 @@ double sd_round_cone(const glm::dvec3& p, const RoundCone& cone) {
   const bool in_trapezoid = left_of(ca, ta) && left_of(ta, tb) && left_of(tb, cb) && left_of(cb, ca);
   const bool inside = glm::length(q - ca) <= ra || glm::length(q - cb) <= rb || in_trapezoid;
   return inside ? -nearest : nearest;
+}
+
+double sd_capped_cylinder(const glm::dvec3& p, const CappedCylinder& cylinder) {
+  return capped_solid_of_revolution(p, cylinder.a, cylinder.b, cylinder.radius, cylinder.radius);
+}
+
+double sd_frustum(const glm::dvec3& p, const Frustum& frustum) {
+  return capped_solid_of_revolution(p, frustum.a, frustum.b, frustum.radius_a, frustum.radius_b);
 }
 
 double sd_capped_torus(const glm::dvec3& p, const CappedTorus& torus) {

@@ -25,9 +25,9 @@ void read_pair(const YamlReader& yaml, const YAML::Node& params, const std::stri
   const YAML::Node colors = params["colors"];
   if (!colors) return;
   if (!colors.IsSequence() || colors.size() != 2) {
-    yaml.fail(colors,
-              fmt::format("{}.colors must be a list of 2 colors [a, b] (got {})", what,
-                          colors.IsSequence() ? fmt::format("{} items", colors.size()) : describe_yaml(colors)));
+    yaml.fail(colors, fmt::format("{}.colors must be a list of 2 colors [a, b] (got {}){}", what,
+                                  colors.IsSequence() ? fmt::format("{} items", colors.size()) : describe_yaml(colors),
+                                  glsl_vector_hint(colors, "colors")));
   }
   for (std::size_t i = 0; i < 2; ++i) pattern.colors[i] = yaml.color(colors[i], fmt::format("{}.colors[{}]", what, i));
 }
@@ -79,8 +79,10 @@ ColorPattern read_expressions(const YamlReader& yaml, const YAML::Node& value, c
                                        describe_yaml(component)));
     pattern.expressions[i] = component.Scalar();
     try {
-      evaluate_expression(pattern.expressions[i], {{"x", 0.0}, {"y", 0.0}, {"z", 0.0}, {"t", yaml.time()}});
+      // The tree first: its message offers only what a color expression takes, where muparser's
+      // would offer all of its own functions.
       parse_expression_tree(pattern.expressions[i], kPointVariables);
+      evaluate_expression(pattern.expressions[i], {{"x", 0.0}, {"y", 0.0}, {"z", 0.0}, {"t", yaml.time()}});
     } catch (const ExpressionError& e) {
       yaml.fail(component, fmt::format("{} must be an expression of the point x, y, z and the time t (got '{}': {})",
                                        where, pattern.expressions[i], e.what()));

@@ -67,7 +67,18 @@ std::vector<std::string> function_names() {
   return names;
 }
 
+/// Names shaders and other tools give the time, which expressions call t.
+constexpr const char* kTimeNames[] = {"iTime", "time", "u_time", "iGlobalTime", "Time", "T"};
+
 }  // namespace
+
+std::string variable_suggestion(const std::string& name, const std::vector<std::string>& variables) {
+  if (std::find(variables.begin(), variables.end(), "t") == variables.end()) return {};
+  for (const char* time : kTimeNames) {
+    if (name == time) return fmt::format(" (did you mean t? expressions call the time in seconds t, not {})", name);
+  }
+  return {};
+}
 
 double evaluate_expression(const std::string& text, const std::vector<ExpressionVariable>& variables) {
   try {
@@ -83,8 +94,12 @@ double evaluate_expression(const std::string& text, const std::vector<Expression
     return parser.Eval();
   } catch (const mu::Parser::exception_type& e) {
     // A name it does not know: say which exist.
-    if (e.GetCode() == mu::ecUNASSIGNABLE_TOKEN)
-      throw ExpressionError(fmt::format("{}; {}", e.GetMsg(), expression_vocabulary(variables)));
+    if (e.GetCode() == mu::ecUNASSIGNABLE_TOKEN) {
+      std::vector<std::string> names;
+      for (const auto& [name, value] : variables) names.push_back(name);
+      throw ExpressionError(fmt::format("{}{}; {}", e.GetMsg(), variable_suggestion(e.GetToken(), names),
+                                        expression_vocabulary(variables)));
+    }
     throw ExpressionError(e.GetMsg());
   }
 }
@@ -156,10 +171,13 @@ class TreeParser {
 
  private:
   [[noreturn]] void fail(const std::string& what) const {
+    // Only the functions a tree takes: muparser's others (sinh, rint, avg, ...) would be refused.
+    std::vector<const char*> functions;
+    for (const TreeFunction& f : kTreeFunctions) functions.push_back(f.name);
     throw ExpressionError(
         fmt::format("{} at character {} (a color expression takes numbers, the variables {}, pi, + - * / ^, "
-                    "parentheses and GLSL's functions)",
-                    what, at_ + 1, fmt::join(variables_, ", ")));
+                    "parentheses and the functions {})",
+                    what, at_ + 1, fmt::join(variables_, ", "), fmt::join(functions, ", ")));
   }
 
   void skip_space() {
@@ -249,7 +267,7 @@ class TreeParser {
     }
     if (std::find(variables_.begin(), variables_.end(), name) == variables_.end()) {
       at_ = start;
-      fail(fmt::format("'{}' is no variable", name));
+      fail(fmt::format("'{}' is no variable{}", name, variable_suggestion(name, variables_)));
     }
     ExpressionTree variable;
     variable.kind = ExpressionTree::Kind::Variable;

@@ -43,6 +43,10 @@ class CompiledExpression {
   std::unique_ptr<Parser> parser_;
 };
 
+/// " (did you mean t? ...)" when name is what shaders call the time (iTime, time, u_time) and t is
+/// among variables; else empty.
+std::string variable_suggestion(const std::string& name, const std::vector<std::string>& variables);
+
 /// "variables t; constants pi; functions abs, acos, ...": what an expression with these variables
 /// may name, for error messages.
 std::string expression_vocabulary(const std::vector<ExpressionVariable>& variables);

@@ -1,4 +1,5 @@
-// CSV reading for instance files: comma-separated, a header row, '#' comment lines, no quoting.
+// CSV reading for instance files (and clmarch field's points): comma-separated, a header row, '#'
+// comment lines, no quoting.
 #include "scene/instance_file.hpp"
 
 #include "common/cancellation.hpp"
@@ -40,10 +41,10 @@ std::vector<std::pair<std::string_view, int>> fields_of(std::string_view line) {
 
 }  // namespace
 
-InstanceTable read_instance_table(const std::string& path, long long max_rows) {
+InstanceTable read_instance_table(const std::string& path, long long max_rows, const std::string& what) {
   const BlockingCall uninterruptible_read;
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(fmt::format("{}: cannot read the instance file: {}", path, std::strerror(errno)));
+  if (!in) throw InputError(fmt::format("{}: cannot read the {}: {}", path, what, std::strerror(errno)));
   InstanceTable table;
   table.path = path;
   std::string line;
@@ -63,6 +64,7 @@ InstanceTable read_instance_table(const std::string& path, long long max_rows) {
         }
         table.columns.emplace_back(name);
       }
+      table.header_line = number;
       continue;
     }
     if (fields.size() != table.columns.size()) {
@@ -88,9 +90,9 @@ InstanceTable read_instance_table(const std::string& path, long long max_rows) {
     table.lines.push_back(number);
     if (table.rows.size() % 65536 == 0) throw_if_cancelled();
   }
-  if (in.bad()) throw InputError(fmt::format("{}: cannot read the instance file: {}", path, std::strerror(errno)));
+  if (in.bad()) throw InputError(fmt::format("{}: cannot read the {}: {}", path, what, std::strerror(errno)));
   if (table.columns.empty())
-    throw InputError(fmt::format("{}: the instance file is empty (it needs a header row of column names)", path));
+    throw InputError(fmt::format("{}: the {} is empty (it needs a header row of column names)", path, what));
   return table;
 }
 

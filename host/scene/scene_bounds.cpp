@@ -80,6 +80,14 @@ std::optional<BoundingSphere> primitive_bounds(const NodeParams& params) {
       const double radius = 0.5 * (length + c.radius_a + c.radius_b);
       return BoundingSphere{c.a + (c.b - c.a) * ((radius - c.radius_a) / length), radius};
     }
+    // About the axis' midpoint, the rims are the farthest points.
+    std::optional<BoundingSphere> operator()(const CappedCylinder& c) const {
+      return BoundingSphere{0.5 * (c.a + c.b), std::hypot(c.radius, 0.5 * glm::length(c.b - c.a))};
+    }
+    std::optional<BoundingSphere> operator()(const Frustum& f) const {
+      return BoundingSphere{0.5 * (f.a + f.b),
+                            std::hypot(std::max(f.radius_a, f.radius_b), 0.5 * glm::length(f.b - f.a))};
+    }
     std::optional<BoundingSphere> operator()(const CappedTorus& t) const {
       return BoundingSphere{t.center, t.major_radius + t.minor_radius};
     }

@@ -395,8 +395,9 @@ class SceneReader {
     if (!kind) {
       std::vector<std::string_view> names;
       for (NodeKind k : kAllNodeKinds) names.push_back(node_kind_name(k));
-      yaml_.fail(entry->first, fmt::format("{}: unknown node kind '{}'{} (expected one of: {})", path, name,
-                                           did_you_mean(name, names), fmt::join(names, ", ")));
+      // Every kind, however long the name before them: a list cut in the middle hides the one wanted.
+      yaml_.fail(entry->first, fmt::format("{}: unknown node kind '{}'{}", path, name, did_you_mean(name, names)),
+                 fmt::format(" (expected one of: {})", fmt::join(names, ", ")));
     }
     Node node = node_of_kind(*kind);
     const std::string node_path = path + "." + name;
@@ -567,6 +568,21 @@ class SceneReader {
   void check_params(CappedCone& cone, const YAML::Node& map, const std::string& path) {
     if (cone.bottom_radius == 0.0 && cone.top_radius == 0.0) {
       yaml_.fail(map, path + ".bottom_radius and " + path + ".top_radius must not both be 0 (that is a segment)");
+    }
+  }
+
+  void check_params(CappedCylinder& cylinder, const YAML::Node& map, const std::string& path) {
+    if (cylinder.a == cylinder.b) {
+      yaml_.fail(map, path + ".a and " + path + ".b must differ (the cylinder runs from a to b)");
+    }
+  }
+
+  void check_params(Frustum& frustum, const YAML::Node& map, const std::string& path) {
+    if (frustum.a == frustum.b) {
+      yaml_.fail(map, path + ".a and " + path + ".b must differ (the frustum runs from a to b)");
+    }
+    if (frustum.radius_a == 0.0 && frustum.radius_b == 0.0) {
+      yaml_.fail(map, path + ".radius_a and " + path + ".radius_b must not both be 0 (that is a segment)");
     }
   }
 
@@ -782,8 +798,8 @@ class SceneReader {
       for (NodeKind k : kAllNodeKinds) {
         if (is_primitive(k)) names.push_back(node_kind_name(k));
       }
-      yaml_.fail(primitive_key, fmt::format("{}.primitive: '{}' is not a primitive (expected one of: {})", path,
-                                            primitive, fmt::join(names, ", ")));
+      yaml_.fail(primitive_key, fmt::format("{}.primitive: '{}' is not a primitive", path, primitive),
+                 fmt::format(" (expected one of: {})", fmt::join(names, ", ")));
     }
     std::filesystem::path file = yaml_.text(file_key, path + ".file");
     if (file.is_relative()) file = std::filesystem::path(source_name_).parent_path() / file;
@@ -793,7 +809,7 @@ class SceneReader {
                  fmt::format("{}.file: cannot read the instance file {} (no such file)", path, file.string()));
     }
     instance_files_.push_back(file.string());
-    const InstanceTable table = read_instance_table(file.string(), kMaxTreeNodes - node_count_);
+    const InstanceTable table = read_instance_table(file.string(), kMaxTreeNodes - node_count_, "instance file");
     const std::vector<InstanceColumn> columns = instance_columns(table);
     for (std::size_t r = 0; r < table.rows.size(); ++r) {
       YAML::Node keys(YAML::NodeType::Map);

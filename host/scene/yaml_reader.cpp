@@ -5,6 +5,7 @@
 #include "common/log.hpp"
 #include "common/nearest_name.hpp"
 #include "scene/expression.hpp"
+#include "scene/glsl_vectors.hpp"
 
 #include <fmt/format.h>
 #include <yaml-cpp/eventhandler.h>
@@ -32,6 +33,57 @@ std::string describe_yaml(const YAML::Node& node) {
     default:
       return "nothing";
   }
+}
+
+namespace {
+
+/// The key a value's path ends with: "sdf.sphere.color" gives "color".
+std::string_view key_of(std::string_view what) { return what.substr(what.rfind('.') + 1); }
+
+/// The hint for text, GLSL's vectors as written (split: in pieces YAML cut at the commas);
+/// several lists are one list of them.
+std::string glsl_vector_hint_for(const std::string& text, bool split, std::string_view key) {
+  std::string list = glsl_vectors_as_yaml(text);
+  if (list.empty()) return {};
+  if (!list.starts_with('[') || list.find(']') + 1 != list.size()) list = "[" + list + "]";
+  return fmt::format("; YAML {} GLSL's {}{}: write a list, {}: {}", split ? "splits" : "reads", text,
+                     split ? " at its commas" : " as text", key, list);
+}
+
+/// Where a flow map split GLSL's vector constructor at its commas into keys (`{color: vec3(1, .5,
+/// 0)}` reads as color: "vec3(1", then keys ".5" and "0)"), how to write it; else empty.
+std::string split_glsl_vector_hint(const YAML::Node& map) {
+  std::string key, text;
+  for (const auto& entry : map) {
+    if (text.empty()) {
+      if (entry.second.IsScalar() && starts_glsl_vector(entry.second.Scalar()) &&
+          entry.second.Scalar().find(')') == std::string::npos) {
+        key = entry.first.Scalar();
+        text = entry.second.Scalar();
+      }
+    } else if (entry.second.IsNull()) {
+      text += ", " + entry.first.Scalar();
+      if (entry.first.Scalar().find(')') != std::string::npos) break;
+    } else {
+      break;
+    }
+  }
+  // Pieces are short: a long text is some other mistake, and the hint would quote all of it.
+  constexpr std::size_t kLongestVector = 200;
+  return text.size() > kLongestVector ? std::string() : glsl_vector_hint_for(text, true, key);
+}
+
+}  // namespace
+
+std::string glsl_vector_hint(const YAML::Node& value, std::string_view key) {
+  if (value.IsScalar()) return glsl_vector_hint_for(value.Scalar(), false, key);
+  if (!value.IsSequence()) return {};
+  std::string text;
+  for (const YAML::Node& item : value) {
+    if (!item.IsScalar()) return {};
+    text += (text.empty() ? "" : ", ") + item.Scalar();
+  }
+  return glsl_vector_hint_for(text, true, key);
 }
 
 namespace {
@@ -132,7 +184,7 @@ std::string YamlReader::where(const YAML::Node& node) const {
   return fmt::format("{}:{}:{}", source_, mark.line + 1, mark.column + 1);
 }
 
-void YamlReader::fail(const YAML::Node& at, const std::string& message) const {
+void YamlReader::fail(const YAML::Node& at, const std::string& message, std::string_view listing) const {
   // A message quoting a huge value (a 100 KB expression) keeps its start, which says what is wrong,
   // and its end, which says why.
   constexpr std::size_t kHead = 400, kTail = 200;
@@ -141,7 +193,7 @@ void YamlReader::fail(const YAML::Node& at, const std::string& message) const {
     shown = fmt::format("{} [... {} characters ...] {}", message.substr(0, kHead), message.size() - kHead - kTail,
                         message.substr(message.size() - kTail));
   }
-  throw InputError(fmt::format("{}: {}", where(at), shown));
+  throw InputError(fmt::format("{}: {}{}", where(at), shown, listing));
 }
 
 void YamlReader::expect_map(const YAML::Node& node, const std::string& what,
@@ -158,8 +210,11 @@ void YamlReader::expect_map(const YAML::Node& node, const std::string& what,
     bool known = false;
     for (std::string_view a : allowed) known = known || a == key;
     if (!known) {
-      fail(entry.first, fmt::format("unknown key '{}' in {}{} (expected one of: {}){}", key, what,
-                                    did_you_mean(key, allowed), fmt::join(allowed, ", "), split_expression_hint(key)));
+      // A split vector says more than a split expression: ".5" of vec3(1, .5, 0) is no expression.
+      std::string hint = split_glsl_vector_hint(node);
+      if (hint.empty()) hint = split_expression_hint(key);
+      fail(entry.first, fmt::format("unknown key '{}' in {}{}", key, what, did_you_mean(key, allowed)),
+           fmt::format(" (expected one of: {}){}", fmt::join(allowed, ", "), hint));
     }
     if (!seen.insert(key).second) fail(entry.first, fmt::format("duplicate key '{}' in {}", key, what));
   }
@@ -229,8 +284,9 @@ bool YamlReader::boolean(const YAML::Node& node, const std::string& what) const 
 
 glm::dvec3 YamlReader::vec3(const YAML::Node& node, const std::string& what, Range range) const {
   if (!node.IsSequence() || node.size() != 3) {
-    fail(node, fmt::format("{} must be a list of 3 numbers [x, y, z] (got {})", what,
-                           node.IsSequence() ? fmt::format("{} items", node.size()) : describe_yaml(node)));
+    fail(node, fmt::format("{} must be a list of 3 numbers [x, y, z] (got {}){}", what,
+                           node.IsSequence() ? fmt::format("{} items", node.size()) : describe_yaml(node),
+                           glsl_vector_hint(node, key_of(what))));
   }
   return {number(node[0], what + "[0]", range), number(node[1], what + "[1]", range),
           number(node[2], what + "[2]", range)};
@@ -240,10 +296,11 @@ glm::dvec3 YamlReader::color(const YAML::Node& node, const std::string& what, bo
   const std::string& text = node.IsScalar() ? node.Scalar() : std::string();
   const bool is_word = !text.empty() && std::all_of(text.begin(), text.end(),
                                                     [](unsigned char c) { return std::isalpha(c) || c == '_'; });
-  if (is_word && text != "t" && text != "pi") {
-    fail(node,
-         fmt::format("{} must be a color: [r, g, b], linear with 1 the full channel, or one number for gray (got '{}')",
-                     what, text));
+  const std::string glsl = glsl_vector_hint(node, key_of(what));
+  if ((is_word && text != "t" && text != "pi") || !glsl.empty()) {
+    fail(node, fmt::format(
+                   "{} must be a color: [r, g, b], linear with 1 the full channel, or one number for gray (got '{}'){}",
+                   what, text, glsl));
   }
   const glm::dvec3 color =
       node.IsScalar() ? glm::dvec3(number(node, what, Range::non_negative())) : vec3(node, what, Range::non_negative());

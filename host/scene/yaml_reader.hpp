@@ -33,7 +33,9 @@ class YamlReader {
   void set_document(const YAML::Node& root) { document_ = root; }
   /// "file:line:col" of a node, or "file (--set)" for values that came from an override.
   std::string where(const YAML::Node& node) const;
-  [[noreturn]] void fail(const YAML::Node& at, const std::string& message) const;
+  /// Throws InputError "where: message"; a long message keeps its start and end (it may quote a
+  /// huge value), while listing, appended after it, is never cut (the names a value may take).
+  [[noreturn]] void fail(const YAML::Node& at, const std::string& message, std::string_view listing = {}) const;
 
   /// Fails unless node is a map whose keys are all in allowed and none repeats.
   void expect_map(const YAML::Node& node, const std::string& what,
@@ -81,6 +83,11 @@ class YamlReader {
 
 /// How a YAML value looks in a message: its text for scalars, else "a list" or "a map".
 std::string describe_yaml(const YAML::Node& node);
+
+/// How to write value, read for key, as a YAML list when it is GLSL's vector constructor (text
+/// such as "vec3(1, .5, 0)") or the pieces of one or more that a flow list split at their commas:
+/// "; YAML reads GLSL's vec3(1, .5, 0) as text: write a list, color: [1, 0.5, 0]". Else empty.
+std::string glsl_vector_hint(const YAML::Node& value, std::string_view key);
 
 /// Parses text without building nodes and throws InputError at the first node past max_nodes
 /// (scalars, nulls, lists, maps; an alias counts once here), so that a huge file costs no more
