@@ -37,7 +37,7 @@ std::string expand(std::string s, const std::string& dir) {
 }
 
 /// An SDF tree of 10^9 spheres in ten lines of YAML aliases ("billion laughs").
-std::string alias_bomb() {
+std::string billion_alias_bomb() {
   std::string yaml = "sdf:\n  union:\n    - &l0 {sphere: {}}\n";
   for (int level = 1; level <= 9; ++level) {
     yaml += "    - &l" + std::to_string(level) + " {union: [";
@@ -472,7 +472,7 @@ const std::vector<BadInputCase>& bad_input_cases() {
        {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
        {"DIR/scene.yaml", "empty"}},
       {"alias_bomb",
-       alias_bomb(),
+       billion_alias_bomb(),
        {"render", "DIR/scene.yaml", "-o", "DIR/out.png"},
        {"DIR/scene.yaml:", "the tree has too many nodes", "expected at most 10000"}},
       {"alias_cycle",

@@ -16,6 +16,7 @@
 #include "scene/scene_bounds.hpp"
 #include "scene/scene_loader.hpp"
 #include "support/test_support.hpp"
+#include "support/tolerances.hpp"
 
 #include <gtest/gtest.h>
 
@@ -27,14 +28,12 @@
 namespace clmarch {
 namespace {
 
+using testing::kFloatRelative;
 using testing::scene_from_yaml;
-
-// Float rounding of o + t*d, of the direction and of the distance evaluation: ~16 ulps of the
-// coordinates' magnitude (as in docs/accuracy.md).
-constexpr double kFloatRelative = 16.0 * 0x1p-24;
+using testing::total_steps;
 
 /// A shipped scene without the pass (the default, auto, runs it for the terrain).
-Scene load_scene(const std::string& name, int width, int height) {
+Scene load_scene_without_cones(const std::string& name, int width, int height) {
   Scene scene = load_scene_file(testing::source_path("scenes/" + name).string());
   scene.render.width = width;
   scene.render.height = height;
@@ -65,11 +64,6 @@ FrameBuffers render_normals(const Scene& scene, int lanes = 16) {
   options.lanes = lanes;
   options.purpose = KernelPurpose::Normals;
   return render_opencl(scene, options).buffers;
-}
-
-double total_steps(const FrameBuffers& b) {
-  const std::vector<float>& steps = b.plane(Channel::Steps);
-  return std::accumulate(steps.begin(), steps.end(), 0.0);
 }
 
 // On the torus every ray's first surface is known in closed form. Both passes must start each
@@ -117,12 +111,13 @@ TEST(ConePass, StartsStayBeforeEveryRaysFirstSurface) {
 // Crum's glow (the cone's margin, COARSE_MARGIN = its radius) and the pixel-cone hit threshold
 // (its slope > 0), which both move the starts by far more than the comparison's tolerance.
 TEST(ConePass, KernelStartsMatchTheReference) {
-  Scene glowing_cone = load_scene("torus.yaml", 160, 90);
+  Scene glowing_cone = load_scene_without_cones("torus.yaml", 160, 90);
   glowing_cone.shading.glow = Glow{glm::dvec3(1.0), 0.2};
   glowing_cone.render.hit_threshold = HitThreshold::PixelCone;
   glowing_cone.render.cone_factor = 2.0;
   glowing_cone.source_name += " with glow and pixel cone";
-  for (Scene scene : {load_scene("torus.yaml", 160, 90), load_scene("terrain_fbm.yaml", 160, 90), glowing_cone}) {
+  for (Scene scene : {load_scene_without_cones("torus.yaml", 160, 90),
+                      load_scene_without_cones("terrain_fbm.yaml", 160, 90), glowing_cone}) {
     scene = with_cones(scene);
     const ConeStarts reference = reference_cone_starts(scene);
     const std::vector<float> kernel = kernel_cone_starts(scene);
@@ -140,16 +135,16 @@ TEST(ConePass, KernelStartsMatchTheReference) {
 // (both marches stop within epsilon / cos before the same surface); on a bound (the terrain,
 // unbounded, the most to gain) the stop band is wider than that, and only the hits are compared.
 TEST(ConePass, SameImageFewerSteps) {
-  Scene tiled = load_scene("tiled_boxes.yaml", 160, 90);
+  Scene tiled = load_scene_without_cones("tiled_boxes.yaml", 160, 90);
   tiled.tiling->method = TilingMethod::Mod;
   struct Case {
     Scene scene;
     double most_steps;  // of the plain march's
     bool exact_field;
   };
-  const std::vector<Case> cases = {{load_scene("torus.yaml", 160, 90), 0.95, true},
+  const std::vector<Case> cases = {{load_scene_without_cones("torus.yaml", 160, 90), 0.95, true},
                                    {tiled, 0.98, true},
-                                   {load_scene("terrain_fbm.yaml", 160, 90), 0.7, false}};
+                                   {load_scene_without_cones("terrain_fbm.yaml", 160, 90), 0.7, false}};
   for (const Case& c : cases) {
     const FrameBuffers a = render_normals(c.scene);
     const FrameBuffers b = render_normals(with_cones(c.scene));
@@ -168,10 +163,11 @@ TEST(ConePass, SameImageFewerSteps) {
 
 // `clmarch check` with the cone pass: the reference runs the same pass in double.
 TEST(ConePass, KernelAndReferenceAgree) {
-  Scene tiled = load_scene("tiled_boxes.yaml", 80, 45);
+  Scene tiled = load_scene_without_cones("tiled_boxes.yaml", 80, 45);
   tiled.tiling->method = TilingMethod::Mod;
-  for (const Scene& plain : {load_scene("torus.yaml", 80, 45), load_scene("terrain_fbm.yaml", 80, 45),
-                             load_scene("mandelbulb.yaml", 80, 45), tiled}) {
+  for (const Scene& plain :
+       {load_scene_without_cones("torus.yaml", 80, 45), load_scene_without_cones("terrain_fbm.yaml", 80, 45),
+        load_scene_without_cones("mandelbulb.yaml", 80, 45), tiled}) {
     const Scene scene = with_cones(plain);
     OpenClOptions options;
     options.purpose = KernelPurpose::Shaded;
@@ -183,7 +179,7 @@ TEST(ConePass, KernelAndReferenceAgree) {
 
 // One pixel per work-item (the GPU shape) and 16-lane packets read the same starts.
 TEST(ConePass, EveryLaneWidthTakesTheSameSteps) {
-  const Scene scene = with_cones(load_scene("terrain_fbm.yaml", 67, 41));
+  const Scene scene = with_cones(load_scene_without_cones("terrain_fbm.yaml", 67, 41));
   const FrameBuffers one = render_normals(scene, 1);
   const FrameBuffers sixteen = render_normals(scene, 16);
   EXPECT_EQ(one.plane(Channel::Steps), sixteen.plane(Channel::Steps));
@@ -192,7 +188,7 @@ TEST(ConePass, EveryLaneWidthTakesTheSameSteps) {
 
 // The cones' own evaluations are counted apart from the pixels' steps, by both renderers.
 TEST(ConePass, StatsCountTheConesSteps) {
-  const Scene plain = load_scene("terrain_fbm.yaml", 96, 54);
+  const Scene plain = load_scene_without_cones("terrain_fbm.yaml", 96, 54);
   OpenClOptions options;
   options.purpose = KernelPurpose::DepthSteps;
   EXPECT_EQ(render_opencl(plain, options).stats.coarse_steps, 0u);
@@ -220,7 +216,7 @@ TEST(ConePass, AutoRunsItWhereNoBoundingSphereStartsTheRays) {
   EXPECT_FALSE(uses("sdf: {union: [{sphere: {}}, {plane: {}}]}\nrender: {coarse_pass: none}\n"));
   EXPECT_TRUE(uses("sdf: {sphere: {}}\nrender: {coarse_pass: cone}\n"));
   // The terrain renders with the pass by default, and with its steps.
-  Scene terrain = load_scene("terrain_fbm.yaml", 96, 54);
+  Scene terrain = load_scene_without_cones("terrain_fbm.yaml", 96, 54);
   terrain.render.coarse_pass = CoarsePass::Auto;
   OpenClOptions options;
   options.purpose = KernelPurpose::DepthSteps;

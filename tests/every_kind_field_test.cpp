@@ -77,7 +77,7 @@ glm::dvec3 random_point(const Region& region, std::mt19937& rng) {
 }
 
 /// Points of the zero set: sign changes of the field along random segments, bisected.
-std::vector<glm::dvec3> surface_points(const Node& node, const Region& region, std::size_t wanted) {
+std::vector<glm::dvec3> field_surface_points(const Node& node, const Region& region, std::size_t wanted) {
   std::mt19937 rng(5);
   std::vector<glm::dvec3> points;
   for (int segment = 0; segment < 20000 && points.size() < wanted; ++segment) {
@@ -130,7 +130,7 @@ class BoundKind : public ::testing::TestWithParam<NodeKind> {};
 TEST_P(BoundKind, NeverExceedsTheDistanceToSurfacePoints) {
   const Node node = testing::scene_from_yaml("sdf:\n  " + testing::kind_node(GetParam()) + "\n").sdf;
   const Region region = region_of(node);
-  const std::vector<glm::dvec3> surface = surface_points(node, region, 1500);
+  const std::vector<glm::dvec3> surface = field_surface_points(node, region, 1500);
   ASSERT_GT(surface.size(), 100u) << "the segments must cross the surface for the test to mean something";
   std::mt19937 rng(4);
   for (int i = 0; i < 300; ++i) {
@@ -151,7 +151,7 @@ TEST_P(ExactPrimitive, IsTheDistanceOutside) {
   const NodeKind kind = GetParam();
   const Node node = testing::scene_from_yaml("sdf:\n  " + testing::kind_node(kind) + "\n").sdf;
   const Region region = region_of(node);
-  const std::vector<glm::dvec3> surface = surface_points(node, region, 6000);
+  const std::vector<glm::dvec3> surface = field_surface_points(node, region, 6000);
   ASSERT_GT(surface.size(), 2000u);
   std::vector<double> spacings;
   for (std::size_t i = 0; i < surface.size(); i += 10) {

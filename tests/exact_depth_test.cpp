@@ -5,6 +5,7 @@
 #include "render/opencl_renderer.hpp"
 #include "scene/camera_model.hpp"
 #include "support/test_support.hpp"
+#include "support/tolerances.hpp"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -18,14 +19,10 @@
 namespace clmarch {
 namespace {
 
+using testing::kFloatRelative;
+// Grazing rays may legitimately run out of steps, so they count with the silhouette.
+using testing::kGrazingCosine;
 using testing::scene_from_yaml;
-
-// Rays closer than this to tangent (|cos| between ray and surface normal) are grazing: the march
-// may legitimately run out of steps there, so they count with the silhouette.
-constexpr double kGrazingCosine = 0.1;
-// Float rounding of o + t*d, of the direction and of the distance evaluation: ~16 ulps of the
-// coordinates' magnitude.
-constexpr double kFloatRelative = 16.0 * 0x1p-24;
 
 using Intersect = std::function<std::optional<double>(const glm::dvec3&, const glm::dvec3&)>;
 using NormalAt = std::function<glm::dvec3(const glm::dvec3&)>;

@@ -15,14 +15,14 @@ namespace {
 using testing::run_clmarch;
 using testing::TempDir;
 
-const std::string kScene =
+const std::string kBallScene =
     "sdf: {sphere: {radius: 1}}\nrender: {width: 16, height: 8}\nlights: [{directional: {direction: [0, 1, 1]}}]\n";
 
 // --dump-kernel alone, run where the scene lies, writes the kernel and nothing else (no SCENE.png
 // over a tracked file); with -o it renders too.
 TEST(FirstHour, DumpKernelAloneWritesOnlyTheKernel) {
   TempDir dir;
-  std::ofstream(dir / "ball.yaml") << kScene;
+  std::ofstream(dir / "ball.yaml") << kBallScene;
   const std::string command =
       "cd '" + dir.path().string() + "' && '" + CLMARCH_BINARY + "' render ball.yaml --dump-kernel k.cl 2>/dev/null";
   ASSERT_EQ(std::system(command.c_str()), 0);
@@ -39,7 +39,7 @@ TEST(FirstHour, DumpKernelAloneWritesOnlyTheKernel) {
 // --no-image: the buffers alone, or the --stats line alone.
 TEST(FirstHour, NoImageWritesBuffersOrStatsOnly) {
   TempDir dir;
-  std::ofstream(dir / "ball.yaml") << kScene;
+  std::ofstream(dir / "ball.yaml") << kBallScene;
   const auto buffers =
       run_clmarch({"render", (dir / "ball.yaml").string(), "--no-image", "--buffers", (dir / "b.exr").string()});
   ASSERT_EQ(buffers.exit_code, 0) << buffers.err;
@@ -109,7 +109,7 @@ TEST(FirstHour, FpsHelpReadsWhole) {
 // counts misses.
 TEST(FirstHour, CheckMarksWhatDecides) {
   TempDir dir;
-  std::ofstream(dir / "scene.yaml") << kScene;
+  std::ofstream(dir / "scene.yaml") << kBallScene;
   const auto result = run_clmarch({"check", (dir / "scene.yaml").string()});
   ASSERT_EQ(result.exit_code, 0) << result.err;
   for (const char* line :

@@ -8,6 +8,7 @@
 #include "render/opencl_renderer.hpp"
 #include "scene/scene_loader.hpp"
 #include "support/test_support.hpp"
+#include "support/tolerances.hpp"
 
 #include <gtest/gtest.h>
 
@@ -17,12 +18,9 @@
 namespace clmarch {
 namespace {
 
-using testing::scene_from_yaml;
-
-// Closed forms of a handful of double operations on O(1) values.
-constexpr double kExact = 1e-12;
-
 using testing::error_of;
+using testing::kExact;
+using testing::scene_from_yaml;
 
 std::vector<glm::dvec3> random_points(std::size_t count, double extent, unsigned seed) {
   std::mt19937 rng(seed);
@@ -89,7 +87,7 @@ TEST(Mandelbulb, OnThePoleAxisTheSurfaceIsWhereTheRealMapStopsBeingBounded) {
 
 // Points of the estimate's zero set, found along rays from the centre: march inwards from the
 // ball until the sign changes, then bisect.
-std::vector<glm::dvec3> surface_points(const Mandelbulb& bulb, int rays) {
+std::vector<glm::dvec3> bulb_surface_points(const Mandelbulb& bulb, int rays) {
   std::mt19937 rng(3);
   std::normal_distribution<double> gauss;
   std::vector<glm::dvec3> points;
@@ -120,7 +118,7 @@ TEST(Mandelbulb, EstimateStaysBelowTheDistanceToSurfacePoints) {
   };
   for (const Case& c : {Case{3.0, 8, 2.0}, Case{8.0, 8, 2.0}, Case{16.0, 8, 2.0}, Case{2.0, 16, 16.0}}) {
     const Mandelbulb bulb{{0.0, 0.0, 0.0}, c.power, c.iterations, c.bailout};
-    const std::vector<glm::dvec3> surface = surface_points(bulb, 3000);
+    const std::vector<glm::dvec3> surface = bulb_surface_points(bulb, 3000);
     ASSERT_GT(surface.size(), 2500u);
     std::mt19937 rng(4);
     std::uniform_real_distribution<double> lift(0.02, 0.5);
@@ -210,7 +208,7 @@ void expect_kernel_matches_reference_at(const std::string& sdf_yaml, const std::
   }
 }
 
-void expect_kernel_matches_reference(const std::string& sdf_yaml, double tolerance) {
+void expect_fractal_kernel_matches_reference(const std::string& sdf_yaml, double tolerance) {
   std::vector<glm::dvec3> points = random_points(2000, 1.6, 17);
   for (const glm::dvec3& far : random_points(48, 30.0, 18)) points.push_back(far);
   expect_kernel_matches_reference_at(sdf_yaml, points, tolerance);
@@ -224,9 +222,9 @@ TEST(MandelbulbKernel, MatchesTheReference) {
   // iterations near the set the float and double orbits part ways (the map is chaotic there), so
   // the comparison keeps to moderate iteration counts.
   constexpr double kMandelbulbTolerance = 1e-4;
-  expect_kernel_matches_reference("mandelbulb: {}", kMandelbulbTolerance);
-  expect_kernel_matches_reference("mandelbulb: {power: 3, iterations: 20, bailout: 4, center: [0.2, -0.1, 0.3]}",
-                                  kMandelbulbTolerance);
+  expect_fractal_kernel_matches_reference("mandelbulb: {}", kMandelbulbTolerance);
+  expect_fractal_kernel_matches_reference(
+      "mandelbulb: {power: 3, iterations: 20, bailout: 4, center: [0.2, -0.1, 0.3]}", kMandelbulbTolerance);
 }
 
 TEST(MandelbulbKernel, PowerEightFormMatchesOnTheAxesAndNearTheSet) {
@@ -258,9 +256,9 @@ TEST(MengerKernel, MatchesTheReference) {
   // Level k rounds q 3^k to float (relative 2^-24) and divides the result by 3^(k+1): every level
   // adds about one ulp of |q|, the box term a few more; |q| <= 2.8 and half_size 3: measured 3e-7.
   constexpr double kMengerTolerance = 2e-6;
-  expect_kernel_matches_reference("menger: {iterations: 8}", kMengerTolerance);
-  expect_kernel_matches_reference("menger: {half_size: 0.5, iterations: 3, center: [0.1, 0, -0.2], step_factor: 0.5}",
-                                  kMengerTolerance);
+  expect_fractal_kernel_matches_reference("menger: {iterations: 8}", kMengerTolerance);
+  expect_fractal_kernel_matches_reference(
+      "menger: {half_size: 0.5, iterations: 3, center: [0.1, 0, -0.2], step_factor: 0.5}", kMengerTolerance);
 }
 
 // Every orbit started outside the Mandelbox's cube (half side 2 below scale -1, 2 (s + 1) / (s - 1)

@@ -10,6 +10,7 @@
 #include "scene/camera_model.hpp"
 #include "scene/scene_loader.hpp"
 #include "support/test_support.hpp"
+#include "support/tolerances.hpp"
 
 #include <gtest/gtest.h>
 
@@ -19,25 +20,16 @@
 namespace clmarch {
 namespace {
 
+using testing::kFloatRelative;
+using testing::kGrazingCosine;
 using testing::scene_from_yaml;
+using testing::total_steps;
 
-// Float rounding of o + t*d, of the direction and of the distance evaluation: ~16 ulps of the
-// coordinates' magnitude (as in docs/accuracy.md).
-constexpr double kFloatRelative = 16.0 * 0x1p-24;
-// Below this |cos| between ray and surface a ray grazes: its depth bound threshold / cos blows up.
-constexpr double kGrazingCosine = 0.1;
-
-Scene load_scene(const std::string& name, int width, int height) {
+Scene load_shipped_scene(const std::string& name, int width, int height) {
   Scene scene = load_scene_file(testing::source_path("scenes/" + name).string());
   scene.render.width = width;
   scene.render.height = height;
   return scene;
-}
-
-double total_steps(const FrameBuffers& b) {
-  double sum = 0.0;
-  for (float s : b.plane(Channel::Steps)) sum += s;
-  return sum;
 }
 
 FrameBuffers render_depth(const Scene& scene, int lanes = 16) {
@@ -108,7 +100,7 @@ TEST(OverRelaxation, StepIntoTheSolidFallsBackInTheKernel) {
 // The relaxed march never reports a point past the surface: against the closed-form torus, every
 // relaxed reference hit lies in front of the exact one by at most epsilon / cos.
 TEST(OverRelaxation, ReferenceHitsNeverPassTheSurface) {
-  Scene scene = load_scene("torus.yaml", 64, 36);
+  Scene scene = load_shipped_scene("torus.yaml", 64, 36);
   scene.render.over_relaxation = 1.6;
   const Torus& torus = std::get<Torus>(scene.sdf.params);
   ASSERT_TRUE(scene.sdf.transform.is_identity());
@@ -142,7 +134,7 @@ TEST(OverRelaxation, ReferenceHitsNeverPassTheSurface) {
 // On the torus, omega = 1.2 saves steps; hit masks change at most on silhouettes and depths stay
 // within the check's per-pixel tolerance of plain sphere tracing.
 TEST(OverRelaxation, FewerStepsOnTheTorusSameImage) {
-  const Scene plain = load_scene("torus.yaml", 160, 90);
+  const Scene plain = load_shipped_scene("torus.yaml", 160, 90);
   Scene relaxed = plain;
   relaxed.render.over_relaxation = 1.2;
   const FrameBuffers a = render_depth(plain);
@@ -212,7 +204,7 @@ TEST(PixelCone, FewerStepsAtDistanceOnAFloor) {
 TEST(MarchSettings, KernelAndReferenceAgreeWithTheSettingsOn) {
   for (const char* name : {"torus.yaml", "tiled_spheres.yaml", "terrain_fbm.yaml"}) {
     for (int setting = 0; setting < 3; ++setting) {
-      Scene scene = load_scene(name, 80, 45);
+      Scene scene = load_shipped_scene(name, 80, 45);
       if (setting != 1) scene.render.over_relaxation = 1.5;
       if (setting != 0) scene.render.hit_threshold = HitThreshold::PixelCone;
       OpenClOptions options;

@@ -46,10 +46,7 @@ class FileSizeLimit {
   void (*old_handler_)(int) = nullptr;
 };
 
-/// Resets the process-wide flag however the test ends.
-struct CancellationReset {
-  ~CancellationReset() { cancellation_requested().store(false); }
-};
+using testing::CancellationReset;
 
 TEST(MeshWritersFailure, MissingFolderFailsInOneLineAndLeavesNoFile) {
   TempDir dir;

@@ -18,7 +18,7 @@ using testing::write_committed;
 // Thirds and sevenths are no multiples of float's step of 1/16 near 1e6, so a float is off by up to
 // 1/32 at each corner, nor short decimals, which the shortest decimal of that float would restore.
 const glm::dvec3 kFarCentre{1e6 + 1.0 / 3.0, -1e6 - 2.0 / 3.0, 1e6 + 1.0 / 7.0};
-constexpr double kRadius = 1.3;
+constexpr double kFarRadius = 1.3;
 /// Float's step between 2^19 and 2^20: Assimp reads and transforms in single precision.
 constexpr double kFloatStepAtAMillion = 1.0 / 16.0;
 /// A float offset below 2 from the node's translation is within float's step there, 2.4e-7.
@@ -37,7 +37,7 @@ double largest_error(const std::vector<glm::dvec3>& read, const std::vector<glm:
 
 TEST(MeshWritersPrecision, DoublePlyAndObjKeepFarPositionsExactlyAndFloatOnesDoNot) {
   TempDir dir;
-  const TriangleMesh mesh = testing::octahedron(kFarCentre, kRadius).mesh;
+  const TriangleMesh mesh = testing::octahedron(kFarCentre, kFarRadius).mesh;
   for (const MeshFormat format : {MeshFormat::Ply, MeshFormat::Obj}) {
     const auto read = format == MeshFormat::Ply ? testing::read_ply_positions : testing::read_obj_positions;
     const std::filesystem::path path = dir / (std::string("far.") + kMeshFormatNames[static_cast<int>(format)]);
@@ -54,7 +54,7 @@ TEST(MeshWritersPrecision, DoublePlyAndObjKeepFarPositionsExactlyAndFloatOnesDoN
 
 TEST(MeshWritersPrecision, GlbKeepsFarPositionsAsFloatOffsetsFromItsNodeTranslation) {
   TempDir dir;
-  const TriangleMesh mesh = testing::octahedron(kFarCentre, kRadius).mesh;
+  const TriangleMesh mesh = testing::octahedron(kFarCentre, kFarRadius).mesh;
   write_committed(dir / "far.glb", mesh, MeshFormat::Glb);
   const testing::GlbChunks glb = testing::read_glb(dir / "far.glb");
   const nlohmann::json& node = glb.json.at("nodes").at(0);
@@ -72,7 +72,7 @@ TEST(MeshWritersPrecision, GlbKeepsFarPositionsAsFloatOffsetsFromItsNodeTranslat
 
 TEST(MeshWritersPrecision, EveryFormatReadsBackFarMeshesWithinFloatsStep) {
   TempDir dir;
-  const TriangleMesh mesh = testing::octahedron(kFarCentre, kRadius).mesh;
+  const TriangleMesh mesh = testing::octahedron(kFarCentre, kFarRadius).mesh;
   for (std::size_t i = 0; i < std::size(kMeshFormatNames); ++i) {
     const std::filesystem::path path = dir / (std::string("far.") + kMeshFormatNames[i]);
     write_committed(path, mesh, static_cast<MeshFormat>(i), MeshPrecision::Double);

@@ -22,7 +22,7 @@ namespace {
 using testing::TempDir;
 
 /// A sphere of radius RADIUS at the origin seen from z = 4, over a floor.
-std::string sphere_scene(const std::string& radius) {
+std::string sphere_over_floor(const std::string& radius) {
   return "camera: {position: [0, 0, 4], look_at: [0, 0, 0], fov: 40}\n"
          "render: {width: 48, height: 32, epsilon: 1e-5}\n"
          "sdf:\n  union:\n    - sphere: {radius: " +
@@ -34,7 +34,7 @@ std::string sphere_scene(const std::string& radius) {
 
 /// Writes text to path with a modification time a second after the file's last one, so that a
 /// rewrite within the same second is seen as a change.
-void write_scene(const std::filesystem::path& path, const std::string& text) {
+void write_scene_later(const std::filesystem::path& path, const std::string& text) {
   std::error_code error;
   const auto before = std::filesystem::last_write_time(path, error);
   std::ofstream(path) << text;
@@ -51,7 +51,7 @@ std::pair<int, int> png_size(const std::vector<unsigned char>& png) {
 
 class PreviewSessionTest : public ::testing::Test {
  protected:
-  PreviewSessionTest() { write_scene(dir_ / "scene.yaml", sphere_scene("1")); }
+  PreviewSessionTest() { write_scene_later(dir_ / "scene.yaml", sphere_over_floor("1")); }
   PreviewOptions options() const {
     PreviewOptions o;
     o.scene_path = (dir_ / "scene.yaml").string();
@@ -114,7 +114,7 @@ TEST_F(PreviewSessionTest, ASavedFileReRendersABrokenOneKeepsThePicture) {
   EXPECT_NEAR(radius_at_centre(), 1.0, 2e-5);
   EXPECT_FALSE(session.refresh()) << "nothing changed";
 
-  write_scene(dir_ / "scene.yaml", sphere_scene("0.5"));
+  write_scene_later(dir_ / "scene.yaml", sphere_over_floor("0.5"));
   EXPECT_TRUE(session.refresh());
   nlohmann::json state = session.state();
   EXPECT_EQ(state.at("version"), 2);
@@ -126,7 +126,7 @@ TEST_F(PreviewSessionTest, ASavedFileReRendersABrokenOneKeepsThePicture) {
   const auto built = edited->stats.at("programs_built").get<int>();
   EXPECT_LE(built, 2) << "a number's edit builds at most once more";
 
-  write_scene(dir_ / "scene.yaml", "camera: {fov: 40\nsdf: {sphere: {}}\n");
+  write_scene_later(dir_ / "scene.yaml", "camera: {fov: 40\nsdf: {sphere: {}}\n");
   EXPECT_TRUE(session.refresh());
   state = session.state();
   EXPECT_EQ(state.at("version"), 3);
@@ -136,7 +136,7 @@ TEST_F(PreviewSessionTest, ASavedFileReRendersABrokenOneKeepsThePicture) {
   ASSERT_TRUE(session.frame(query)) << "the last good scene still renders";
   EXPECT_NEAR(radius_at_centre(), 0.5, 2e-5);
 
-  write_scene(dir_ / "scene.yaml", sphere_scene("0.75"));
+  write_scene_later(dir_ / "scene.yaml", sphere_over_floor("0.75"));
   EXPECT_TRUE(session.refresh());
   EXPECT_EQ(session.state().at("error"), "");
   query.sequence = 4;
@@ -265,7 +265,7 @@ TEST_F(PreviewServerTest, BadRequestsGetAnErrorStatusAndOneLine) {
 
 TEST(PreviewCommand, ServesUntilCtrlC) {
   TempDir dir;
-  write_scene(dir / "scene.yaml", sphere_scene("1"));
+  write_scene_later(dir / "scene.yaml", sphere_over_floor("1"));
   testing::ClmarchProcess preview({"preview", (dir / "scene.yaml").string(), "--port", "0"});
   ASSERT_TRUE(preview.wait_for_stderr("(Ctrl-C stops it)", std::chrono::seconds(60))) << preview.err();
   const std::string err = preview.err();

@@ -18,16 +18,16 @@
 namespace clmarch {
 namespace {
 
-constexpr int kWidth = 32;
-constexpr int kHeight = 18;
+constexpr int kStatusWidth = 32;
+constexpr int kStatusHeight = 18;
 
 /// A unit sphere 5 away, seen at 60 degrees: its silhouette covers the middle of the image.
-Scene sphere_scene(const std::string& render) {
+Scene unit_sphere_scene(const std::string& render) {
   return testing::scene_from_yaml(
       fmt::format("camera: {{position: [0, 0, 5], look_at: [0, 0, 0], fov: 60}}\n"
                   "render: {{width: {}, height: {}, max_distance: 30, {}}}\n"
                   "sdf: {{sphere: {{radius: 1}}}}\n",
-                  kWidth, kHeight, render));
+                  kStatusWidth, kStatusHeight, render));
 }
 
 RayStatus status_at(const FrameBuffers& b, int i, int j) { return static_cast<RayStatus>(b.at(Channel::Status, i, j)); }
@@ -42,13 +42,13 @@ std::vector<std::pair<std::string, FrameBuffers>> both_backends(const Scene& sce
 /// For each pixel whose ray clearly hits or clearly misses the unit sphere (its closest approach
 /// to the centre more than 0.05 from the radius), expects a hit where it hits and `missed` elsewhere.
 void expect_sphere_statuses(const Scene& scene, RayStatus missed) {
-  const CameraBasis basis = camera_basis(scene.camera, kWidth, kHeight);
+  const CameraBasis basis = camera_basis(scene.camera, kStatusWidth, kStatusHeight);
   for (const auto& [backend, buffers] : both_backends(scene)) {
     SCOPED_TRACE(backend);
     ASSERT_TRUE(buffers.has_status);
     int hits = 0, misses = 0;
-    for (int j = 0; j < kHeight; ++j) {
-      for (int i = 0; i < kWidth; ++i) {
+    for (int j = 0; j < kStatusHeight; ++j) {
+      for (int i = 0; i < kStatusWidth; ++i) {
         const glm::dvec3 d = pixel_ray_direction(basis, i, j);
         const double closest = glm::length(glm::cross(-basis.origin, d));
         if (std::abs(closest - 1.0) < 0.05) continue;
@@ -64,11 +64,13 @@ void expect_sphere_statuses(const Scene& scene, RayStatus missed) {
 }
 
 // Clipped to the scene's bounding sphere, a ray that misses the unit sphere leaves the bound: a miss.
-TEST(RayStatus, RaysLeavingTheBoundsMiss) { expect_sphere_statuses(sphere_scene("bounds: sphere"), RayStatus::Miss); }
+TEST(RayStatus, RaysLeavingTheBoundsMiss) {
+  expect_sphere_statuses(unit_sphere_scene("bounds: sphere"), RayStatus::Miss);
+}
 
 // Without the bound the same rays march on until max_distance: out of distance.
 TEST(RayStatus, UnboundedRaysRunOutOfDistance) {
-  expect_sphere_statuses(sphere_scene("bounds: none"), RayStatus::OutOfDistance);
+  expect_sphere_statuses(unit_sphere_scene("bounds: none"), RayStatus::OutOfDistance);
 }
 
 // A sphere 60 away with max_distance 30: the rays that meet its bounding sphere meet it past
@@ -81,8 +83,8 @@ TEST(RayStatus, ASceneBeyondMaxDistanceIsOutOfDistanceWhereItsRaysMeetIt) {
       testing::scene_from_yaml(fmt::format("camera: {{position: [0, 0, 0], look_at: [0, 0, -60], fov: 4}}\n"
                                            "render: {{width: {}, height: {}, max_distance: 30}}\n"
                                            "sdf: {{sphere: {{center: [0, 0, -60], radius: 1}}}}\n",
-                                           kWidth, kHeight));
-  const CameraBasis basis = camera_basis(scene.camera, kWidth, kHeight);
+                                           kStatusWidth, kStatusHeight));
+  const CameraBasis basis = camera_basis(scene.camera, kStatusWidth, kStatusHeight);
   OpenClOptions shaded;
   shaded.ray_status = true;
   auto renders = both_backends(scene);
@@ -90,8 +92,8 @@ TEST(RayStatus, ASceneBeyondMaxDistanceIsOutOfDistanceWhereItsRaysMeetIt) {
   for (const auto& [backend, buffers] : renders) {
     SCOPED_TRACE(backend);
     int met = 0, missed = 0;
-    for (int j = 0; j < kHeight; ++j) {
-      for (int i = 0; i < kWidth; ++i) {
+    for (int j = 0; j < kStatusHeight; ++j) {
+      for (int i = 0; i < kStatusWidth; ++i) {
         const glm::dvec3 d = pixel_ray_direction(basis, i, j);
         const double closest = glm::length(glm::cross(glm::dvec3(0, 0, -60) - basis.origin, d));
         if (std::abs(closest - 1.0) < 0.1) continue;
@@ -110,11 +112,12 @@ TEST(RayStatus, ASceneBeyondMaxDistanceIsOutOfDistanceWhereItsRaysMeetIt) {
 // steps, which shades as a miss (depth +inf). Fails when the kernel forgets which lanes its step
 // budget stopped (every ray then reads as a miss).
 TEST(RayStatus, OneStepLeavesEveryRayOutOfSteps) {
-  const Scene scene = sphere_scene("bounds: none, max_steps: 1");
+  const Scene scene = unit_sphere_scene("bounds: none, max_steps: 1");
   for (const auto& [backend, buffers] : both_backends(scene)) {
     SCOPED_TRACE(backend);
-    EXPECT_EQ(buffers.rays_with_status(RayStatus::OutOfSteps), static_cast<std::uint64_t>(kWidth * kHeight));
-    EXPECT_TRUE(std::isinf(buffers.at(Channel::Depth, kWidth / 2, kHeight / 2)));
+    EXPECT_EQ(buffers.rays_with_status(RayStatus::OutOfSteps),
+              static_cast<std::uint64_t>(kStatusWidth * kStatusHeight));
+    EXPECT_TRUE(std::isinf(buffers.at(Channel::Depth, kStatusWidth / 2, kStatusHeight / 2)));
   }
 }
 

@@ -49,12 +49,7 @@ struct AnalyticShape {
   std::vector<Camera> cameras;
 };
 
-Node leaf(NodeParams params, NodeKind kind) {
-  Node n;
-  n.kind = kind;
-  n.params = std::move(params);
-  return n;
-}
+using testing::leaf;
 
 Camera camera_at(glm::dvec3 position, glm::dvec3 look_at) {
   Camera c;

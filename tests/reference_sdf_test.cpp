@@ -1,6 +1,8 @@
 // The reference distance field against closed forms: each primitive and operator at chosen points,
 // transforms, the color rules, and every node kind of the list.
 #include "reference/reference_sdf.hpp"
+#include "support/test_support.hpp"
+#include "support/tolerances.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,19 +15,12 @@
 namespace clmarch {
 namespace {
 
-// The formulas are a handful of double operations on O(1) values; anything looser is a bug.
-constexpr double kExact = 1e-12;
+using testing::kExact;
+using testing::leaf;
 // 90-degree rotations go through cos(pi/2) ~ 6e-17 and a matrix product.
 constexpr double kRotated = 1e-12;
 
 const glm::dvec3 kWhite(1.0), kRed(1.0, 0.0, 0.0), kBlue(0.0, 0.0, 1.0);
-
-Node leaf(NodeParams params, NodeKind kind) {
-  Node n;
-  n.kind = kind;
-  n.params = std::move(params);
-  return n;
-}
 
 Node sphere_node(glm::dvec3 center, double radius, std::optional<glm::dvec3> color = std::nullopt) {
   Node n = leaf(Sphere{center, radius}, NodeKind::Sphere);

@@ -39,7 +39,7 @@ CentreColor centre_color(const std::string& yaml) {
   return {{b.at(Channel::R, 0, 0), b.at(Channel::G, 0, 0), b.at(Channel::B, 0, 0)}, r.color};
 }
 
-void expect_color(const CentreColor& c, const glm::dvec3& expected, double tolerance = kColorTolerance) {
+void expect_centre_color(const CentreColor& c, const glm::dvec3& expected, double tolerance = kColorTolerance) {
   for (int k = 0; k < 3; ++k) {
     EXPECT_NEAR(c.opencl[k], expected[k], tolerance) << "OpenCL channel " << k;
     EXPECT_NEAR(c.reference[k], expected[k], tolerance) << "reference channel " << k;
@@ -58,7 +58,7 @@ TEST(Shading, LambertOfAPlaneIsAlbedoTimesCosine) {
                    "lights: [{directional: {direction: [0.8660254037844386, 0.5, 0], intensity: 2}}]\n"
                    "shading: {model: lambert, ambient: 0.1, diffuse: 0.9}\n");
   const glm::dvec3 albedo(0.8, 0.6, 0.4);
-  expect_color(c, albedo * (0.1 + 0.9 * 2.0 * 0.5));
+  expect_centre_color(c, albedo * (0.1 + 0.9 * 2.0 * 0.5));
 }
 
 TEST(Shading, FresnelAtNormalIncidenceIsF0) {
@@ -76,7 +76,7 @@ TEST(Shading, FresnelAtNormalIncidenceIsF0) {
   const double distribution = 1.0 / (M_PI * a * a);
   const double specular = distribution / (4.0 + 1e-4);
   const glm::dvec3 expected = (1.0 - f0) * (1.0 - metallic) * albedo / M_PI + f0 * specular;
-  expect_color(c, expected, 1e-4);
+  expect_centre_color(c, expected, 1e-4);
 }
 
 // Light 60 degrees from the normal, seen along the normal (v = n): n.l = 1/2, the mirror direction
@@ -91,7 +91,7 @@ TEST(Shading, PhongAndBlinnPhongSpecularAtSixtyDegrees) {
   for (const auto& [model, cosine] : {std::pair<std::string, double>{"phong", 0.5}, {"blinn_phong", cos30}}) {
     const CentreColor c = centre_color(kPlaneBelow + kLitAtSixtyDegrees + "shading: {model: " + model +
                                        ", ambient: 0.1, diffuse: 0.9, specular: 0.5, shininess: 8}\n");
-    expect_color(c, albedo * (0.1 + 0.9 * 0.5 * 2.0) + glm::dvec3(0.5 * std::pow(cosine, 8.0) * 2.0), 1e-4);
+    expect_centre_color(c, albedo * (0.1 + 0.9 * 0.5 * 2.0) + glm::dvec3(0.5 * std::pow(cosine, 8.0) * 2.0), 1e-4);
   }
 }
 
@@ -112,7 +112,7 @@ TEST(Shading, PbrAtSixtyDegrees) {
   const glm::dvec3 fresnel = f0 + (1.0 - f0) * std::pow(1.0 - cos30, 5.0);
   const double specular = distribution * geometry / (4.0 * n_dot_v * n_dot_l + 1e-4);
   const glm::dvec3 lit = ((1.0 - fresnel) * (1.0 - metallic) * albedo / M_PI + fresnel * specular) * n_dot_l * 2.0;
-  expect_color(c, albedo * 0.1 + lit, 1e-4);
+  expect_centre_color(c, albedo * 0.1 + lit, 1e-4);
 }
 
 TEST(Shading, BeerLambertFogAtAKnownDepth) {
@@ -121,7 +121,7 @@ TEST(Shading, BeerLambertFogAtAKnownDepth) {
   const CentreColor c =
       centre_color(kPlaneBelow + "shading: {ambient: 1, fog: {color: [0.2, 0.3, 0.9], density: 0.3}}\n");
   const glm::dvec3 fog(0.2, 0.3, 0.9), albedo(0.8, 0.6, 0.4);
-  expect_color(c, fog + (albedo - fog) * std::exp(-density * 2.0), 1e-4);
+  expect_centre_color(c, fog + (albedo - fog) * std::exp(-density * 2.0), 1e-4);
 }
 
 TEST(Shading, HeightFogOfALevelRay) {
@@ -135,7 +135,7 @@ TEST(Shading, HeightFogOfALevelRay) {
       "sun_color: [0.2, 0.3, 0.9]}}\n");
   const glm::dvec3 fog(0.2, 0.3, 0.9), albedo(0.8, 0.6, 0.4);
   const double amount = density * std::exp(-1.0 * falloff) * depth;
-  expect_color(c, albedo + (fog - albedo) * amount, 1e-4);
+  expect_centre_color(c, albedo + (fog - albedo) * amount, 1e-4);
 }
 
 TEST(Shading, ShadowsLeaveAnUnoccludedPointFullyLit) {
@@ -143,7 +143,7 @@ TEST(Shading, ShadowsLeaveAnUnoccludedPointFullyLit) {
   const CentreColor plain = centre_color(lit + "}\n");
   for (const char* mode : {"hard", "soft", "soft_improved"}) {
     const CentreColor shadowed = centre_color(lit + ", shadows: {mode: " + mode + "}}\n");
-    expect_color(shadowed, plain.reference);
+    expect_centre_color(shadowed, plain.reference);
     EXPECT_GT(plain.reference.x, 0.3) << "the light must reach the point";
   }
 }
@@ -159,7 +159,7 @@ TEST(Shading, ShadowsOfAPointLightEndAtTheLight) {
     const CentreColor shadowed =
         centre_color("sdf: {union: [{" + plane + "}, {sphere: {center: [2, 6, 1], radius: 0.5}}]}\n" + lit +
                      ", shadows: {mode: " + mode + "}}\n");
-    expect_color(shadowed, plain.reference);
+    expect_centre_color(shadowed, plain.reference);
   }
 }
 
@@ -172,7 +172,7 @@ TEST(Shading, ShadowsDarkenAnOccludedPoint) {
       "lights: [{point: {position: [3, 3, 0]}}]\n";
   for (const char* mode : {"hard", "soft", "soft_improved"}) {
     const CentreColor c = centre_color(scene + "shading: {ambient: 0.1, shadows: {mode: " + mode + "}}\n");
-    expect_color(c, glm::dvec3(0.8, 0.6, 0.4) * 0.1);
+    expect_centre_color(c, glm::dvec3(0.8, 0.6, 0.4) * 0.1);
   }
 }
 
@@ -187,9 +187,9 @@ TEST(Shading, NormalOcclusionBetweenAFloorAndACeiling) {
       " {plane: {normal: [0, -1, 0], offset: 0.15}}]}\n"
       "lights: []\n";
   const double ao = 1.0 - (0.05 * 0.05 / 2 + 0.15 * 0.15 / 3 + 0.25 * 0.25 / 4 + 0.35 * 0.35 / 5);
-  expect_color(centre_color(between + "shading: {ambient: 1, ambient_occlusion: {samples: 5, step: 0.05}}\n"),
-               glm::dvec3(0.8, 0.6, 0.4) * ao);
-  expect_color(
+  expect_centre_color(centre_color(between + "shading: {ambient: 1, ambient_occlusion: {samples: 5, step: 0.05}}\n"),
+                      glm::dvec3(0.8, 0.6, 0.4) * ao);
+  expect_centre_color(
       centre_color(between + "shading: {ambient: 0.5, ambient_occlusion: {samples: 5, step: 0.05, power: 3}}\n"),
       glm::dvec3(0.8, 0.6, 0.4) * 0.5 * std::pow(ao, 3.0));
 }
@@ -201,7 +201,7 @@ TEST(Shading, AMirrorAddsItsReflectivityTimesWhatItReflects) {
       "camera: {position: [0, 2, 0], look_at: [0, 0, 0], up: [0, 0, -1]}\n"
       "sdf: {plane: {normal: [0, 1, 0], offset: 0, color: [0.8, 0.6, 0.4], reflectivity: 0.5}}\n"
       "lights: []\nshading: {ambient: 0.1, reflections: 1, background: [0.2, 0.4, 0.6]}\n");
-  expect_color(c, glm::dvec3(0.8, 0.6, 0.4) * 0.1 + glm::dvec3(0.2, 0.4, 0.6) * 0.5);
+  expect_centre_color(c, glm::dvec3(0.8, 0.6, 0.4) * 0.1 + glm::dvec3(0.2, 0.4, 0.6) * 0.5);
 }
 
 TEST(Shading, ReinhardAndGamma) {
@@ -209,7 +209,7 @@ TEST(Shading, ReinhardAndGamma) {
   const CentreColor c = centre_color(
       "camera: {position: [0, 2, 0], look_at: [0, 0, 0], up: [0, 0, -1]}\n"
       "sdf: {plane: {normal: [0, 1, 0], offset: 0}}\nshading: {ambient: 3, tone_map: reinhard, gamma: 2}\n");
-  expect_color(c, glm::dvec3(std::sqrt(0.75)));
+  expect_centre_color(c, glm::dvec3(std::sqrt(0.75)));
 }
 
 TEST(Shading, SkyGradientOfMisses) {
@@ -217,7 +217,7 @@ TEST(Shading, SkyGradientOfMisses) {
   const CentreColor c = centre_color(
       "camera: {position: [0, 2, 0], look_at: [0, 5, 0], up: [0, 0, -1]}\n"
       "sdf: {sphere: {center: [0, -10, 0]}}\nshading: {sky: {horizon: [1, 1, 1], zenith: [0.1, 0.2, 0.6]}}\n");
-  expect_color(c, glm::dvec3(0.1, 0.2, 0.6));
+  expect_centre_color(c, glm::dvec3(0.1, 0.2, 0.6));
 }
 
 /// Looking straight down at the point (x, 0, 0) of the plane y = 0, white, Lambert with diffuse 1
@@ -236,11 +236,11 @@ TEST(Shading, InverseSquareFalloffAtKnownDistances) {
     const double d = std::hypot(x, h);
     const CentreColor c =
         centre_color(plane_at(x, "{point: {position: [0, 2, 0], intensity: 4, falloff: inverse_square}}"));
-    expect_color(c, glm::dvec3(intensity / (d * d) * h / d), 1e-5);
+    expect_centre_color(c, glm::dvec3(intensity / (d * d) * h / d), 1e-5);
   }
   // falloff: none keeps today's light: I n.l at any distance.
   const CentreColor none = centre_color(plane_at(3.0, "{point: {position: [0, 2, 0], intensity: 4, falloff: none}}"));
-  expect_color(none, glm::dvec3(intensity * h / std::hypot(3.0, h)), 1e-5);
+  expect_centre_color(none, glm::dvec3(intensity * h / std::hypot(3.0, h)), 1e-5);
 }
 
 // range R windows the light by clamp(1 - (d / R)^4, 0, 1)^2: beyond R nothing arrives.
@@ -251,7 +251,7 @@ TEST(Shading, RangeWindowsTheLight) {
     const double q = (d / range) * (d / range);
     const double window = std::max(1.0 - q * q, 0.0);
     const CentreColor c = centre_color(plane_at(x, "{point: {position: [0, 2, 0], range: 3}}"));
-    expect_color(c, glm::dvec3(window * window * h / d), 1e-5);
+    expect_centre_color(c, glm::dvec3(window * window * h / d), 1e-5);
   }
 }
 
@@ -266,13 +266,13 @@ TEST(Shading, SpotConeEdges) {
     const double cosine = h / std::hypot(x, h);
     const double s = std::clamp((cosine - outer) / (inner - outer), 0.0, 1.0);
     const CentreColor c = centre_color(plane_at(x, spot));
-    expect_color(c, glm::dvec3(s * s * (3.0 - 2.0 * s) * cosine), 1e-5);
+    expect_centre_color(c, glm::dvec3(s * s * (3.0 - 2.0 * s) * cosine), 1e-5);
   }
   // Equal angles: a hard edge.
   const std::string hard = "{spot: {position: [0, 2, 0], direction: [0, -1, 0], inner_angle: 25, outer_angle: 25}}";
-  expect_color(centre_color(plane_at(h * std::tan(24.0 * M_PI / 180.0), hard)),
-               glm::dvec3(std::cos(24.0 * M_PI / 180.0)), 1e-5);
-  expect_color(centre_color(plane_at(h * std::tan(26.0 * M_PI / 180.0), hard)), glm::dvec3(0.0), 1e-5);
+  expect_centre_color(centre_color(plane_at(h * std::tan(24.0 * M_PI / 180.0), hard)),
+                      glm::dvec3(std::cos(24.0 * M_PI / 180.0)), 1e-5);
+  expect_centre_color(centre_color(plane_at(h * std::tan(26.0 * M_PI / 180.0), hard)), glm::dvec3(0.0), 1e-5);
 }
 
 // Under a ball, a light that casts shadows is blocked and one that does not reaches the floor; a
@@ -283,14 +283,14 @@ TEST(Shading, ShadowsPerLight) {
       "sdf: {union: [{plane: {normal: [0, 1, 0], offset: 0}}, {sphere: {center: [0, 2, 0], radius: 0.5}}]}\n";
   const CentreColor blocked = centre_color(
       ball + "lights: [{directional: {direction: [0, 1, 0]}}]\nshading: {ambient: 0, shadows: {mode: hard}}\n");
-  expect_color(blocked, glm::dvec3(0.0));
+  expect_centre_color(blocked, glm::dvec3(0.0));
   const CentreColor through = centre_color(ball +
                                            "lights: [{directional: {direction: [0, 1, 0], shadows: false}}]\n"
                                            "shading: {ambient: 0, shadows: {mode: hard}}\n");
-  expect_color(through, glm::dvec3(1.0));
+  expect_centre_color(through, glm::dvec3(1.0));
   const CentreColor asked =
       centre_color(ball + "lights: [{directional: {direction: [0, 1, 0], shadows: true}}]\nshading: {ambient: 0}\n");
-  expect_color(asked, glm::dvec3(0.0));
+  expect_centre_color(asked, glm::dvec3(0.0));
 }
 
 /// The device against the reference as clmarch check compares them, at one lane and sixteen in
@@ -342,7 +342,7 @@ TEST(Shading, SpecularAndShininessPerNode) {
     const CentreColor c =
         centre_color(scene + kLitAtSixtyDegrees +
                      "shading: {model: blinn_phong, ambient: 0.1, diffuse: 0.9, specular: 0.5, shininess: 8}\n");
-    expect_color(c, albedo * (0.1 + 0.9 * 0.5 * 2.0) + glm::dvec3(0.25 * std::pow(cos30, 4.0) * 2.0), 1e-4);
+    expect_centre_color(c, albedo * (0.1 + 0.9 * 0.5 * 2.0) + glm::dvec3(0.25 * std::pow(cos30, 4.0) * 2.0), 1e-4);
   }
 }
 
@@ -351,9 +351,9 @@ TEST(Shading, EmissionAddsUnlit) {
   const std::string plane =
       "camera: {position: [0, 2, 0], look_at: [0, 0, 0], up: [0, 0, -1]}\n"
       "sdf: {plane: {normal: [0, 1, 0], offset: 0, color: [0.8, 0.6, 0.4], emission: [0.2, 0.3, 0.4]}}\n";
-  expect_color(centre_color(plane + "shading: {ambient: 0}\n"), glm::dvec3(0.2, 0.3, 0.4));
-  expect_color(centre_color(plane + "lights: [{directional: {direction: [0, 1, 0]}}]\nshading: {ambient: 0}\n"),
-               glm::dvec3(0.8 + 0.2, 0.6 + 0.3, 0.4 + 0.4));
+  expect_centre_color(centre_color(plane + "shading: {ambient: 0}\n"), glm::dvec3(0.2, 0.3, 0.4));
+  expect_centre_color(centre_color(plane + "lights: [{directional: {direction: [0, 1, 0]}}]\nshading: {ambient: 0}\n"),
+                      glm::dvec3(0.8 + 0.2, 0.6 + 0.3, 0.4 + 0.4));
 }
 
 // Materials per node through a smooth blend, an emissive operand, an operand grid of glossy and
@@ -407,49 +407,49 @@ TEST(ColorPattern, CheckerAtKnownPointsInBothFrames) {
   const std::string moved =
       "{union: {translate: [0.5, 0, 0], color: {checker: {size: 1, colors: [[0.9, 0.8, 0.7], [0.1, 0.2, 0.3]]}}, "
       "children: [{plane: {normal: [0, 1, 0], offset: 0}}]}}";
-  expect_color(floor_color_at(0.25, 0.25, world), kLight);
-  expect_color(floor_color_at(1.25, 0.25, world), kDark);
-  expect_color(floor_color_at(-0.25, 0.25, world), kDark);
-  expect_color(floor_color_at(-0.25, -0.75, world), kLight);
+  expect_centre_color(floor_color_at(0.25, 0.25, world), kLight);
+  expect_centre_color(floor_color_at(1.25, 0.25, world), kDark);
+  expect_centre_color(floor_color_at(-0.25, 0.25, world), kDark);
+  expect_centre_color(floor_color_at(-0.25, -0.75, world), kLight);
   {
     SCOPED_TRACE("local x = -0.25");
-    expect_color(floor_color_at(0.25, 0.25, moved), kDark);
+    expect_centre_color(floor_color_at(0.25, 0.25, moved), kDark);
   }
   {
     SCOPED_TRACE("local x = 0.25");
-    expect_color(floor_color_at(0.75, 0.25, moved), kLight);
+    expect_centre_color(floor_color_at(0.75, 0.25, moved), kLight);
   }
   const std::string half =
       "{plane: {normal: [0, 1, 0], offset: 0, color: {checker: {size: 0.5, colors: [[0.9, 0.8, 0.7], [0.1, 0.2, "
       "0.3]]}}}}";
-  expect_color(floor_color_at(0.6, 0.1, half), kDark);
+  expect_centre_color(floor_color_at(0.6, 0.1, half), kDark);
 }
 
 TEST(ColorPattern, StripesAndGrid) {
   const std::string stripes =
       "{plane: {normal: [0, 1, 0], offset: 0, color: {stripes: {size: 0.5, axis: z, colors: [[0.9, 0.8, 0.7], [0.1, "
       "0.2, 0.3]]}}}}";
-  expect_color(floor_color_at(3.0, 0.25, stripes), kLight);
-  expect_color(floor_color_at(3.0, 0.75, stripes), kDark);
-  expect_color(floor_color_at(-7.0, -0.25, stripes), kDark);
+  expect_centre_color(floor_color_at(3.0, 0.25, stripes), kLight);
+  expect_centre_color(floor_color_at(3.0, 0.75, stripes), kDark);
+  expect_centre_color(floor_color_at(-7.0, -0.25, stripes), kDark);
   const std::string grid =
       "{plane: {normal: [0, 1, 0], offset: 0, color: {grid: {size: 1, line_width: 0.1, colors: [[0.9, 0.8, 0.7], [0.1, "
       "0.2, 0.3]]}}}}";
   {
     SCOPED_TRACE("a cell's middle");
-    expect_color(floor_color_at(0.5, 0.5, grid), kLight);
+    expect_centre_color(floor_color_at(0.5, 0.5, grid), kLight);
   }
   {
     SCOPED_TRACE("0.02 from the line x = 1");
-    expect_color(floor_color_at(1.02, 0.5, grid), kDark);
+    expect_centre_color(floor_color_at(1.02, 0.5, grid), kDark);
   }
   {
     SCOPED_TRACE("0.03 from the line z = -3");
-    expect_color(floor_color_at(0.5, -2.97, grid), kDark);
+    expect_centre_color(floor_color_at(0.5, -2.97, grid), kDark);
   }
   {
     SCOPED_TRACE("0.07 from z = 0, past half the width");
-    expect_color(floor_color_at(0.5, 0.07, grid), kLight);
+    expect_centre_color(floor_color_at(0.5, 0.07, grid), kLight);
   }
 }
 
@@ -458,8 +458,8 @@ TEST(ColorPattern, ExpressionsOfThePoint) {
   const std::string floor =
       "{plane: {normal: [0, 1, 0], offset: 0, color: [\"0.5 + 0.5 * sin(x)\", \"fract(z)\", \"mod(t, 1) + length(x, z) "
       "* 0\"]}}";
-  expect_color(floor_color_at(1.0, 2.3, floor, 0.25), glm::dvec3(0.5 + 0.5 * std::sin(1.0), 0.3, 0.25), 1e-5);
-  expect_color(floor_color_at(-2.0, -0.4, floor, 1.25), glm::dvec3(0.5 + 0.5 * std::sin(-2.0), 0.6, 0.25), 1e-5);
+  expect_centre_color(floor_color_at(1.0, 2.3, floor, 0.25), glm::dvec3(0.5 + 0.5 * std::sin(1.0), 0.3, 0.25), 1e-5);
+  expect_centre_color(floor_color_at(-2.0, -0.4, floor, 1.25), glm::dvec3(0.5 + 0.5 * std::sin(-2.0), 0.6, 0.25), 1e-5);
 }
 
 // Patterns, inherited through a rotated union, on the operands of an operand grid, with a smooth

@@ -19,8 +19,8 @@ namespace {
 
 using namespace stress;
 
-constexpr int kWidth = 64;
-constexpr int kHeight = 36;
+constexpr int kStepImageWidth = 64;
+constexpr int kStepImageHeight = 36;
 constexpr int kMaxSteps = 3000;
 // A ray tunnels when it ends this much deeper than the reference's hit, or misses where the
 // reference hits (tiling.md's and scene-format.md's criterion): four times the depth tolerance of
@@ -29,7 +29,7 @@ constexpr int kMaxSteps = 3000;
 constexpr double kTunnelDepth = 0.05;
 
 /// A scene whose field needs a step factor, with {factor} left to fill in.
-struct BoundCase {
+struct StepFactorCase {
   const char* name;
   std::string yaml;  // the sdf line, containing step_factor: {0}
   const char* camera;
@@ -41,7 +41,7 @@ struct BoundCase {
 
 // Terrain (value noise): slope bound L = amplitude * frequency * octaves * 1.5 * sqrt(2) =
 // 1.5 * 1.2 * 3 * 2.12 = 11.5 (docs/scene-format.md), factor 1 / (1 + L) = 0.08.
-const BoundCase kCases[] = {
+const StepFactorCase kCases[] = {
     {"terrain", "terrain: {{amplitude: 1.5, frequency: 1.2, octaves: 3, step_factor: {0}}}",
      "{position: [0, 3.5, 6], look_at: [0, 0, 0]}", 0.08, true},
     {"mandelbulb_power2", "mandelbulb: {{power: 2, step_factor: {0}}}",
@@ -56,10 +56,10 @@ const BoundCase kCases[] = {
      "{position: [1.6, 1.3, 2.2], look_at: [0, 0, 0]}", 1.0, false},
 };
 
-Scene bound_scene(const BoundCase& c, double factor) {
+Scene bound_scene(const StepFactorCase& c, double factor) {
   return testing::scene_from_yaml(
       fmt::format("camera: {}\nrender: {{width: {}, height: {}, max_steps: {}, max_distance: 20}}\nsdf: {{{}}}\n",
-                  c.camera, kWidth, kHeight, kMaxSteps, fmt::format(fmt::runtime(c.yaml), factor)));
+                  c.camera, kStepImageWidth, kStepImageHeight, kMaxSteps, fmt::format(fmt::runtime(c.yaml), factor)));
 }
 
 struct Tunnelling {
@@ -73,10 +73,10 @@ struct Tunnelling {
 
 Tunnelling compare(const FrameBuffers& opencl, const FrameBuffers& reference) {
   Tunnelling t;
-  for (int j = 0; j < kHeight; ++j) {
-    for (int i = 0; i < kWidth; ++i) {
+  for (int j = 0; j < kStepImageHeight; ++j) {
+    for (int i = 0; i < kStepImageWidth; ++i) {
       const float truth = reference.at(Channel::Depth, i, j), depth = opencl.at(Channel::Depth, i, j);
-      t.mean_steps += opencl.at(Channel::Steps, i, j) / (kWidth * kHeight);
+      t.mean_steps += opencl.at(Channel::Steps, i, j) / (kStepImageWidth * kStepImageHeight);
       if (!std::isfinite(depth) && opencl.at(Channel::Steps, i, j) == kMaxSteps) ++t.budget_misses;
       if (!std::isfinite(truth)) continue;
       ++t.reference_hits;
@@ -87,11 +87,11 @@ Tunnelling compare(const FrameBuffers& opencl, const FrameBuffers& reference) {
 }
 
 TEST(NonExactFields, TheStepFactorPreventsTunnelling) {
-  for (const BoundCase& c : kCases) {
+  for (const StepFactorCase& c : kCases) {
     SCOPED_TRACE(c.name);
     const FrameBuffers reference = render_reference(bound_scene(c, c.safe_factor));
     const Tunnelling safe = compare(render_checked(bound_scene(c, c.safe_factor), KernelPurpose::Normals), reference);
-    EXPECT_GT(safe.reference_hits, kWidth * kHeight / 10);
+    EXPECT_GT(safe.reference_hits, kStepImageWidth * kStepImageHeight / 10);
     EXPECT_EQ(safe.tunnelled, 0);
     EXPECT_EQ(safe.budget_misses, 0);
     if (c.oversteps_at_one) {
@@ -105,7 +105,7 @@ TEST(NonExactFields, TheStepFactorPreventsTunnelling) {
 TEST(NonExactFields, Sweep) {
   if (!sweep_requested()) GTEST_SKIP() << "set CLMARCH_STRESS_SWEEP=1 to measure every factor";
   std::cout << "| field | reference factor | factor | tunnelled px | budget misses | mean steps |\n";
-  for (const BoundCase& c : kCases) {
+  for (const StepFactorCase& c : kCases) {
     const FrameBuffers reference = render_reference(bound_scene(c, c.safe_factor));
     for (double factor : {1.0, 0.75, 0.5, c.safe_factor}) {
       if (factor == c.safe_factor && factor == 1.0) continue;  // already measured first

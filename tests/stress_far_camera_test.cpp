@@ -26,8 +26,8 @@ namespace {
 
 using namespace stress;
 
-constexpr int kWidth = 48;
-constexpr int kHeight = 32;
+constexpr int kFarImageWidth = 48;
+constexpr int kFarImageHeight = 32;
 constexpr double kEpsilon = 1e-4;
 
 // A unit sphere on a floor one unit below its centre, both at `centre`, seen from 4 units away.
@@ -37,8 +37,8 @@ std::string plain_yaml(const glm::dvec3& centre) {
       "render: {{width: {}, height: {}, epsilon: {}, max_steps: 1000, max_distance: 20}}\n"
       "sdf: {{union: [{{sphere: {{center: [{}, {}, {}], radius: 1}}}}, {{plane: {{normal: [0, 1, 0], offset: "
       "{}}}}}]}}\n",
-      centre.x + 0.3, centre.y + 1.0, centre.z + 4.0, centre.x, centre.y, centre.z, kWidth, kHeight, kEpsilon, centre.x,
-      centre.y, centre.z, 1.0 - centre.y);
+      centre.x + 0.3, centre.y + 1.0, centre.z + 4.0, centre.x, centre.y, centre.z, kFarImageWidth, kFarImageHeight,
+      kEpsilon, centre.x, centre.y, centre.z, 1.0 - centre.y);
 }
 
 /// How far a render of plain_yaml(centre) is from the closed-form answer.
@@ -72,8 +72,8 @@ FarErrors measure_plain(const glm::dvec3& centre) {
     double depth = 0.0, cosine = 0.0;
   };
   std::vector<Truth> truth;
-  for (int j = 0; j < kHeight; ++j) {
-    for (int i = 0; i < kWidth; ++i) {
+  for (int j = 0; j < kFarImageHeight; ++j) {
+    for (int i = 0; i < kFarImageWidth; ++i) {
       const glm::dvec3 o = scene.camera.position, d = ray_direction(scene, i, j);
       const std::optional<double> ts = intersect_sphere(o, d, sphere), tp = intersect_plane(o, d, floor);
       Truth t;
@@ -88,19 +88,20 @@ FarErrors measure_plain(const glm::dvec3& centre) {
       truth.push_back(t);
     }
   }
-  const auto at = [&](int i, int j) -> const Truth& { return truth[static_cast<std::size_t>(j) * kWidth + i]; };
+  const auto at = [&](int i, int j) -> const Truth& { return truth[static_cast<std::size_t>(j) * kFarImageWidth + i]; };
   FarErrors e;
   const double distance = glm::length(scene.camera.position);
   const double frame_distance = glm::length(scene.camera.position - map_frame_origin(scene));
-  for (int j = 0; j < kHeight; ++j) {
-    for (int i = 0; i < kWidth; ++i) {
+  for (int j = 0; j < kFarImageHeight; ++j) {
+    for (int i = 0; i < kFarImageWidth; ++i) {
       const Truth& t = at(i, j);
       bool silhouette = t.hit && t.cosine < kGrazingCosine;
       for (int dj = -1; dj <= 1; ++dj) {
         for (int di = -1; di <= 1; ++di) {
           const int ni = i + di, nj = j + dj;
           // Edges between the sphere and the floor count too: a shifted edge swaps which one a ray hits.
-          if (ni >= 0 && nj >= 0 && ni < kWidth && nj < kHeight && at(ni, nj).object != t.object) silhouette = true;
+          if (ni >= 0 && nj >= 0 && ni < kFarImageWidth && nj < kFarImageHeight && at(ni, nj).object != t.object)
+            silhouette = true;
         }
       }
       if (silhouette) continue;
@@ -124,14 +125,15 @@ FarErrors measure_plain(const glm::dvec3& centre) {
 }
 
 // The lattice of tests/tiling_test.cpp: cells of 1 x 1.5 x 0.75, a sphere of radius 0.3 in each.
-std::string lattice_yaml(const glm::dvec3& position, const char* method) {
+std::string far_lattice_yaml(const glm::dvec3& position, const char* method) {
   const glm::dvec3 look_at = position + glm::dvec3(2.7, 1.3, 4.1);
   return fmt::format(
       "camera: {{position: [{}, {}, {}], look_at: [{}, {}, {}], fov: 60}}\n"
       "render: {{width: {}, height: {}, max_steps: 1000, epsilon: {}, max_distance: 30}}\n"
       "tiling: {{cell: [1, 1.5, 0.75], method: {}}}\n"
       "sdf: {{sphere: {{center: [0.5, 0.75, 0.375], radius: 0.3}}}}\n",
-      position.x, position.y, position.z, look_at.x, look_at.y, look_at.z, kWidth, kHeight, kEpsilon, method);
+      position.x, position.y, position.z, look_at.x, look_at.y, look_at.z, kFarImageWidth, kFarImageHeight, kEpsilon,
+      method);
 }
 
 /// Pixels of a lattice render with the camera at position that differ from the same render with
@@ -148,8 +150,8 @@ struct LatticeDifference {
 LatticeDifference measure_lattice(const glm::dvec3& position, const char* method) {
   const glm::dvec3 near = offset_in_cell(position, glm::dvec3(1, 1.5, 0.75));
   const FrameBuffers reference =
-      render(testing::scene_from_yaml(lattice_yaml(near, "cells")), KernelPurpose::DepthSteps);
-  const Scene scene = testing::scene_from_yaml(lattice_yaml(position, method));
+      render(testing::scene_from_yaml(far_lattice_yaml(near, "cells")), KernelPurpose::DepthSteps);
+  const Scene scene = testing::scene_from_yaml(far_lattice_yaml(position, method));
   const FrameBuffers far = render_checked(scene, KernelPurpose::DepthSteps);
   LatticeDifference diff;
   diff.bitwise_equal = reference.plane(Channel::Depth) == far.plane(Channel::Depth);
@@ -182,7 +184,7 @@ TEST(FarCamera, PlainMarchKeepsTheOriginsAccuracyOnEveryAxis) {
     for (int a = 0; a < 3; ++a) {
       SCOPED_TRACE(fmt::format("{} at {}", kAxisNames[a], offset));
       const FarErrors e = measure_plain(kAxes[a] * offset);
-      EXPECT_GT(e.compared, kWidth * kHeight / 2);
+      EXPECT_GT(e.compared, kFarImageWidth * kFarImageHeight / 2);
       EXPECT_EQ(e.mask_mismatch, 0);
       EXPECT_LE(e.over_frame, 1.0);
     }
@@ -483,7 +485,7 @@ TEST(FarCamera, CellsTilingRendersTheNearImageAt1e7) {
     SCOPED_TRACE(kAxisNames[a]);
     const LatticeDifference d = measure_lattice(kLatticeCamera + kAxes[a] * 1e7, "cells");
     EXPECT_EQ(d.wrong, 0);
-    EXPECT_GT(d.near_hits, kWidth * kHeight / 5);
+    EXPECT_GT(d.near_hits, kFarImageWidth * kFarImageHeight / 5);
     EXPECT_LE(d.max_depth_difference, kFloatRelative * 30.0) << "16u of the longest depth";
   }
 }
@@ -503,7 +505,7 @@ TEST(FarCamera, Sweep) {
           "| {} | 1e{} | {} | {} | {:.3g} | {:.3g} | {:.3g} | {:.3g} | {} | {:.2g}{} | {:.1f} % |\n", kAxisNames[a],
           std::lround(std::log10(offset)), e.compared, e.mask_mismatch, e.depth_in_epsilons, e.over_documented,
           e.over_origin, e.over_frame, cells.wrong, cells.max_depth_difference, cells.bitwise_equal ? " (bitwise)" : "",
-          100.0 * mod.wrong / (kWidth * kHeight));
+          100.0 * mod.wrong / (kFarImageWidth * kFarImageHeight));
     }
   }
 }

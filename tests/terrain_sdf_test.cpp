@@ -10,6 +10,7 @@
 #include "render/opencl_renderer.hpp"
 #include "scene/scene_loader.hpp"
 #include "support/test_support.hpp"
+#include "support/tolerances.hpp"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -20,12 +21,9 @@
 namespace clmarch {
 namespace {
 
-using testing::scene_from_yaml;
-
-// Closed forms of a handful of double operations on O(1) values.
-constexpr double kExact = 1e-12;
-
 using testing::error_of;
+using testing::kExact;
+using testing::scene_from_yaml;
 
 std::vector<glm::dvec2> random_points_2d(std::size_t count, double extent, unsigned seed) {
   std::mt19937 rng(seed);
@@ -167,7 +165,7 @@ TEST(TerrainHeight, StepFactorFromTheSlopeBoundMakesItOneLipschitz) {
 }
 
 // Kernel against reference at points of the sampled box, with every noise.
-void expect_kernel_matches_reference(const std::string& sdf_yaml, double tolerance) {
+void expect_terrain_kernel_matches_reference(const std::string& sdf_yaml, double tolerance) {
   const Scene scene = scene_from_yaml("sdf:\n  " + sdf_yaml + "\n");
   std::mt19937 rng(21);
   std::uniform_real_distribution<double> coord(-20.0, 20.0);
@@ -192,10 +190,11 @@ TEST(TerrainKernel, MatchesTheReference) {
   // 6e-4 over 16 octaves at |p| <= 35 as a first-order worst case; measured 5e-5. A different hash,
   // weight or turn moves heights by 1e-2 and more.
   constexpr double kTerrainTolerance = 1e-3;
-  expect_kernel_matches_reference("terrain: {octaves: 16}", kTerrainTolerance);
-  expect_kernel_matches_reference("terrain: {noise: perlin, octaves: 16, seed: 99}", kTerrainTolerance);
-  expect_kernel_matches_reference("terrain: {noise: derivative, octaves: 16, seed: 2147483647}", kTerrainTolerance);
-  expect_kernel_matches_reference(
+  expect_terrain_kernel_matches_reference("terrain: {octaves: 16}", kTerrainTolerance);
+  expect_terrain_kernel_matches_reference("terrain: {noise: perlin, octaves: 16, seed: 99}", kTerrainTolerance);
+  expect_terrain_kernel_matches_reference("terrain: {noise: derivative, octaves: 16, seed: 2147483647}",
+                                          kTerrainTolerance);
+  expect_terrain_kernel_matches_reference(
       "terrain: {height: -2, amplitude: 3, frequency: 0.06, octaves: 8, noise: derivative, step_factor: 0.5}",
       kTerrainTolerance);
 }

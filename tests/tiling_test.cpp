@@ -5,6 +5,7 @@
 #include "render/opencl_renderer.hpp"
 #include "scene/camera_model.hpp"
 #include "support/test_support.hpp"
+#include "support/tolerances.hpp"
 
 #include <gtest/gtest.h>
 
@@ -18,9 +19,9 @@ namespace {
 // A lattice with a different cell size per axis; each cell holds one sphere well inside it.
 const glm::dvec3 kCell(1.0, 1.5, 0.75);
 const Sphere kCellSphere{{0.5, 0.75, 0.375}, 0.3};
-constexpr double kGrazingCosine = 0.1;
+using testing::kGrazingCosine;
 // Float rounding in the cell's frame: the coordinates are at most a cell wide, plus the depth.
-constexpr double kFloatRelative = 16.0 * 0x1p-24;
+using testing::kFloatRelative;
 
 std::string lattice_yaml(const glm::dvec3& position, const glm::dvec3& look_at, int width, int height,
                          const char* up = "[0, 1, 0]", const char* method = "cells", double radius = 0.3,

@@ -18,7 +18,7 @@ using testing::run_clmarch;
 using testing::run_clmarch_on_terminal;
 using testing::TempDir;
 
-const std::string kScene = "sdf: {sphere: {radius: 1}}\nrender: {width: 16, height: 8}\n";
+const std::string kSmallScene = "sdf: {sphere: {radius: 1}}\nrender: {width: 16, height: 8}\n";
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
@@ -50,7 +50,7 @@ TEST(Verbosity, VerboseNamesTheMarchSettingsInForce) {
 
 TEST(Verbosity, NormalSaysWhatItWrote) {
   TempDir dir;
-  std::ofstream(dir / "s.yaml") << kScene;
+  std::ofstream(dir / "s.yaml") << kSmallScene;
   const auto result = run_clmarch({"render", (dir / "s.yaml").string(), "-o", (dir / "o.png").string()});
   ASSERT_EQ(result.exit_code, kExitOk) << result.err;
   EXPECT_EQ(result.err, "clmarch: wrote " + (dir / "o.png").string() + "\n");
@@ -58,7 +58,7 @@ TEST(Verbosity, NormalSaysWhatItWrote) {
 
 TEST(Verbosity, QuietSaysNothingBeforeOrAfterTheCommand) {
   TempDir dir;
-  std::ofstream(dir / "s.yaml") << kScene;
+  std::ofstream(dir / "s.yaml") << kSmallScene;
   for (const std::vector<std::string>& args :
        {std::vector<std::string>{"--quiet", "render", (dir / "s.yaml").string(), "-o", (dir / "a.png").string()},
         {"render", (dir / "s.yaml").string(), "-q", "-o", (dir / "b.png").string(), "--stats"}}) {
@@ -82,7 +82,7 @@ TEST(Verbosity, QuietAndVerboseExcludeEachOther) {
 TEST(Verbosity, VerboseNamesDeviceBuildLanesLocalSizeAndCache) {
   TempDir dir;
   TempDir cache;
-  std::ofstream(dir / "s.yaml") << kScene;
+  std::ofstream(dir / "s.yaml") << kSmallScene;
   const DeviceEntry device = select_device(std::nullopt);
   const std::vector<std::string> args = {"--verbose", "render", (dir / "s.yaml").string(), "--lanes",
                                          "4",         "-o",     (dir / "o.png").string()};

@@ -1,7 +1,9 @@
 // Test helpers.
 #include "support/test_support.hpp"
 
+#include "common/cancellation.hpp"
 #include "common/errors.hpp"
+#include "frame/frame_buffers.hpp"
 #include "scene/scene_loader.hpp"
 
 #include <OpenImageIO/imageio.h>
@@ -141,5 +143,20 @@ std::vector<std::string> TempDir::files() const {
   std::sort(names.begin(), names.end());
   return names;
 }
+
+Node leaf(NodeParams params, NodeKind kind) {
+  Node n;
+  n.kind = kind;
+  n.params = std::move(params);
+  return n;
+}
+
+double total_steps(const FrameBuffers& buffers) {
+  double sum = 0.0;
+  for (float s : buffers.plane(Channel::Steps)) sum += s;
+  return sum;
+}
+
+CancellationReset::~CancellationReset() { cancellation_requested().store(false); }
 
 }  // namespace clmarch::testing

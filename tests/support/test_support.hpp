@@ -8,6 +8,10 @@
 #include <string>
 #include <vector>
 
+namespace clmarch {
+struct FrameBuffers;
+}
+
 namespace clmarch::testing {
 
 /// A scene from YAML text (messages name it "test.yaml").
@@ -75,6 +79,20 @@ class TempDir {
 
  private:
   std::filesystem::path path_;
+};
+
+/// A node of the kind with its parameters and no children.
+Node leaf(NodeParams params, NodeKind kind);
+
+/// The sum of the Steps plane of a render: the march's work over the whole image.
+double total_steps(const FrameBuffers& buffers);
+
+/// Resets the process-wide cancellation flag (common/cancellation.hpp) however the test ends.
+struct CancellationReset {
+  CancellationReset() = default;
+  ~CancellationReset();
+  CancellationReset(const CancellationReset&) = delete;
+  CancellationReset& operator=(const CancellationReset&) = delete;
 };
 
 }  // namespace clmarch::testing
