@@ -204,6 +204,14 @@ def test_bad_requests_get_errors_and_the_server_keeps_serving(preview):
     stalled.close()
 
 
+def test_a_reloaded_page_shows_frames(preview):
+    # The server answers a request older than the newest it has seen with 409: a page loaded after
+    # many moves of another (or a reload) must start its numbers after them, not at 1.
+    preview.driver.refresh()
+    preview.image = preview.driver.find_element(By.ID, "frame")
+    preview.page.wait_full(SIZE, FRAME_S, "a full frame after the reload")
+
+
 def edit_and_time(preview, text, timeout):
     """Saves the scene as text; returns the seconds until the page shows a new full frame, and
     `clmarch render` of the edited file at the page's camera, started with the edit (its program
