@@ -7,8 +7,10 @@
 # reader independent of the writer) build and test the Python module (python/, docs/python.md).
 # libtinygltf-dev writes the glTF binary meshes of `clmarch mesh` (host/mesh/); libassimp-dev is the
 # tests' reader of every mesh format, independent of the writers; libcpp-httplib-dev serves
-# `clmarch preview`, and nodejs runs its page's script in the tests (no browser here); glslang-dev
-# parses and type-checks users' GLSL (the glsl node, host/glsl/).
+# `clmarch preview`, and nodejs runs its page's script in the tests; chromium, chromium-driver and
+# python3-selenium load that page in a real, headless browser for the tests (ctest PreviewBrowser)
+# and for scripts/preview-bench.py --browser. glslang-dev parses and type-checks users' GLSL (the
+# glsl node, host/glsl/).
 # clang-format and clang-tidy serve scripts/format.sh and scripts/tidy.sh. groff-base lets the
 # tests render the man page (dpkg-dev, which scripts/package.sh needs, comes with build-essential).
 # `setup.sh --plots` also installs python3-matplotlib for scripts/sweep-plot.py (run it with
@@ -27,7 +29,7 @@ packages=(
   clang libclang-rt-14-dev clang-format clang-tidy
   libopenmpi-dev openmpi-bin
   python3 python3-dev python3-numpy python3-pytest pybind11-dev python3-openimageio groff-base
-  libtinygltf-dev libassimp-dev libcpp-httplib-dev nodejs
+  libtinygltf-dev libassimp-dev libcpp-httplib-dev nodejs chromium chromium-driver python3-selenium
   glslang-dev
 )
 for arg in "$@"; do

@@ -217,6 +217,8 @@ TEST_F(PreviewServerTest, ServesThePageFramesPixelsAndState) {
   const httplib::Result state = get("/state");
   ASSERT_TRUE(state);
   EXPECT_EQ(nlohmann::json::parse(state->body).at("version"), 1);
+  // The newest frame number asked for: a page loaded later numbers its frames after it.
+  EXPECT_EQ(nlohmann::json::parse(state->body).at("sequence"), 1);
 }
 
 TEST_F(PreviewServerTest, BadRequestsGetAnErrorStatusAndOneLine) {

@@ -98,6 +98,7 @@ nlohmann::json PreviewSession::state() {
           {"height", scene_.render.height},
           {"animated", scene_.animated},
           {"time", scene_.time},
+          {"sequence", latest_sequence_.load()},
           {"stats", last_stats_}};
 }
 

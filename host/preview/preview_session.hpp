@@ -69,7 +69,8 @@ class PreviewSession {
   /// loaded (or failed to).
   bool refresh();
   /// What the page polls: the scene's version (it grows with each load), its error, camera, size,
-  /// whether it is animated, the device and the last frame's figures.
+  /// whether it is animated, the newest frame number asked for (a page loaded later numbers its
+  /// frames after it) and the last frame's figures.
   nlohmann::json state();
   /// Renders the query; nothing when a newer query came first (it would show an old camera).
   std::optional<PreviewFrame> frame(const FrameQuery& query);
