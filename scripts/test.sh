@@ -62,7 +62,8 @@ fi
 # 7,354 of them (98.3 %): loading and every input error, code generation, the reference, every
 # kernel purpose, the operand grid, anti-aliasing, check, bench and sweeps, MPI, images, the command
 # line; and the library layer's and the mesh's own suites (RenderSession, SceneRequest, SampleField,
-# SceneMesh), added with them.
+# SceneMesh), added with them; and user GLSL's front end, node and interpreter (GlslFrontEnd,
+# GlslNode, GlslInterpreter: host code that reads users' text), and FieldCommand.
 # Left out: the suites whose lines the chosen ones run too, above all the sweeps that repeat
 # host paths over many programs for the kernels' sake (every kind far away and near, golden images,
 # random operand-grid trees: 0 lines of their own), and four that cost a minute or more under the
@@ -73,7 +74,8 @@ sanitized_suites=(
   ColorPattern HostMemory ExitCodes OutputFailure InstanceFile CheckCli ConePass SdfClosedForm ShadingLayers RayStatus
   ProgramKey OpenClRenderer KernelVariant CheckThresholds NodeBoxes DeviceErrors DevicePrograms ReferenceSdf
   ForwardNormals DebugViews SceneLoader DeviceMemory FrameRange StagedFiles RenderReference FractalKeys SdfCode
-  FuzzRegressions Expression KernelSource SweepSpec RenderSession SceneRequest SampleField SceneMesh
+  FuzzRegressions Expression KernelSource SweepSpec RenderSession SceneRequest SampleField SceneMesh GlslFrontEnd
+  GlslNode GlslInterpreter FieldCommand
 )
 # The test sources that declare those suites: the sanitizer build compiles only them.
 sanitized_test_files() {

@@ -16,13 +16,13 @@ namespace clmarch {
 
 namespace {
 bool g_draw_anyway = false;
-std::mutex g_sink_mutex;
-ProgressSink g_sink;
+std::mutex g_progress_sink_mutex;
+ProgressSink g_progress_sink;
 
 /// The sink, if one is set (a copy: it may be replaced meanwhile).
 ProgressSink current_sink() {
-  const std::lock_guard lock(g_sink_mutex);
-  return g_sink;
+  const std::lock_guard lock(g_progress_sink_mutex);
+  return g_progress_sink;
 }
 /// Progress lines alive: under MPI only the outermost one draws (the frames or tiles of all ranks,
 /// not the chunks of rank 0's own render).
@@ -34,8 +34,8 @@ bool progress_enabled() { return verbosity() != Verbosity::Quiet && (g_draw_anyw
 void draw_progress_anyway() { g_draw_anyway = true; }
 
 void set_progress_sink(ProgressSink sink) {
-  const std::lock_guard lock(g_sink_mutex);
-  g_sink = std::move(sink);
+  const std::lock_guard lock(g_progress_sink_mutex);
+  g_progress_sink = std::move(sink);
 }
 
 ProgressLine::ProgressLine(std::string label, long long total, double rays_per_unit)
