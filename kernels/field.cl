@@ -19,3 +19,7 @@ SDF_INLINE vfloat field(SceneValues values, vec3v p) {
   return map(values, p);
 #endif
 }
+
+/* The field at a point off the march loops (a normal's taps, occlusion's samples): a stage
+ * (lanes.cl), so that map() comes into the program once for all of them, not once per tap. */
+SDF_INLINE vfloat field_tap(SceneValues values, vec3v p) { return field(values, p); }

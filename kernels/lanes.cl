@@ -175,6 +175,21 @@ typedef mask16 vint;
  * stops vectorisation. */
 #define SDF_INLINE static inline __attribute__((always_inline))
 
+/* The kernels' stages — a march loop, a normal, a shadow ray, the shading of a hit, the material at
+ * a hit — are functions called, not inlined, where the host asks (STAGES_CALLED, render.stages) and
+ * a work-item marches a packet. Inlined, map() comes into the one kernel function once per place
+ * that evaluates the field (a 20-primitive scene: 14 copies in 2,600 lines) and PoCL's compile
+ * grows faster than the function does: that scene's first picture took 5.0 s of CPU inlined, 1.8 s
+ * staged. A call costs a small map a tenth of its time and more (inlined, the normal's taps share
+ * their work), so the host calls the stages of large maps only (docs/performance.md). A
+ * work-item's lanes are one vector, so a call does not stop their vectorisation; one pixel per
+ * work-item relies on PoCL's vectoriser across work-items, which a call stops. */
+#if LANES > 1 && defined(STAGES_CALLED)
+#define SDF_STAGE static __attribute__((noinline))
+#else
+#define SDF_STAGE SDF_INLINE
+#endif
+
 /* Whether any of 16 lanes is set, as an OR tree: PoCL 3.1's any() tests the lanes one by one with
  * a branch each, which cost the torus's march loop about 10 % (measured). */
 #if LANES == 1 && defined(DOUBLE_PRECISION)

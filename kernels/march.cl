@@ -9,8 +9,8 @@
 #if defined(NEED_SHADING)
 /* The surface met by a ray from the camera-relative point relative_origin, marched in map()'s
  * frame (m), with its normal and material. */
-SDF_INLINE Hit surface_at(SceneValues values, const MarchResult* m, vec3v relative_origin, vec3v dir,
-                          float normal_epsilon) {
+SDF_STAGE Hit surface_at(SceneValues values, const MarchResult* m, vec3v relative_origin, vec3v dir,
+                         float normal_epsilon) {
   Hit hit;
   hit.point = m->local_point;
   hit.relative = v3_add(relative_origin, v3_scale(dir, m->t));
@@ -246,8 +246,8 @@ SDF_INLINE vec3v packet_color(SceneValues values, const Packet* k, const MarchRe
 
 /* Writes what the march of packet k found: depth, steps (and wall steps), and as the program
  * needs them the normal and the shaded color. */
-SDF_INLINE void finish_packet(SceneValues values, const Packet* k, const MarchResult* m, const MarchParams* params,
-                              __global float* out, __global const LightParams* lights) {
+SDF_STAGE void finish_packet(SceneValues values, const Packet* k, const MarchResult* m, const MarchParams* params,
+                             __global float* out, __global const LightParams* lights) {
   const int stride = params->plane_stride;
   const int at = k->row0 * params->width + k->x0;
 #define STORE_PLANE(channel, v) store_tile((v), at, params->width, k->columns, k->rows, out + (channel)*stride)

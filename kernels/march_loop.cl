@@ -229,8 +229,8 @@ SDF_INLINE MarchResult plain_march_end(PlainMarch* s) {
 
 /* Marches one packet: origin + t * dir for t from t_start until every lane hit, passed t_end or
  * used max_steps. */
-SDF_INLINE MarchResult march_plain(vec3v origin, vec3v dir, vint live, vfloat t_start, vfloat t_end,
-                                   MarchLimits limits) {
+SDF_STAGE MarchResult march_plain(vec3v origin, vec3v dir, vint live, vfloat t_start, vfloat t_end,
+                                  MarchLimits limits) {
   PlainMarch s = plain_march_begin(origin, dir, live, t_start, t_end, limits);
   for (int step = 0; step < limits.max_steps && LANE_ANY(s.active); ++step) plain_march_step(&s);
   return plain_march_end(&s);
@@ -240,13 +240,17 @@ SDF_INLINE MarchResult march_plain(vec3v origin, vec3v dir, vint live, vfloat t_
  * of dependent steps, so the second packet's step runs while the first one's waits on its
  * latencies (square roots, the loop's branch). Each packet takes exactly the steps it would take
  * alone. */
-SDF_INLINE void march_plain_pair(PlainMarch* a, PlainMarch* b) {
-  for (int step = 0; step < a->limits.max_steps; ++step) {
-    const int a_marching = LANE_ANY(a->active), b_marching = LANE_ANY(b->active);
-    if (!(a_marching | b_marching)) break;
-    if (a_marching) plain_march_step(a);
-    if (b_marching) plain_march_step(b);
+SDF_STAGE void march_plain_pair(PlainMarch* a, PlainMarch* b) {
+  /* Copies the compiler keeps in registers, which it cannot do through pointers that may alias. */
+  PlainMarch first = *a, second = *b;
+  for (int step = 0; step < first.limits.max_steps; ++step) {
+    const int first_marching = LANE_ANY(first.active), second_marching = LANE_ANY(second.active);
+    if (!(first_marching | second_marching)) break;
+    if (first_marching) plain_march_step(&first);
+    if (second_marching) plain_march_step(&second);
   }
+  *a = first;
+  *b = second;
 }
 
 #if !defined(TILING_CELLS)

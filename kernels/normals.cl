@@ -12,31 +12,31 @@
 SDF_INLINE vfloat tap_spacing(vfloat high, vfloat low) { return fmax(high - low, FLT_MIN); }
 
 #ifdef NORMAL_TETRAHEDRAL
-SDF_INLINE vec3v estimate_normal(SceneValues values, vec3v p, float h) {
+SDF_STAGE vec3v estimate_normal(SceneValues values, vec3v p, float h) {
   /* Taps at h * k.xyy, k.yyx, k.yxy, k.xxx with k = (1, -1). */
   const vec3v high = v3(p.x + h, p.y + h, p.z + h), low = v3(p.x - h, p.y - h, p.z - h);
-  vfloat a = field(values, v3(high.x, low.y, low.z));
-  vfloat b = field(values, v3(low.x, low.y, high.z));
-  vfloat c = field(values, v3(low.x, high.y, low.z));
-  vfloat d = field(values, v3(high.x, high.y, high.z));
+  vfloat a = field_tap(values, v3(high.x, low.y, low.z));
+  vfloat b = field_tap(values, v3(low.x, low.y, high.z));
+  vfloat c = field_tap(values, v3(low.x, high.y, low.z));
+  vfloat d = field_tap(values, v3(high.x, high.y, high.z));
   return v3_normalize(v3((a - b - c + d) / tap_spacing(high.x, low.x), (-a - b + c + d) / tap_spacing(high.y, low.y),
                          (-a + b - c + d) / tap_spacing(high.z, low.z)));
 }
 #elif defined(NORMAL_FORWARD)
-SDF_INLINE vec3v estimate_normal(SceneValues values, vec3v p, float h) {
+SDF_STAGE vec3v estimate_normal(SceneValues values, vec3v p, float h) {
   /* f(p + h e_i) - f(p); the shared tap f(p) is the fourth. */
   const vec3v high = v3(p.x + h, p.y + h, p.z + h);
-  vfloat here = field(values, p);
-  return v3_normalize(v3((field(values, v3(high.x, p.y, p.z)) - here) / tap_spacing(high.x, p.x),
-                         (field(values, v3(p.x, high.y, p.z)) - here) / tap_spacing(high.y, p.y),
-                         (field(values, v3(p.x, p.y, high.z)) - here) / tap_spacing(high.z, p.z)));
+  vfloat here = field_tap(values, p);
+  return v3_normalize(v3((field_tap(values, v3(high.x, p.y, p.z)) - here) / tap_spacing(high.x, p.x),
+                         (field_tap(values, v3(p.x, high.y, p.z)) - here) / tap_spacing(high.y, p.y),
+                         (field_tap(values, v3(p.x, p.y, high.z)) - here) / tap_spacing(high.z, p.z)));
 }
 #else
-SDF_INLINE vec3v estimate_normal(SceneValues values, vec3v p, float h) {
+SDF_STAGE vec3v estimate_normal(SceneValues values, vec3v p, float h) {
   const vec3v high = v3(p.x + h, p.y + h, p.z + h), low = v3(p.x - h, p.y - h, p.z - h);
-  vfloat dx = field(values, v3(high.x, p.y, p.z)) - field(values, v3(low.x, p.y, p.z));
-  vfloat dy = field(values, v3(p.x, high.y, p.z)) - field(values, v3(p.x, low.y, p.z));
-  vfloat dz = field(values, v3(p.x, p.y, high.z)) - field(values, v3(p.x, p.y, low.z));
+  vfloat dx = field_tap(values, v3(high.x, p.y, p.z)) - field_tap(values, v3(low.x, p.y, p.z));
+  vfloat dy = field_tap(values, v3(p.x, high.y, p.z)) - field_tap(values, v3(p.x, low.y, p.z));
+  vfloat dz = field_tap(values, v3(p.x, p.y, high.z)) - field_tap(values, v3(p.x, p.y, low.z));
   return v3_normalize(
       v3(dx / tap_spacing(high.x, low.x), dy / tap_spacing(high.y, low.y), dz / tap_spacing(high.z, low.z)));
 }

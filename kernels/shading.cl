@@ -84,8 +84,8 @@ SDF_INLINE MarchResult march_past_bounds(MarchResult m, vec3v origin, vec3v rela
  * rays march inside the scene's bounds only: past them the light is unoccluded. Soft ones go on
  * past them as far as their penumbra could still fall (march_past_bounds); the improved variant's
  * estimate has no such floor, and its rays march to t_end. */
-SDF_INLINE vfloat shadow_factor(SceneValues values, const MarchParams* params, vec3v p, vec3v relative, vec3v n,
-                                vec3v l, vfloat t_end, vint live) {
+SDF_STAGE vfloat shadow_factor(SceneValues values, const MarchParams* params, vec3v p, vec3v relative, vec3v n, vec3v l,
+                               vfloat t_end, vint live) {
   const ShadingParams* shading = &params->shading;
   MarchLimits limits = {values, shading->shadow_max_steps, params->epsilon, SHADOW_MODE, shading->shadow_k, 1.0f,
                         0.0f,   params->cell_bounds};
@@ -108,11 +108,11 @@ SDF_INLINE vfloat shadow_factor(SceneValues values, const MarchParams* params, v
 #if defined(AMBIENT_OCCLUSION)
 /* The PBR-course occlusion: from 1, subtract (i delta - sdf(p + n i delta))^2 / i over the samples,
  * then raise to the power ao_power. */
-SDF_INLINE vfloat normal_occlusion(SceneValues values, const ShadingParams* shading, vec3v p, vec3v n) {
+SDF_STAGE vfloat normal_occlusion(SceneValues values, const ShadingParams* shading, vec3v p, vec3v n) {
   vfloat occlusion = (vfloat)(1.0f);
   for (int i = shading->ao_samples; i > 0; --i) {
     const float along = (float)i * shading->ao_step;
-    const vfloat gap = along - field(values, v3_add(p, v3_scale(n, along)));
+    const vfloat gap = along - field_tap(values, v3_add(p, v3_scale(n, along)));
     occlusion -= gap * gap / (float)i;
   }
   return pow(clamp(occlusion, 0.0f, 1.0f), (vfloat)(shading->ao_power));
@@ -290,8 +290,8 @@ SDF_INLINE vec3v lit_color(const ShadingParams* shading, const LightTerms* terms
 }
 
 /* Lit color of the surface, seen along -view (unit). */
-SDF_INLINE vec3v shade(SceneValues values, const MarchParams* params, const Hit* hit, vec3v view, vint live,
-                       __global const LightParams* lights) {
+SDF_STAGE vec3v shade(SceneValues values, const MarchParams* params, const Hit* hit, vec3v view, vint live,
+                      __global const LightParams* lights) {
   const LightTerms terms = light_terms(values, params, hit, view, live, lights);
   return lit_color(&params->shading, &terms, hit->steps);
 }

@@ -34,8 +34,8 @@ SDF_INLINE vfloat enter_next_cell(vfloat q, vfloat dir, vint crosses, float cell
  * wrapped into its cell; lanes stop at t_end. With the cell's bounds a step goes as far as the
  * larger of the distance and the stretch before the ray meets the bounds' sphere: a cell the ray
  * passes by takes one step, straight to its wall. */
-SDF_INLINE MarchResult march_cells(vec3v origin, vec3v dir, vint live, vfloat t_start, vfloat t_end,
-                                   MarchLimits limits) {
+SDF_STAGE MarchResult march_cells(vec3v origin, vec3v dir, vint live, vfloat t_start, vfloat t_end,
+                                  MarchLimits limits) {
   const float4 cell = tiling_cell(limits.values);
   MarchResult m = march_result_init(t_start);
   /* The ray is entry + s * dir in the current cell's frame; m.t - s is its depth at entry. */

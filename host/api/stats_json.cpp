@@ -17,6 +17,7 @@ nlohmann::json render_stats_json(Backend backend, const Scene& scene, const Rend
           {"rays_per_s", s.rays_per_s},
           {"chunks", s.chunks},
           {"literals", s.literals},
+          {"stages", s.stages},
           {"surface_steps", s.steps - s.wall_steps},
           {"wall_steps", s.wall_steps},
           {"coarse_steps", s.coarse_steps},

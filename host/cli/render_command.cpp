@@ -168,9 +168,10 @@ RenderResult render_scene(const RenderCommandOptions& options, const Scene& scen
   RenderResult result = session.render(scene, request);
   if (request.backend == Backend::OpenCl) {
     // The renderer's dispatch takes default_local_size for its work-groups (render/dispatch_plan.cpp).
-    log_verbose(fmt::format("lanes {} (pixels per work-item), local size {}, {} chunk{}, kernel {:.1f} ms",
+    log_verbose(fmt::format("lanes {} (pixels per work-item), local size {}, stages {}, {} chunk{}, kernel {:.1f} ms",
                             result.stats.lanes, default_local_size(select_device(options.scene.device)),
-                            result.stats.chunks, result.stats.chunks == 1 ? "" : "s", result.stats.kernel_ms));
+                            result.stats.stages, result.stats.chunks, result.stats.chunks == 1 ? "" : "s",
+                            result.stats.kernel_ms));
   }
   return result;
 }

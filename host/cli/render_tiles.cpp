@@ -66,6 +66,7 @@ void render_image_in_tiles(const RenderCommandOptions& options, const Scene& sce
       s.device = figures.stats.device;
       s.lanes = figures.stats.lanes;
       s.literals = figures.stats.literals;
+      s.stages = figures.stats.stages;
       s.chunks = 0;
     }
     t.pixels += figures.pixels;

@@ -51,7 +51,7 @@ std::string shading_defines(const Shading& s) {
   return out;
 }
 
-std::string feature_defines(const Scene& scene, const KernelOptions& options) {
+std::string feature_defines(const Scene& scene, const KernelOptions& options, const SdfCode& code) {
   std::string out = fmt::format("#define LANES {}\n", options.lanes);
   if (options.purpose == KernelPurpose::Ceiling) out += "#define RECORD_SAMPLES\n";
   if (options.purpose != KernelPurpose::EvalPoints) {
@@ -81,6 +81,7 @@ std::string feature_defines(const Scene& scene, const KernelOptions& options) {
     if (uses_emission(scene.sdf)) out += "#define EMISSION\n";
   }
   if (uses_cone_pass(scene) && options.purpose != KernelPurpose::EvalPoints) out += "#define COARSE_PASS\n";
+  if (options.purpose != KernelPurpose::EvalPoints && calls_stages(scene, code)) out += "#define STAGES_CALLED\n";
   if (scene.tiling && options.purpose != KernelPurpose::EvalPoints) {
     out += scene.tiling->method == TilingMethod::Cells ? "#define TILING_CELLS\n" : "#define TILING_MOD\n";
   }
@@ -164,6 +165,18 @@ MarchOutputs march_outputs(const Scene& scene, KernelPurpose purpose, bool ray_s
   return outputs;
 }
 
+bool calls_stages(const Scene& scene, const SdfCode& code) {
+  switch (scene.render.stages) {
+    case KernelStages::Inline:
+      return false;
+    case KernelStages::Called:
+      return true;
+    case KernelStages::Auto:
+      return code.source.size() >= kCalledStagesChars;
+  }
+  return false;
+}
+
 int packets_per_item(const Scene& scene, int lanes) { return lanes > 1 && !uses_cells_tiling(scene) ? 2 : 1; }
 
 std::string generate_kernel_source(const Scene& scene, const KernelOptions& options) {
@@ -171,7 +184,8 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
     throw std::invalid_argument("native math needs float precision: OpenCL has no native_* functions for double");
   }
   std::string src = fmt::format("/* clmarch program for {} */\n", scene.source_name);
-  src += feature_defines(scene, options);
+  const SdfCode code = program_scene_code(scene, options);
+  src += feature_defines(scene, options, code);
   src += kernel_file("device_types.h");
   src += kernel_file("lanes.cl");
   src += kernel_file("primitives.cl");
@@ -189,11 +203,11 @@ std::string generate_kernel_source(const Scene& scene, const KernelOptions& opti
     if (!options.value_slots.empty())
       throw std::invalid_argument("value slots are for march programs, not eval_points");
     // eval_points takes world points; the march's points are relative to map_frame_origin.
-    src += spell_sdf_code(eval_points_scene_code(scene));
+    src += spell_sdf_code(code);
     src += kernel_file("eval_points.cl");
     return src;
   }
-  src += spell_sdf_code(program_scene_code(scene, options), options.value_slots);
+  src += spell_sdf_code(code, options.value_slots);
   src += kernel_file("field.cl");
   src += kernel_file("camera.cl");
   src += kernel_file("march_loop.cl");
@@ -243,7 +257,7 @@ SdfCode march_scene_code(const Scene& scene, bool with_ids) {
 
 ProgramKey program_key(const Scene& scene, const KernelOptions& options) {
   SdfCode code = program_scene_code(scene, options);
-  ProgramKey key{feature_defines(scene, options), code_shape(code.source), {}};
+  ProgramKey key{feature_defines(scene, options, code), code_shape(code.source), {}};
   const ValueSlots& slots = options.value_slots;
   for (std::size_t k = 0; k < code.literals.size(); ++k) {
     if (!std::binary_search(slots.begin(), slots.end(), static_cast<int>(k))) {

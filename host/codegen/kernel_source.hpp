@@ -85,6 +85,12 @@ MarchOutputs march_outputs(const Scene& scene, KernelPurpose purpose, bool ray_s
 /// the sample_mask, refine_packets and sample_points arguments of its refining pass (kernels/march.cl).
 bool uses_antialiasing(const Scene& scene, KernelPurpose purpose);
 
+/// Whether the program of scene, whose scene code (map, map_color and what they call) is code,
+/// calls its stages rather than inlining them (render.stages; auto: code of at least
+/// kCalledStagesChars characters, measured in docs/performance.md).
+bool calls_stages(const Scene& scene, const SdfCode& code);
+inline constexpr std::size_t kCalledStagesChars = 9000;
+
 /// Packets each work-item of the march kernel marches (PACKETS_PER_ITEM): two, interleaved, with
 /// vector lanes (CPUs), except under the cells tiling, whose traversal marches one; one with a
 /// single lane (GPUs, where work-items already run in lock-step and registers are scarce).

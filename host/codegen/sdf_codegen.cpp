@@ -1034,7 +1034,7 @@ std::string sdf_functions(const Node& root, const glm::dvec3& frame_origin, bool
              "SDF_INLINE vfloat map(SceneValues values, vec3v p) {{\n{}  return {};\n}}\n\n"
              "/* Distance to the scene and the material there: albedo, surface = ({}, reflectivity), the\n"
              " * light it emits{}. */\n"
-             "SDF_INLINE vfloat map_color(SceneValues values, vec3v p, vec3v* albedo, vec3v* surface, vec3v* "
+             "SDF_STAGE vfloat map_color(SceneValues values, vec3v p, vec3v* albedo, vec3v* surface, vec3v* "
              "emission{}) {{\n{}"
              "  *albedo = {};\n  *surface = {};\n  *emission = {};\n{}  return {};\n}}\n",
              distance_only.body(), d.distance,

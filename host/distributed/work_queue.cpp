@@ -77,6 +77,7 @@ struct Report {
   char device[256] = {};
   char host[128] = {};
   char literals[8] = {};
+  char stages[8] = {};
 };
 
 template <std::size_t N>
@@ -110,6 +111,7 @@ Report report_of(int kind, int unit, const UnitFigures* figures, std::size_t pay
     r.out_of_distance = s.out_of_distance;
     copy_text(r.device, s.device);
     copy_text(r.literals, s.literals);
+    copy_text(r.stages, s.stages);
   }
   return r;
 }
@@ -121,6 +123,7 @@ UnitFigures figures_of(const Report& r) {
   RenderStats& s = f.stats;
   s.device = r.device;
   s.literals = r.literals;
+  s.stages = r.stages;
   s.lanes = r.lanes;
   s.chunks = r.chunks;
   s.kernel_ms = r.kernel_ms;

@@ -307,6 +307,7 @@ RenderResult OpenClRenderer::render_rows(int band_first_row, int band_rows) {
   stats.lanes = s.prepared.lanes;
   stats.precision = s.prepared.kernel_options.variant.precision;
   stats.literals = s.prepared.literals_in_buffer ? "buffer" : "inline";
+  stats.stages = s.prepared.stages_called ? "called" : "inline";
   if (!s.rendered) {
     stats.build_ms = dp.build_ms + first_enqueue_ms.value_or(0.0);
     log_verbose(

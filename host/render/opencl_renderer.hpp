@@ -65,6 +65,9 @@ struct RenderStats {
   int chunks = 1;
   /// Where the program keeps the scene's numbers (render.literals as taken): "inline" or "buffer".
   std::string literals = "inline";
+  /// Whether the program calls its stages or inlines them (render.stages as taken): "called" or
+  /// "inline".
+  std::string stages = "inline";
 };
 
 struct RenderResult {

@@ -60,7 +60,8 @@ PreparedProgram prepare_program(const Scene& scene, const OpenClOptions& options
           source,
           kernel_options,
           program_key(scene, kernel_options),
-          in_buffer};
+          in_buffer,
+          march && kernel_options.lanes > 1 && calls_stages(scene, program_scene_code(scene, kernel_options))};
 }
 
 }  // namespace clmarch

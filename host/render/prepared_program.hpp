@@ -25,6 +25,8 @@ struct PreparedProgram {
   ProgramKey key;
   /// Whether every literal of the scene's code is read from the values buffer (render.literals).
   bool literals_in_buffer = false;
+  /// Whether its march kernels call their stages (render.stages, kernels/lanes.cl).
+  bool stages_called = false;
 };
 
 /// The program variant the scene renders with: variant, in double where the scene asks for

@@ -224,6 +224,13 @@ inline constexpr const char* kPrecisionNames[] = {"float", "double"};
 enum class LiteralPlacement { Auto, Inline, Buffer };
 inline constexpr const char* kLiteralPlacementNames[] = {"auto", "inline", "buffer"};
 
+/// Whether the kernels' stages (a march loop, a normal, a shadow ray, a hit's shading and material)
+/// are functions called or inlined into the kernel (kernels/lanes.cl): called, a large scene's
+/// program compiles in a fraction of the time; inlined, a small one marches faster. auto calls them
+/// for scenes whose code is large (codegen/kernel_source.hpp, calls_stages), measured.
+enum class KernelStages { Auto, Inline, Called };
+inline constexpr const char* kKernelStagesNames[] = {"auto", "inline", "called"};
+
 /// The most samples per pixel render.samples allows.
 inline constexpr int kMaxSamples = 1024;
 
@@ -261,6 +268,7 @@ struct RenderSettings {
   bool adaptive = true;
   Precision precision = Precision::Float;
   LiteralPlacement literals = LiteralPlacement::Auto;
+  KernelStages stages = KernelStages::Auto;
 
   bool operator==(const RenderSettings&) const = default;
 };

@@ -108,7 +108,7 @@ class SceneReader {
     yaml_.expect_map(node, "render",
                      {"width", "height", "max_steps", "epsilon", "max_distance", "normal_method", "normal_epsilon",
                       "over_relaxation", "hit_threshold", "cone_factor", "bounds", "subtree_bounds", "coarse_pass",
-                      "pruning", "samples", "adaptive", "precision", "literals"});
+                      "pruning", "samples", "adaptive", "precision", "literals", "stages"});
     const Range side = Range::closed(1, kMaxImageSide);
     if (node["width"]) render.width = yaml_.integer(node["width"], "render.width", side);
     if (node["height"]) render.height = yaml_.integer(node["height"], "render.height", side);
@@ -142,6 +142,8 @@ class SceneReader {
     if (node["literals"])
       render.literals =
           static_cast<LiteralPlacement>(yaml_.choice(node["literals"], "render.literals", kLiteralPlacementNames));
+    if (node["stages"])
+      render.stages = static_cast<KernelStages>(yaml_.choice(node["stages"], "render.stages", kKernelStagesNames));
     if (!image_size_fits(render.width, render.height)) {
       yaml_.fail(node,
                  fmt::format("render.width x render.height = {} x {} exceeds {} pixels (got {}, expected at most {})",
