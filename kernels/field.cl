@@ -22,4 +22,4 @@ SDF_INLINE vfloat field(SceneValues values, vec3v p) {
 
 /* The field at a point off the march loops (a normal's taps, occlusion's samples): a stage
  * (lanes.cl), so that map() comes into the program once for all of them, not once per tap. */
-SDF_INLINE vfloat field_tap(SceneValues values, vec3v p) { return field(values, p); }
+SDF_STAGE vfloat field_tap(SceneValues values, vec3v p) { return field(values, p); }
