@@ -28,7 +28,7 @@ SDF_STAGE Hit surface_at(SceneValues values, const MarchResult* m, vec3v relativ
 #if defined(NEED_SHADING) && defined(REFLECTIONS)
 /* Adds the mirror bounces of the PBR course: each bounce's color weighted by the product of the
  * reflectivities met so far; a bounce that misses shows the sky. */
-SDF_INLINE vec3v add_reflections(SceneValues values, vec3v color, Hit hit, vec3v dir, vint live,
+SDF_CALLED vec3v add_reflections(SceneValues values, vec3v color, Hit hit, vec3v dir, vint live,
                                  const MarchParams* params, __global const LightParams* lights) {
   const ShadingParams* shading = &params->shading;
   /* Mirror rays march plainly with the fixed epsilon, inside the scene's bounds: the pixel cone is
