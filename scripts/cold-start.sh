@@ -120,7 +120,7 @@ wait_quiet
 echo "# $(date -u +%FT%TZ) load $(cut -d' ' -f1-3 /proc/loadavg), $(nproc) CPUs, $(uname -m)," \
      "clmarch $clmarch ($("$clmarch" --version 2>/dev/null)), $ROUNDS round(s), an empty PoCL cache per run"
 for scene in $SCENES; do
-  name=${scene#scenes/}; name=${name#benchmarks/real_scenes/scenes/}
+  name=${scene#scenes/}; name=${name/benchmarks\/real_scenes\/scenes\//real_scenes\/}; key=${name//\//_}
   for ((r = 1; r <= ROUNDS; r++)); do
     wait_quiet
     foreign_begin
@@ -135,7 +135,7 @@ for scene in $SCENES; do
     cp "$tmp/err" "$tmp/pocl.log"
     phases=$(pocl_phases "$tmp/pocl.log")
     if [ "$REPLAY" = 1 ]; then split=$(replay "$scene"); else split="- - -"; fi
-    echo "$wall $build $program $dispatch $phases $split $foreign" >>"$tmp/$name.runs"
+    echo "$wall $build $program $dispatch $phases $split $foreign" >>"$tmp/$key.runs"
     [ "$VERBOSE" = 1 ] && echo "# $name: $wall $build $program $dispatch $phases $split $foreign"
   done
 done
@@ -146,18 +146,18 @@ echo "| scene | whole process s | build_ms | clBuildProgram ms | first dispatch 
      "| WG func ms | codegen ms | link ms | kernels | replay: parse ms | IR gen ms | O2 ms | foreign |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 for scene in $SCENES; do
-  name=${scene#scenes/}; name=${name#benchmarks/real_scenes/scenes/}
+  name=${scene#scenes/}; name=${name/benchmarks\/real_scenes\/scenes\//real_scenes\/}; key=${name//\//_}
   row="| $name"
   for c in 1 2 3 4 5 6 7 8 9 10 11 12 13; do
-    if awk -v c="$c" '$c == "-" { exit 1 }' "$tmp/$name.runs"; then
-      v=$(median "$tmp/$name.runs" "$c")
+    if awk -v c="$c" '$c == "-" { exit 1 }' "$tmp/$key.runs"; then
+      v=$(median "$tmp/$key.runs" "$c")
       case $c in 1) v=$(printf '%.2f' "$v") ;; *) v=$(printf '%.0f' "$v") ;; esac
     else
       v=-
     fi
     row+=" | $v"
   done
-  echo "$row | $(largest "$tmp/$name.runs" 14) |"
+  echo "$row | $(largest "$tmp/$key.runs" 14) |"
 done
 echo
 echo "build_ms = clBuildProgram + first dispatch; front end + kernel lib ~ clBuildProgram; WG func + codegen +" \

@@ -57,11 +57,12 @@ fi
 clmarch=$(readlink -f "$clmarch")
 folder=benchmarks/real_scenes
 peer=${GLSL_PEER:-${TMPDIR:-/tmp}/clmarch-glsl-peer}
-if [ ! -x "$peer" ]; then   # the peers' harness, built once (scripts/setup.sh --peers installs its libraries)
+if [ ! -x "$peer" ]; then   # the peers' harness, built once; scripts/setup.sh --peers installs its libraries
   peers=${PEERS:-$(pwd)/../shared/peers}
   [ -f "$peers/glsl_peer.c" ] || { echo "$0: no $peers/glsl_peer.c (set PEERS to the peers folder)" >&2; exit 2; }
-  gcc -O2 -Wall -o "$peer" "$peers/glsl_peer.c" -lEGL -lOSMesa -lpng ||
-    { echo "$0: cannot build the peer harness (scripts/setup.sh --peers installs its libraries)" >&2; exit 2; }
+  build_peer() { gcc -O2 -Wall -o "$peer" "$peers/glsl_peer.c" -lEGL -lOSMesa -lpng 2>"${TMPDIR:-/tmp}/glsl_peer.log"; }
+  build_peer || { scripts/setup.sh --peers && build_peer; } ||
+    { echo "$0: cannot build the peer harness (${TMPDIR:-/tmp}/glsl_peer.log)" >&2; exit 2; }
 fi
 ROUNDS=${ROUNDS:-3}
 REPEAT=${REPEAT:-9}
