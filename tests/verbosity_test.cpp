@@ -92,7 +92,7 @@ TEST(Verbosity, VerboseNamesDeviceBuildLanesLocalSizeAndCache) {
   EXPECT_TRUE(contains(first.err, "clmarch: device " + device.label() + ", CPU, build options '-cl-std=CL1.2'\n"))
       << first.err;
   EXPECT_TRUE(contains(first.err, "clmarch: lanes 4 (pixels per work-item), local size " +
-                                      std::to_string(default_local_size(device)) + ", 1 chunk, kernel "))
+                                      std::to_string(default_local_size(device)) + ", stages inline, 1 chunk, kernel "))
       << first.err;
   EXPECT_TRUE(contains(first.err, "clmarch: wrote ")) << first.err;
   // What the automatic march settings chose: a lone sphere, bounded, needs no cone pass.
