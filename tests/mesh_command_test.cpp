@@ -38,6 +38,11 @@ TEST(MeshCommand, WritesTheSurfaceAndItsFigures) {
   EXPECT_EQ(stats.at("cells_sampled").get<std::uint64_t>() + stats.at("cells_pruned").get<std::uint64_t>(),
             stats.at("cells").get<std::uint64_t>());
   EXPECT_GT(stats.at("cells_pruned").get<std::uint64_t>(), 0u);
+  // The surface's box: its longest side is --resolution cells.
+  const auto box = stats.at("box").get<std::vector<std::vector<double>>>();
+  double longest = 0.0;
+  for (int axis = 0; axis < 3; ++axis) longest = std::max(longest, box.at(1).at(axis) - box.at(0).at(axis));
+  EXPECT_NEAR(longest, 32 * stats.at("cell").get<double>(), 1e-9);
   for (const char* key : {"prune_ms", "sample_ms", "refine_ms", "shade_ms", "write_ms", "peak_resident_bytes",
                           "predicted_bytes", "vertices", "evaluations"}) {
     EXPECT_TRUE(stats.contains(key)) << key;

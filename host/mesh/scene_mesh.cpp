@@ -60,6 +60,7 @@ constexpr double kConvergedCells = 1e-6;
 nlohmann::json MeshStats::to_json() const {
   return {{"grid", {grid_cells.x, grid_cells.y, grid_cells.z}},
           {"cell", cell},
+          {"box", {{box_low.x, box_low.y, box_low.z}, {box_high.x, box_high.y, box_high.z}}},
           {"level", level},
           {"level_reason", level_reason},
           {"cells", cells},
@@ -146,6 +147,8 @@ SceneMesh mesh_scene(const Scene& scene, const MeshSettings& settings,
   }
   glm::dvec3 low, high;
   surface_box(scene, stats.level, low, high);
+  stats.box_low = low;
+  stats.box_high = high;
   const MeshGrid grid = mesh_grid(low, high, settings.resolution);
   stats.grid_cells = grid.cells;
   stats.cell = grid.cell;

@@ -28,6 +28,9 @@ struct MeshSettings {
 struct MeshStats {
   glm::ivec3 grid_cells{0};
   double cell = 0.0;
+  /// The box the surface lies in (surface_box), which the grid covers with a cell to spare.
+  glm::dvec3 box_low{0.0};
+  glm::dvec3 box_high{0.0};
   /// The level meshed: 0, or render.epsilon for fields that are estimates (fractals), whose sign
   /// is no inside/outside test; level_reason says why.
   double level = 0.0;
