@@ -17,8 +17,9 @@ def test_a_sphere_mesh_is_closed_and_on_the_sphere():
     directed = collections.Counter(map(tuple, np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])))
     assert all(count == 1 and directed[(b, a)] == 1 for (a, b), count in directed.items()), "watertight"
     radius = np.linalg.norm(vertices - [0.25, 0, 0], axis=1)
-    # The device's float field: within its float rounding of the coordinates (about 1.3) of 1.
-    assert np.max(np.abs(radius - 1)) < 8 * np.finfo(np.float32).eps * 1.3 + 1e-6 * result["stats"]["cell"]
+    # The device's float field: within its float rounding of the coordinates (about 1.3) and the
+    # root finding's tolerance (1e-4 of a cell) of 1.
+    assert np.max(np.abs(radius - 1)) < 8 * np.finfo(np.float32).eps * 1.3 + 1e-4 * result["stats"]["cell"]
     assert np.allclose(result["colors"], [0.1, 0.7, 0.3], atol=1e-6)
     assert result["stats"]["triangles"] == len(faces)
 
