@@ -1,6 +1,8 @@
 // The mesh writers read back by an independent reader (Assimp): every format keeps the triangles
 // in order with their winding, and the normals and colours it has room for.
 #include "common/errors.hpp"
+#include "image/image_writer.hpp"
+#include "mesh/format_writers.hpp"
 #include "mesh/mesh_writers.hpp"
 #include "support/mesh_checks.hpp"
 #include "support/mesh_readers.hpp"
@@ -9,7 +11,10 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <cmath>
 #include <cstring>
+#include <limits>
 
 namespace clmarch {
 namespace {
@@ -168,6 +173,27 @@ TEST(MeshWriters, MeshesWithoutNormalsOrColoursLeaveThemOut) {
 }
 
 // 40,000 vertices and 79,202 triangles: each file is larger than the 1 MiB chunk it is written in.
+TEST(MeshWriters, SrgbBytesFromTheTableAreTheFormulas) {
+  // Every 97th float of [0, 1], the codes' steps and their neighbours, and what lies outside.
+  const auto direct = [](float x) { return static_cast<int>(std::lround(linear_to_srgb(x) * 255.0f)); };
+  for (std::uint32_t bits = 0; bits <= std::bit_cast<std::uint32_t>(1.0f); bits += 97) {
+    const float x = std::bit_cast<float>(bits);
+    ASSERT_EQ(srgb_byte(x), direct(x)) << x;
+  }
+  for (int k = 0; k <= 255; ++k) {
+    const float step = std::pow((k / 255.0f + 0.055f) / 1.055f, 2.4f);
+    for (float x : {std::nextafter(step, 0.0f), step, std::nextafter(step, 2.0f)}) {
+      if (x <= 1.0f) {
+        ASSERT_EQ(srgb_byte(x), direct(x)) << x;
+      }
+    }
+  }
+  EXPECT_EQ(srgb_byte(-1.0f), 0);
+  EXPECT_EQ(srgb_byte(2.0f), 255);
+  EXPECT_EQ(srgb_byte(std::numeric_limits<float>::infinity()), 255);
+  EXPECT_EQ(srgb_byte(std::numeric_limits<float>::quiet_NaN()), 0);
+}
+
 TEST(MeshWriters, MeshesLargerThanAChunkReadBackWhole) {
   TempDir dir;
   const TriangleMesh mesh = testing::sheet(200);

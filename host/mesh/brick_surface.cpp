@@ -26,8 +26,31 @@ constexpr int kBrickEnds = kBrickCells * kBrickCells * kBrickCells;
 
 constexpr int brick_sample_index(int x, int y, int z) { return (z * kSamplesPerSide + y) * kSamplesPerSide + x; }
 constexpr int brick_end_index(int x, int y, int z) { return (z * kBrickCells + y) * kBrickCells + x; }
+constexpr std::uint16_t kFullRow = (1u << kSamplesPerSide) - 1;
 
-bool bit_is_set(const std::array<std::uint64_t, 12>& bits, int i) { return ((bits[i >> 6] >> (i & 63)) & 1) != 0; }
+/// Set bits of v, inline: without a popcnt target std::popcount calls libgcc.
+inline int bit_count(std::uint64_t v) {
+  v = v - ((v >> 1) & 0x5555555555555555ull);
+  v = (v & 0x3333333333333333ull) + ((v >> 2) & 0x3333333333333333ull);
+  v = (v + (v >> 4)) & 0x0f0f0f0f0f0f0f0full;
+  return static_cast<int>((v * 0x0101010101010101ull) >> 56);
+}
+
+/// The cases of the 8 cells of row (y, z) of a brick, from its rows of below bits; false (cases
+/// untouched) when every corner of the row lies on one side.
+bool row_cases(const std::array<std::uint16_t, 81>& rows, int y, int z, std::array<int, 8>& cases) {
+  const unsigned r00 = rows[static_cast<std::size_t>(z * kSamplesPerSide + y)];
+  const unsigned r10 = rows[static_cast<std::size_t>(z * kSamplesPerSide + y + 1)];
+  const unsigned r01 = rows[static_cast<std::size_t>((z + 1) * kSamplesPerSide + y)];
+  const unsigned r11 = rows[static_cast<std::size_t>((z + 1) * kSamplesPerSide + y + 1)];
+  if ((r00 | r10 | r01 | r11) == 0 || (r00 & r10 & r01 & r11) == kFullRow) return false;
+  for (int x = 0; x < kBrickCells; ++x) {
+    // Corner bits: x 1, y 2, z 4.
+    cases[static_cast<std::size_t>(x)] = static_cast<int>(((r00 >> x) & 3) | (((r10 >> x) & 3) << 2) |
+                                                          (((r01 >> x) & 3) << 4) | (((r11 >> x) & 3) << 6));
+  }
+  return true;
+}
 
 using BrickRange = tbb::blocked_range<std::size_t>;
 
@@ -38,7 +61,14 @@ BrickSurface::BrickSurface(const MeshGrid& grid, double level, CellMethod method
       level_(level),
       table_(cell_table(method)),
       steps_(edge_steps(method)),
-      words_(kBrickEnds * edge_steps(method).count / 64) {}
+      words_(kBrickEnds * edge_steps(method).count / 64) {
+  // Bit x of a row's 8 edges to bit x * steps of its slots.
+  for (unsigned mask = 0; mask < 256; ++mask) {
+    for (int x = 0; x < kBrickCells; ++x) {
+      if ((mask >> x) & 1u) spread_[mask] |= std::uint64_t{1} << (x * steps_.count);
+    }
+  }
+}
 
 std::uint64_t BrickSurface::key(const glm::ivec3& b) const {
   return (static_cast<std::uint64_t>(b.z) * static_cast<std::uint64_t>(grid_.bricks.y) +
@@ -47,28 +77,36 @@ std::uint64_t BrickSurface::key(const glm::ivec3& b) const {
          static_cast<std::uint64_t>(b.x);
 }
 
-BrickSurface::BelowBits BrickSurface::below_bits(const float* samples) const {
-  BelowBits bits{};
+BrickSurface::BelowRows BrickSurface::below_rows(const float* samples) const {
+  BelowRows rows{};
   const auto level = static_cast<float>(level_);
-  for (std::size_t i = 0; i < kBrickPoints; ++i) {
+  for (std::size_t row = 0; row < rows.size(); ++row) {
+    unsigned bits = 0;
     // The level in float, as the samples are: a value equal to it is above, NaN too.
-    if (samples[i] < level) bits[i >> 6] |= std::uint64_t{1} << (i & 63);
+    for (int x = 0; x < kSamplesPerSide; ++x)
+      bits |= static_cast<unsigned>(samples[row * kSamplesPerSide + x] < level) << x;
+    rows[row] = static_cast<std::uint16_t>(bits);
   }
-  return bits;
+  return rows;
 }
 
-bool BrickSurface::face_crossed(const BelowBits& below, int axis, int side) const {
-  int below_count = 0;
+bool BrickSurface::face_crossed(const BelowRows& rows, int axis, int side) const {
+  unsigned any = 0, all = kFullRow;
   for (int i = 0; i < kSamplesPerSide; ++i) {
     for (int j = 0; j < kSamplesPerSide; ++j) {
-      glm::ivec3 p(0);
-      p[axis] = side * kBrickCells;
-      p[(axis + 1) % 3] = i;
-      p[(axis + 2) % 3] = j;
-      below_count += bit_is_set(below, brick_sample_index(p.x, p.y, p.z));
+      // Axis x: bit side * 8 of every row; y: the rows at y = side * 8; z: those at z = side * 8.
+      unsigned bit;
+      if (axis == 0) {
+        bit = (rows[static_cast<std::size_t>(i * kSamplesPerSide + j)] >> (side * kBrickCells)) & 1u;
+      } else {
+        const int y = axis == 1 ? side * kBrickCells : i, z = axis == 2 ? side * kBrickCells : i;
+        bit = (rows[static_cast<std::size_t>(z * kSamplesPerSide + y)] >> j) & 1u;
+      }
+      any |= bit;
+      all &= bit ? kFullRow : 0u;
     }
   }
-  return below_count != 0 && below_count != kSamplesPerSide * kSamplesPerSide;
+  return any != 0 && all == 0;
 }
 
 std::uint64_t BrickSurface::sample(MeshField& field, const std::vector<glm::ivec3>& bricks, std::size_t batch_points,
@@ -98,7 +136,7 @@ std::uint64_t BrickSurface::sample(MeshField& field, const std::vector<glm::ivec
       }
       // The neighbours across crossed faces that are inside the grid and not yet held.
       for (std::size_t b = 0; b < count; ++b) {
-        const BelowBits below = below_bits(block.get() + b * kBrickPoints);
+        const BelowRows below = below_rows(block.get() + b * kBrickPoints);
         for (int axis = 0; axis < 3; ++axis) {
           for (int side = 0; side < 2; ++side) {
             glm::ivec3 n = batch[b];
@@ -123,7 +161,7 @@ std::uint64_t BrickSurface::sample(MeshField& field, const std::vector<glm::ivec
 std::uint32_t BrickSurface::vertex_number(std::uint32_t id, int bit) const {
   const std::size_t word = static_cast<std::size_t>(id) * words_ + static_cast<std::size_t>(bit >> 6);
   const std::uint64_t before = edge_bits_[word] & ((std::uint64_t{1} << (bit & 63)) - 1);
-  return first_vertex_[id] + bits_before_[word] + static_cast<std::uint32_t>(std::popcount(before));
+  return first_vertex_[id] + bits_before_[word] + static_cast<std::uint32_t>(bit_count(before));
 }
 
 void BrickSurface::march() {
@@ -156,26 +194,28 @@ void BrickSurface::march() {
                         : it == slot_of_.end() ? -1
                                                : static_cast<std::int32_t>(id_of_slot[it->second]);
       }
-      const BelowBits below = below_bits(samples_[order_[id]]);
+      const BelowRows rows = below_rows(samples_[order_[id]]);
       std::uint64_t* bits = &edge_bits_[id * static_cast<std::size_t>(words_)];
       std::uint64_t triangles = 0;
       for (int z = 0; z < kBrickCells; ++z) {
         for (int y = 0; y < kBrickCells; ++y) {
-          for (int x = 0; x < kBrickCells; ++x) {
-            const int here = brick_sample_index(x, y, z);
-            const bool low = bit_is_set(below, here);
-            const int end = brick_end_index(x, y, z) * steps;
-            for (int k = 0; k < steps; ++k) {
-              const glm::ivec3 d = step_offset(steps_.steps[static_cast<std::size_t>(k)]);
-              if (low != bit_is_set(below, brick_sample_index(x + d.x, y + d.y, z + d.z))) {
-                bits[(end + k) >> 6] |= std::uint64_t{1} << ((end + k) & 63);
-              }
-            }
-            int cell_case = 0;
-            for (int c = 0; c < 8; ++c) {
-              const glm::ivec3 d = step_offset(c);
-              cell_case |= static_cast<int>(bit_is_set(below, brick_sample_index(x + d.x, y + d.y, z + d.z))) << c;
-            }
+          // The row's crossed edges of each step, 8 bits over x, spread to bit x * steps + k.
+          const unsigned here = rows[static_cast<std::size_t>(z * kSamplesPerSide + y)];
+          std::uint64_t crossed = 0;
+          for (int k = 0; k < steps; ++k) {
+            const glm::ivec3 d = step_offset(steps_.steps[static_cast<std::size_t>(k)]);
+            const unsigned there = rows[static_cast<std::size_t>((z + d.z) * kSamplesPerSide + y + d.y)] >> d.x;
+            crossed |= spread_[(here ^ there) & 0xffu] << k;
+          }
+          if (crossed != 0) {
+            const int first = brick_end_index(0, y, z) * steps;
+            const int shift = first & 63;
+            bits[first >> 6] |= crossed << shift;
+            if (shift != 0 && shift + kBrickCells * steps > 64) bits[(first >> 6) + 1] |= crossed >> (64 - shift);
+          }
+          std::array<int, 8> cases{};
+          if (!row_cases(rows, y, z, cases)) continue;
+          for (int cell_case : cases) {
             triangles += static_cast<std::uint64_t>(table_[static_cast<std::size_t>(cell_case)].count);
             cells += cell_case != 0 && cell_case != 255;
           }
@@ -185,7 +225,7 @@ void BrickSurface::march() {
       for (int w = 0; w < words_; ++w) {
         bits_before_[id * static_cast<std::size_t>(words_) + static_cast<std::size_t>(w)] =
             static_cast<std::uint16_t>(count);
-        count += static_cast<std::uint32_t>(std::popcount(bits[w]));
+        count += static_cast<std::uint32_t>(bit_count(bits[w]));
       }
       vertex_count[id] = count;
       triangle_count[id] = triangles;
@@ -215,16 +255,14 @@ void BrickSurface::march() {
   tbb::parallel_for(BrickRange(0, n, 16), [&](const BrickRange& range) {
     throw_if_cancelled();
     for (std::size_t id = range.begin(); id < range.end(); ++id) {
-      const BelowBits below = below_bits(samples_[order_[id]]);
+      const BelowRows rows = below_rows(samples_[order_[id]]);
       std::array<std::uint32_t, 3>* out = triangles_.data() + first_triangle_[id];
       for (int z = 0; z < kBrickCells; ++z) {
         for (int y = 0; y < kBrickCells; ++y) {
+          std::array<int, 8> cases{};
+          if (!row_cases(rows, y, z, cases)) continue;
           for (int x = 0; x < kBrickCells; ++x) {
-            int cell_case = 0;
-            for (int c = 0; c < 8; ++c) {
-              const glm::ivec3 d = step_offset(c);
-              cell_case |= static_cast<int>(bit_is_set(below, brick_sample_index(x + d.x, y + d.y, z + d.z))) << c;
-            }
+            const int cell_case = cases[static_cast<std::size_t>(x)];
             const CellCase& cell = table_[static_cast<std::size_t>(cell_case)];
             for (int t = 0; t < cell.count; ++t) {
               std::array<std::uint32_t, 3>& triangle = *out++;

@@ -56,13 +56,13 @@ class BrickSurface {
   void release_samples();
 
  private:
-  using BelowBits = std::array<std::uint64_t, 12>;
+  /// Row (y, z) of a brick's samples as bits over x, set where the sample is below the level.
+  using BelowRows = std::array<std::uint16_t, 81>;
 
   std::uint64_t key(const glm::ivec3& brick) const;
-  /// Bit (z * 9 + y) * 9 + x set where the brick's sample there is below the level.
-  BelowBits below_bits(const float* samples) const;
+  BelowRows below_rows(const float* samples) const;
   /// Whether the samples of the brick's face on axis, side (0 low, 1 high) lie on both sides.
-  bool face_crossed(const BelowBits& below, int axis, int side) const;
+  bool face_crossed(const BelowRows& rows, int axis, int side) const;
   /// The number of edge slot `bit` of brick id's set: its first vertex plus the set bits before it.
   std::uint32_t vertex_number(std::uint32_t id, int bit) const;
 
@@ -72,6 +72,8 @@ class BrickSurface {
   const EdgeSteps& steps_;
   /// Words of a brick's edge set: 512 lower ends times the method's steps, in bits.
   int words_;
+  /// Bit x of a byte moved to bit x * (the method's steps).
+  std::array<std::uint64_t, 256> spread_{};
 
   // Bricks by slot (the order they were sampled in) and their samples.
   std::vector<glm::ivec3> corners_;

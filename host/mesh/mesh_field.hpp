@@ -32,7 +32,7 @@ struct PlacementSettings {
   double tolerance = 0.0;
   /// Most field evaluations of the root finding per vertex.
   int max_steps = 8;
-  /// Central differences this far either side of the vertex.
+  /// The normal's taps are this far from the vertex along each axis (a tetrahedron's corners).
   double normal_step = 1e-4;
 };
 

@@ -90,17 +90,16 @@ class ReferenceField final : public MeshField {
                                        settings, v.evaluations);
         v.place = static_cast<float>(t);
         const glm::dvec3 p = a + t * d;
+        // Four taps at a tetrahedron's corners, as the kernel takes them.
         glm::dvec3 gradient(0.0);
-        for (int axis = 0; axis < 3; ++axis) {
-          glm::dvec3 h(0.0);
-          h[axis] = settings.normal_step;
-          gradient[axis] = distance(p + h) - distance(p - h);
-        }
+        for (const glm::dvec3& k :
+             {glm::dvec3(1, -1, -1), glm::dvec3(-1, -1, 1), glm::dvec3(-1, 1, -1), glm::dvec3(1, 1, 1)})
+          gradient += k * distance(p + settings.normal_step * k);
         const double length = glm::length(gradient);
         const glm::dvec3 up = d * (s.value_to > s.value_from ? 1.0 : -1.0);
         v.normal = glm::vec3(length > 0.0 && std::isfinite(length) ? gradient / length : glm::normalize(up));
         v.color = glm::vec3(reference_sample(scene_.sdf, origin_ + p, material_).color);
-        v.evaluations += 7;
+        v.evaluations += 5;
       }
     });
   }

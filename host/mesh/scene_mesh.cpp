@@ -186,8 +186,8 @@ SceneMesh mesh_scene(const Scene& scene, const MeshSettings& settings, const Mes
   }
   stats.march_ms = ms_since(start);
 
-  // Each vertex onto the level, with its normal (central differences a tenth of a cell or
-  // normal_epsilon apart, whichever is smaller) and colour, a batch of bricks' vertices at a time.
+  // Each vertex onto the level, with its normal (four taps a tenth of a cell or
+  // normal_epsilon from it, whichever is smaller) and colour, a batch of bricks' vertices at a time.
   start = std::chrono::steady_clock::now();
   PlacementSettings placement;
   placement.level = stats.level;
