@@ -17,8 +17,9 @@
 # /usr/bin/python3); `setup.sh --peers` the GLSL peer's libraries (EGL, OSMesa, libpng, Mesa's
 # llvmpipe) for scripts/speed-vs-peers.sh; `setup.sh --shells` adds zsh and fish, whose completion
 # files the tests then check too, `setup.sh --package-check` debootstrap and lintian for
-# scripts/package-check.sh, and `setup.sh --mandelbulber` Mandelbulber2 (2.20 in Debian 12), the
-# peer whose voxel export scripts/mesh-vs-mandelbulber.sh times against `clmarch mesh`.
+# scripts/package-check.sh, `setup.sh --mandelbulber` Mandelbulber2 (2.20 in Debian 12), the
+# peer whose voxel export scripts/mesh-vs-mandelbulber.sh times against `clmarch mesh`, and
+# `setup.sh --povray` POV-Ray, which renders the meshes' pictures headless (scripts/mesh-pictures.sh).
 set -euo pipefail
 
 packages=(
@@ -40,7 +41,8 @@ for arg in "$@"; do
     --shells) packages+=(zsh fish) ;;
     --package-check) packages+=(debootstrap lintian) ;;
     --mandelbulber) packages+=(mandelbulber2) ;;
-    *) echo "setup.sh: unknown option $arg (expected --plots, --peers, --shells, --package-check or --mandelbulber)" >&2; exit 2 ;;
+    --povray) packages+=(povray) ;;
+    *) echo "setup.sh: unknown option $arg (expected --plots, --peers, --shells, --package-check, --mandelbulber or --povray)" >&2; exit 2 ;;
   esac
 done
 

@@ -56,8 +56,9 @@ CLI::App* add_mesh_command(CLI::App& app, MeshCommandOptions& options) {
   mesh->add_option("--backend", options.backend,
                    "opencl (default), or reference: the field from the double-precision CPU reference")
       ->check(CLI::IsMember({"opencl", "reference"}));
-  mesh->add_option("--cells", options.cells,
-                   "cubes (default: marching cubes), or tetrahedra: marching tetrahedra, about twice the triangles")
+  mesh->add_option(
+          "--cells", options.cells,
+          "cubes (default: marching cubes), or tetrahedra: marching tetrahedra, about three times the triangles")
       ->check(CLI::IsMember({"cubes", "tetrahedra"}));
   mesh->add_flag("--stats", options.stats,
                  "Print one JSON line of figures on stdout: cells sampled and pruned, vertices, triangles, time by "

@@ -52,11 +52,11 @@ constexpr std::uint64_t kBytesPerTriangle = 12;
 // batches' 8 input and 8 output planes and their seeds and results (~96 a vertex, a quarter of the
 // points).
 constexpr std::uint64_t kBytesPerBatchPoint = 4 + 96 / 4;
-// Vertices and triangles per sampled brick of 8^3 cells, twice the most measured among the torus,
-// the sphere and the Mandelbulb at 128 to 512 cells (`clmarch mesh --stats`, 2026-11-28), as the
-// margin for curvier surfaces.
-constexpr std::uint64_t kCubeVerticesPerBrick = 200;
-constexpr std::uint64_t kCubeTrianglesPerBrick = 400;
+// Vertices and triangles per sampled brick of 8^3 cells, twice the most measured (`clmarch mesh
+// --stats`, 2026-11-28: cubes 52 for the sphere at 1024 cells, 69 for the Mandelbulb at 256;
+// tetrahedra 192 for the Mandelbulb at 256), as the margin for curvier surfaces.
+constexpr std::uint64_t kCubeVerticesPerBrick = 140;
+constexpr std::uint64_t kCubeTrianglesPerBrick = 280;
 constexpr std::uint64_t kTetraVerticesPerBrick = 400;
 constexpr std::uint64_t kTetraTrianglesPerBrick = 800;
 }  // namespace
