@@ -34,10 +34,19 @@ def test_the_mesh_is_the_clis(tmp_path):
     assert count == len(result["faces"]) and len(data) == 84 + 50 * count
 
 
+def test_tetrahedra_give_more_triangles_than_cubes():
+    cubes = clmarch.mesh(SCENES / "torus.yaml", resolution=24)
+    tetrahedra = clmarch.mesh(SCENES / "torus.yaml", resolution=24, cells="tetrahedra")
+    assert cubes["stats"]["cell_method"] == "cubes" and tetrahedra["stats"]["cell_method"] == "tetrahedra"
+    assert 2.5 < len(tetrahedra["faces"]) / len(cubes["faces"]) < 3.5
+
+
 def test_bad_mesh_arguments():
     with pytest.raises(ValueError, match="resolution must be from 8 to 8192"):
         clmarch.mesh(SCENES / "torus.yaml", resolution=4)
     with pytest.raises(ValueError, match="precision must be 'float' or 'double'"):
         clmarch.mesh(SCENES / "torus.yaml", precision="half")
+    with pytest.raises(ValueError, match="cells must be 'cubes' or 'tetrahedra'"):
+        clmarch.mesh(SCENES / "torus.yaml", resolution=16, cells="hexagons")
     with pytest.raises(ValueError, match="the surface is unbounded"):
         clmarch.mesh({"sdf": {"plane": {"normal": [0, 1, 0], "offset": 0}}}, resolution=8)
