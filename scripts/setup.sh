@@ -16,8 +16,10 @@
 # `setup.sh --plots` also installs python3-matplotlib for scripts/sweep-plot.py (run it with
 # /usr/bin/python3); `setup.sh --peers` the GLSL peer's libraries (EGL, OSMesa, libpng, Mesa's
 # llvmpipe) for scripts/speed-vs-peers.sh; `setup.sh --shells` adds zsh and fish, whose completion
-# files the tests then check too, and `setup.sh --package-check` debootstrap and lintian for
-# scripts/package-check.sh.
+# files the tests then check too, `setup.sh --package-check` debootstrap and lintian for
+# scripts/package-check.sh, `setup.sh --mandelbulber` Mandelbulber2 (2.20 in Debian 12), the
+# peer whose voxel export scripts/mesh-vs-mandelbulber.sh times against `clmarch mesh`, and
+# `setup.sh --povray` POV-Ray, which renders the meshes' pictures headless (scripts/mesh-pictures.sh).
 set -euo pipefail
 
 packages=(
@@ -38,7 +40,9 @@ for arg in "$@"; do
     --peers) packages+=(libegl-dev libosmesa6-dev libpng-dev libgl1-mesa-dri) ;;
     --shells) packages+=(zsh fish) ;;
     --package-check) packages+=(debootstrap lintian) ;;
-    *) echo "setup.sh: unknown option $arg (expected --plots, --peers, --shells or --package-check)" >&2; exit 2 ;;
+    --mandelbulber) packages+=(mandelbulber2) ;;
+    --povray) packages+=(povray) ;;
+    *) echo "setup.sh: unknown option $arg (expected --plots, --peers, --shells, --package-check, --mandelbulber or --povray)" >&2; exit 2 ;;
   esac
 done
 

@@ -38,11 +38,32 @@ TEST(MeshCommand, WritesTheSurfaceAndItsFigures) {
   EXPECT_EQ(stats.at("cells_sampled").get<std::uint64_t>() + stats.at("cells_pruned").get<std::uint64_t>(),
             stats.at("cells").get<std::uint64_t>());
   EXPECT_GT(stats.at("cells_pruned").get<std::uint64_t>(), 0u);
-  for (const char* key : {"prune_ms", "sample_ms", "refine_ms", "shade_ms", "write_ms", "peak_resident_bytes",
-                          "predicted_bytes", "vertices", "evaluations"}) {
+  // The surface's box: its longest side is --resolution cells.
+  const auto box = stats.at("box").get<std::vector<std::vector<double>>>();
+  double longest = 0.0;
+  for (int axis = 0; axis < 3; ++axis) longest = std::max(longest, box.at(1).at(axis) - box.at(0).at(axis));
+  EXPECT_NEAR(longest, 32 * stats.at("cell").get<double>(), 1e-9);
+  EXPECT_EQ(stats.at("cell_method").get<std::string>(), "cubes");
+  for (const char* key : {"setup_ms", "prune_ms", "sample_ms", "march_ms", "place_ms", "write_ms",
+                          "peak_resident_bytes", "predicted_bytes", "vertices", "evaluations"}) {
     EXPECT_TRUE(stats.contains(key)) << key;
   }
   EXPECT_NE(result.err.find("wrote " + out.string()), std::string::npos) << result.err;
+}
+
+TEST(MeshCommand, TetrahedraGiveAboutThreeTimesTheTrianglesOfCubes) {
+  const auto triangles = [](const std::string& cells) {
+    const CommandResult result =
+        run_clmarch({"mesh", source_path("scenes/torus.yaml").string(), "-o", scratch("cells.ply").string(),
+                     "--resolution", "32", "--stats", "--cells", cells});
+    EXPECT_EQ(result.exit_code, 0) << result.err;
+    const nlohmann::json stats = nlohmann::json::parse(result.out);
+    EXPECT_EQ(stats.at("cell_method").get<std::string>(), cells);
+    return static_cast<double>(stats.at("triangles").get<std::uint64_t>());
+  };
+  const double ratio = triangles("tetrahedra") / triangles("cubes");
+  EXPECT_GT(ratio, 2.5);
+  EXPECT_LT(ratio, 3.5);
 }
 
 TEST(MeshCommand, FractalsAreMeshedAtTheHitThresholdAndSaySo) {
@@ -57,8 +78,9 @@ TEST(MeshCommand, FractalsAreMeshedAtTheHitThresholdAndSaySo) {
 }
 
 TEST(MeshCommand, AMeshTooLargeForTheMachineIsRefusedBeforeSampling) {
-  // At 2048 cells the unit sphere's surface crosses about 2e5 bricks: some 20 GiB of vertices,
-  // predicted from the bricks pruning kept, against the 3 GiB a 4 GB address space leaves.
+  // At 2048 cells the unit sphere's surface crosses about 4e5 bricks: some 5 GiB of samples and
+  // vertices, predicted from the bricks pruning kept, against the 2.5 GiB a 4 GB address space
+  // leaves.
   const std::filesystem::path scene = scratch("big.yaml");
   std::ofstream(scene) << "sdf: {sphere: {radius: 1}}\n";
   const std::filesystem::path out = scratch("big.ply");
@@ -83,6 +105,7 @@ TEST(MeshCommand, BadInputIsOneLineAndWritesNothing) {
       {{"mesh", torus, "-o", scratch("t.xyz").string()}, "cannot write meshes with extension '.xyz'"},
       {{"mesh", torus, "-o", out.string(), "--resolution", "4"}, "--resolution"},
       {{"mesh", torus, "-o", out.string(), "--precision", "half"}, "--precision"},
+      {{"mesh", torus, "-o", out.string(), "--cells", "hexagons"}, "--cells"},
       {{"mesh", torus, "-o", out.string(), "--backend", "reference", "--device", "0"},
        "--device applies to the OpenCL backend"},
       {{"mesh", plane.string(), "-o", out.string()}, "the surface is unbounded"},

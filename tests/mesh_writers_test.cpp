@@ -1,6 +1,8 @@
 // The mesh writers read back by an independent reader (Assimp): every format keeps the triangles
 // in order with their winding, and the normals and colours it has room for.
 #include "common/errors.hpp"
+#include "image/image_writer.hpp"
+#include "mesh/format_writers.hpp"
 #include "mesh/mesh_writers.hpp"
 #include "support/mesh_checks.hpp"
 #include "support/mesh_readers.hpp"
@@ -9,7 +11,10 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <cmath>
 #include <cstring>
+#include <limits>
 
 namespace clmarch {
 namespace {
@@ -23,7 +28,7 @@ using testing::write_committed;
 
 /// Coordinates below 2 in float, read back by Assimp (single precision): float's step there is
 /// 2.4e-7, and Assimp's parsing of OBJ's decimals may add one more.
-constexpr double kFloatTolerance = 1e-6;
+constexpr double kMeshFloatTolerance = 1e-6;
 /// An 8-bit channel is within half a step of its value.
 constexpr double kByteTolerance = 0.5 / 255.0 + 1e-6;
 
@@ -34,9 +39,9 @@ std::vector<glm::dvec3> doubles(const std::vector<glm::vec3>& values) { return {
 
 /// The octahedron's positions and normals within float's step, and the colours given.
 Expected octahedron_expected(const testing::KnownMesh& known, std::vector<glm::dvec3> colors, double color_tolerance) {
-  return {.position_tolerance = kFloatTolerance,
+  return {.position_tolerance = kMeshFloatTolerance,
           .normals = doubles(known.mesh.normals),
-          .normal_tolerance = kFloatTolerance,
+          .normal_tolerance = kMeshFloatTolerance,
           .colors = std::move(colors),
           .color_tolerance = color_tolerance};
 }
@@ -95,11 +100,11 @@ TEST(MeshWriters, StlHasItsHeaderFiftyBytesATriangleAndFacetNormals) {
         glm::normalize(mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]] - 3.0 * kCentre));
   }
   const testing::ReadTriangles read = read_with_assimp(dir / "out.stl");
-  testing::expect_same_triangles(mesh, read, {.position_tolerance = kFloatTolerance});
+  testing::expect_same_triangles(mesh, read, {.position_tolerance = kMeshFloatTolerance});
   for (std::size_t t = 0; t < read.triangles.size(); ++t) {
     for (const testing::ReadCorner& corner : read.triangles[t]) {
       ASSERT_TRUE(corner.normal.has_value());
-      EXPECT_LT(glm::length(*corner.normal - facet_normals[t]), kFloatTolerance) << "triangle " << t;
+      EXPECT_LT(glm::length(*corner.normal - facet_normals[t]), kMeshFloatTolerance) << "triangle " << t;
       EXPECT_FALSE(corner.color.has_value()) << "STL has no colours";
     }
   }
@@ -113,7 +118,7 @@ TEST(MeshWriters, ObjKeepsNormalsAndSrgbColoursInEitherPrecision) {
     EXPECT_NE(read_text(dir / "out.obj").find("\nf 1//1 3//3 5//5\n"), std::string::npos) << "1-based, with normals";
     // OBJ's six digits of the sRGB values are within 5e-7 of them; the table's are exact.
     testing::expect_same_triangles(known.mesh, read_with_assimp(dir / "out.obj"),
-                                   octahedron_expected(known, known.srgb_colors, kFloatTolerance));
+                                   octahedron_expected(known, known.srgb_colors, kMeshFloatTolerance));
   }
 }
 
@@ -123,7 +128,7 @@ TEST(MeshWriters, GlbKeepsNormalsAndLinearColoursAndItsNodeOffset) {
   write_committed(dir / "out.glb", known.mesh, MeshFormat::Glb);
   // Assimp applies the node's translation: world positions come back.
   testing::expect_same_triangles(known.mesh, read_with_assimp(dir / "out.glb"),
-                                 octahedron_expected(known, doubles(known.mesh.colors), kFloatTolerance));
+                                 octahedron_expected(known, doubles(known.mesh.colors), kMeshFloatTolerance));
   const testing::GlbChunks glb = testing::read_glb(dir / "out.glb");
   // The bounding box's centre, (low + high) / 2 in double, which may differ from kCentre in the last bit.
   const nlohmann::json& translation = glb.json.at("nodes").at(0).at("translation");
@@ -154,7 +159,7 @@ TEST(MeshWriters, MeshesWithoutNormalsOrColoursLeaveThemOut) {
     const std::filesystem::path path = dir / (std::string("out.") + kMeshFormatNames[static_cast<int>(format)]);
     write_committed(path, mesh, format);
     const testing::ReadTriangles read = read_with_assimp(path);
-    testing::expect_same_triangles(mesh, read, {.position_tolerance = kFloatTolerance});
+    testing::expect_same_triangles(mesh, read, {.position_tolerance = kMeshFloatTolerance});
     for (const auto& triangle : read.triangles) {
       for (const testing::ReadCorner& corner : triangle) {
         EXPECT_FALSE(corner.normal.has_value()) << path;
@@ -168,6 +173,27 @@ TEST(MeshWriters, MeshesWithoutNormalsOrColoursLeaveThemOut) {
 }
 
 // 40,000 vertices and 79,202 triangles: each file is larger than the 1 MiB chunk it is written in.
+TEST(MeshWriters, SrgbBytesFromTheTableAreTheFormulas) {
+  // Every 97th float of [0, 1], the codes' steps and their neighbours, and what lies outside.
+  const auto direct = [](float x) { return static_cast<int>(std::lround(linear_to_srgb(x) * 255.0f)); };
+  for (std::uint32_t bits = 0; bits <= std::bit_cast<std::uint32_t>(1.0f); bits += 97) {
+    const float x = std::bit_cast<float>(bits);
+    ASSERT_EQ(srgb_byte(x), direct(x)) << x;
+  }
+  for (int k = 0; k <= 255; ++k) {
+    const float step = std::pow((k / 255.0f + 0.055f) / 1.055f, 2.4f);
+    for (float x : {std::nextafter(step, 0.0f), step, std::nextafter(step, 2.0f)}) {
+      if (x <= 1.0f) {
+        ASSERT_EQ(srgb_byte(x), direct(x)) << x;
+      }
+    }
+  }
+  EXPECT_EQ(srgb_byte(-1.0f), 0);
+  EXPECT_EQ(srgb_byte(2.0f), 255);
+  EXPECT_EQ(srgb_byte(std::numeric_limits<float>::infinity()), 255);
+  EXPECT_EQ(srgb_byte(std::numeric_limits<float>::quiet_NaN()), 0);
+}
+
 TEST(MeshWriters, MeshesLargerThanAChunkReadBackWhole) {
   TempDir dir;
   const TriangleMesh mesh = testing::sheet(200);
@@ -175,7 +201,7 @@ TEST(MeshWriters, MeshesLargerThanAChunkReadBackWhole) {
     const std::filesystem::path path = dir / (std::string("sheet.") + kMeshFormatNames[i]);
     write_committed(path, mesh, static_cast<MeshFormat>(i));
     EXPECT_GT(std::filesystem::file_size(path), 1u << 20) << path;
-    testing::expect_same_triangles(mesh, read_with_assimp(path), {.position_tolerance = kFloatTolerance});
+    testing::expect_same_triangles(mesh, read_with_assimp(path), {.position_tolerance = kMeshFloatTolerance});
   }
 }
 

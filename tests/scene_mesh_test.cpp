@@ -1,11 +1,14 @@
-// clmarch mesh's extraction: pruning keeps every brick the surface crosses, marching tetrahedra
-// give a closed, consistently oriented, welded mesh, and its vertices lie on the surface (closed
-// forms of a sphere and a box on the reference; the device's field against the reference's).
+// clmarch mesh's extraction: pruning keeps every brick the surface crosses, marching cubes give a
+// closed, consistently oriented, welded mesh, and its vertices lie on the surface (closed forms of
+// a sphere and a box on the reference; the device's field against the reference's).
 #include "mesh/scene_mesh.hpp"
 
 #include "common/errors.hpp"
 #include "reference/reference_sdf.hpp"
 #include "scene/scene_loader.hpp"
+#include "render/prepared_program.hpp"
+#include "support/mesh_topology.hpp"
+#include "support/test_support.hpp"
 
 #include <gtest/gtest.h>
 
@@ -18,21 +21,7 @@
 namespace clmarch {
 namespace {
 
-/// Every directed edge once and its reverse once: a closed, consistently oriented surface.
-void expect_watertight(const TriangleMesh& mesh) {
-  std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
-  for (const auto& t : mesh.triangles) {
-    for (int k = 0; k < 3; ++k) ++directed[{t[k], t[(k + 1) % 3]}];
-  }
-  std::size_t open = 0, repeated = 0;
-  for (const auto& [edge, count] : directed) {
-    if (count > 1) ++repeated;
-    const auto reverse = directed.find({edge.second, edge.first});
-    if (reverse == directed.end() || reverse->second != 1) ++open;
-  }
-  EXPECT_EQ(open, 0u) << "edges without their reverse";
-  EXPECT_EQ(repeated, 0u) << "directed edges in two triangles";
-}
+using testing::expect_watertight;
 
 SceneMesh mesh_on_reference(const Scene& scene, int resolution) {
   MeshSettings settings;
@@ -47,11 +36,11 @@ TEST(SceneMesh, ASphereIsClosedOutwardAndOnItsSurface) {
   const SceneMesh result = mesh_on_reference(scene, 32);
   const TriangleMesh& mesh = result.mesh;
   ASSERT_GT(mesh.triangles.size(), 1000u);
-  expect_watertight(mesh);
+  expect_watertight(mesh.triangles);
   const glm::dvec3 centre(0.3, -0.2, 0.1);
-  // The root finding stops once the field is within 1e-6 of a cell of 0 (the sphere's field is
-  // its distance), from a chord's sag of 1e-3 at 32 cells.
-  const double on_surface = 1e-6 * result.stats.cell;
+  // The root finding stops once the field is within MeshSettings::tolerance_cells of a cell of 0
+  // (the sphere's field is its distance), from a chord's sag of 1e-3 at 32 cells.
+  const double on_surface = MeshSettings{}.tolerance_cells * result.stats.cell;
   for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
     const glm::dvec3 out = mesh.positions[v] - centre;
     ASSERT_NEAR(glm::length(out), 1.0, on_surface) << v;
@@ -77,8 +66,8 @@ TEST(SceneMesh, NoBrickTheSurfaceCrossesIsPruned) {
   glm::dvec3 low, high;
   surface_box(scene, 0.0, low, high);
   const MeshGrid grid = mesh_grid(low, high, 48);
-  const FieldAt field = reference_field(scene, grid.origin);
-  const ActiveBricks active = find_active_bricks(grid, field, 0.0);
+  const std::unique_ptr<MeshField> field = reference_field(scene, grid.origin);
+  const ActiveBricks active = find_active_bricks(grid, *field, 0.0);
   std::set<std::tuple<int, int, int>> kept;
   for (const glm::ivec3& b : active.bricks) kept.insert({b.x, b.y, b.z});
   EXPECT_LT(active.bricks.size(), static_cast<std::size_t>(grid.bricks.x * grid.bricks.y * grid.bricks.z))
@@ -89,7 +78,7 @@ TEST(SceneMesh, NoBrickTheSurfaceCrossesIsPruned) {
   for (int z = 0; z < n.z; ++z)
     for (int y = 0; y < n.y; ++y)
       for (int x = 0; x < n.x; ++x) points.push_back(glm::dvec3(x, y, z) * grid.cell);
-  const std::vector<float> values = field(points).distance;
+  const std::vector<float> values = field->distances(points);
   const auto at = [&](int x, int y, int z) { return values[static_cast<std::size_t>((z * n.y + y) * n.x + x)]; };
   int crossing_cells = 0;
   for (int z = 0; z < grid.cells.z; ++z)
@@ -106,7 +95,7 @@ TEST(SceneMesh, NoBrickTheSurfaceCrossesIsPruned) {
   // The mesh of those bricks is closed; its area is the torus's, 4 pi^2 R r = 9.87, less what the
   // box covers plus the box's faces outside the torus.
   const SceneMesh result = mesh_on_reference(scene, 48);
-  expect_watertight(result.mesh);
+  expect_watertight(result.mesh.triangles);
   double area = 0.0;
   for (const auto& t : result.mesh.triangles) {
     const glm::dvec3 a = result.mesh.positions[t[0]], b = result.mesh.positions[t[1]], c = result.mesh.positions[t[2]];
@@ -134,15 +123,16 @@ TEST(SceneMesh, TheDeviceMeshIsTheReferences) {
       scene, settings, [&](const glm::dvec3& origin) { return opencl_field(scene, OpenClOptions{}, origin); },
       "--resolution");
   const SceneMesh reference = mesh_on_reference(scene, 24);
-  expect_watertight(device.mesh);
+  expect_watertight(device.mesh.triangles);
   // Float against double: the same cells cross the surface unless a corner's value is within
   // float rounding of 0, and the vertices agree to float rounding of the box's size.
   EXPECT_NEAR(static_cast<double>(device.mesh.triangles.size()), static_cast<double>(reference.mesh.triangles.size()),
               0.01 * reference.mesh.triangles.size());
   // Each device vertex lies on the box, also where the field kinks inside its corners: within the
-  // root finding's 1e-6 of a cell of the device's level, which is the box's to a few float
-  // roundings of the coordinates (at most 0.7 from the centre).
-  const double tolerance = 1e-6 * device.stats.cell + 8 * std::numeric_limits<float>::epsilon() * 0.7;
+  // root finding's tolerance of the device's level, which is the box's to a few float roundings of
+  // the coordinates (at most 0.7 from the centre).
+  const double tolerance =
+      settings.tolerance_cells * device.stats.cell + 8 * std::numeric_limits<float>::epsilon() * 0.7;
   for (const glm::dvec3& p : device.mesh.positions) ASSERT_NEAR(reference_distance(scene.sdf, p), 0.0, tolerance);
 }
 
@@ -161,10 +151,41 @@ TEST(SceneMesh, FarFromTheOriginADoubleFieldKeepsTheSurface) {
   };
   // In float the points 1e6 away are 1/16 apart: the vertices land anywhere within a few of them.
   EXPECT_GT(worst_offset(scene), 0.01);
-  // In double the grid's offsets are added to its origin exactly: the root finding's 1e-6 of a
-  // cell, plus float rounding of the offsets (under 1.5 from the origin).
+  // In double the grid's offsets are added to its origin exactly: the root finding's tolerance
+  // (cells of 0.17), plus float rounding of the offsets (under 1.5 from the origin).
   scene.render.precision = Precision::Double;
-  EXPECT_LT(worst_offset(scene), 1e-6 * 0.17 + 8 * std::numeric_limits<float>::epsilon() * 1.5);
+  EXPECT_LT(worst_offset(scene), settings.tolerance_cells * 0.17 + 8 * std::numeric_limits<float>::epsilon() * 1.5);
+}
+
+TEST(SceneMesh, TheMeshKernelsBuildCleanlyAndAgreeAtEveryPacketWidth) {
+  const Scene scene = load_scene_text("sdf: {torus: {major_radius: 1, minor_radius: 0.3}}\n", "torus.yaml");
+  MeshSettings settings;
+  settings.resolution = 24;
+  std::optional<SceneMesh> widest;
+  for (int lanes : {16, 8, 4, 1}) {
+    for (Precision precision : {Precision::Float, Precision::Double}) {
+      Scene variant = scene;
+      variant.render.precision = precision;
+      OpenClOptions options;
+      options.lanes = lanes;
+      const PreparedProgram program = prepare_program(variant, options, KernelPurpose::EvalPoints);
+      EXPECT_EQ(testing::compiler_warnings(program.program.build_log), "") << program.program.build_log;
+      if (precision == Precision::Double) continue;
+      const SceneMesh mesh = mesh_scene(
+          variant, settings, [&](const glm::dvec3& origin) { return opencl_field(variant, options, origin); },
+          "--resolution");
+      expect_watertight(mesh.mesh.triangles);
+      if (!widest) {
+        widest = mesh;
+        continue;
+      }
+      // The same cells and vertices: a packet's lanes compute what one lane does.
+      EXPECT_TRUE(mesh.mesh.triangles == widest->mesh.triangles) << lanes << " lanes";
+      ASSERT_EQ(mesh.mesh.positions.size(), widest->mesh.positions.size());
+      for (std::size_t v = 0; v < mesh.mesh.positions.size(); ++v)
+        ASSERT_LT(glm::length(mesh.mesh.positions[v] - widest->mesh.positions[v]), 1e-6) << lanes << " lanes";
+    }
+  }
 }
 
 }  // namespace

@@ -22,8 +22,8 @@ CLI::App* add_mesh_command(CLI::App& app, MeshCommandOptions& options) {
       app.add_subcommand("mesh", "Write a scene's surface as a watertight triangle mesh (PLY, STL, OBJ, glTF)");
   mesh->footer(
       "The field is sampled on a grid of --resolution cells along the longest side of the surface's box,\n"
-      "only in the bricks of cells the surface can cross; marching tetrahedra give a welded, watertight mesh\n"
-      "whose vertices are moved onto the field. Fractals are meshed at render.epsilon (docs/cli.md#mesh).\n"
+      "only in the bricks of cells the surface can cross; marching cubes give a welded, watertight mesh\n"
+      "whose vertices are moved onto the field. Fractals are meshed at render.epsilon (docs/meshes.md).\n"
       "Examples:\n"
       "  clmarch mesh scenes/torus.yaml -o torus.ply                       # positions, normals, colours\n"
       "  clmarch mesh scenes/mandelbulb.yaml -o bulb.stl --resolution 512 --stats\n"
@@ -56,6 +56,10 @@ CLI::App* add_mesh_command(CLI::App& app, MeshCommandOptions& options) {
   mesh->add_option("--backend", options.backend,
                    "opencl (default), or reference: the field from the double-precision CPU reference")
       ->check(CLI::IsMember({"opencl", "reference"}));
+  mesh->add_option(
+          "--cells", options.cells,
+          "cubes (default: marching cubes), or tetrahedra: marching tetrahedra, about three times the triangles")
+      ->check(CLI::IsMember({"cubes", "tetrahedra"}));
   mesh->add_flag("--stats", options.stats,
                  "Print one JSON line of figures on stdout: cells sampled and pruned, vertices, triangles, time by "
                  "phase, peak memory");
@@ -76,6 +80,7 @@ int run_mesh_command(const MeshCommandOptions& options) {
   OpenClOptions cl = opencl_options(options.scene);
   MeshSettings settings;
   settings.resolution = options.resolution;
+  settings.cells = options.cells == "tetrahedra" ? CellMethod::Tetrahedra : CellMethod::Cubes;
   const auto start = std::chrono::steady_clock::now();
   SceneMesh result = mesh_scene(
       scene, settings,

@@ -16,6 +16,7 @@ struct MeshCommandOptions {
   int resolution = 256;
   std::string precision = "float";
   std::string backend = "opencl";
+  std::string cells = "cubes";
   bool stats = false;
 };
 

@@ -7,7 +7,9 @@
 #include "mesh/triangle_mesh.hpp"
 
 #include <bit>
+#include <cstdint>
 #include <cstring>
+#include <functional>
 #include <type_traits>
 
 namespace clmarch {
@@ -23,6 +25,15 @@ void pack(char*& at, T value) {
   std::memcpy(at, &value, sizeof value);
   at += sizeof value;
 }
+
+/// Appends count records of record_bytes each, record i packed by pack(i, at) into at: blocks of
+/// records are packed on every core, then appended in order.
+void append_records(ChunkedFile& file, std::size_t count, std::size_t record_bytes,
+                    const std::function<void(std::size_t i, char* at)>& pack);
+
+/// The 8-bit sRGB code of a linear colour channel (clamped to [0, 1], NaN as 0), as viewers show
+/// PLY colours: lround(linear_to_srgb(linear) * 255), found among the 255 places where it steps.
+std::uint8_t srgb_byte(float linear);
 
 /// Binary little-endian PLY (mesh_writers.hpp says what each file holds).
 void write_ply(ChunkedFile& file, const TriangleMesh& mesh, MeshPrecision precision);

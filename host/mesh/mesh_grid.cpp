@@ -2,6 +2,7 @@
 #include "mesh/mesh_grid.hpp"
 
 #include "common/cancellation.hpp"
+#include "mesh/mesh_field.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -25,7 +26,7 @@ MeshGrid mesh_grid(const glm::dvec3& low, const glm::dvec3& high, int resolution
   return grid;
 }
 
-ActiveBricks find_active_bricks(const MeshGrid& grid, const FieldAt& field, double level) {
+ActiveBricks find_active_bricks(const MeshGrid& grid, MeshField& field, double level) {
   ActiveBricks out;
   // The coarsest block: a power of two bricks covering the longest side.
   int block = 1;
@@ -43,7 +44,7 @@ ActiveBricks find_active_bricks(const MeshGrid& grid, const FieldAt& field, doub
       inside.push_back(b);
       centres.push_back(0.5 * (glm::dvec3(b) + glm::dvec3(end)) * brick_size);
     }
-    const std::vector<float> values = field(centres).distance;
+    const std::vector<float> values = field.distances(centres);
     out.evaluations += centres.size();
     std::vector<glm::ivec3> kept;
     for (std::size_t n = 0; n < inside.size(); ++n) {

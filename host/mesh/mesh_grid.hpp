@@ -6,10 +6,11 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
-#include <functional>
 #include <vector>
 
 namespace clmarch {
+
+class MeshField;
 
 /// Cells along a brick's side: a brick is sampled at (kBrickCells + 1)^3 grid points.
 inline constexpr int kBrickCells = 8;
@@ -28,16 +29,6 @@ struct MeshGrid {
 /// side so that the surface never lies on the grid's boundary.
 MeshGrid mesh_grid(const glm::dvec3& low, const glm::dvec3& high, int resolution);
 
-/// The field's distance and the surface's colour (linear albedo) at each of a batch of points.
-struct FieldValues {
-  std::vector<float> distance;
-  std::vector<glm::vec3> color;
-};
-
-/// The field at points given as offsets from the grid's origin (so that a double program keeps
-/// their precision at a far origin).
-using FieldAt = std::function<FieldValues(const std::vector<glm::dvec3>& offsets)>;
-
 /// What pruning found: the bricks left (their brick coordinates, ascending in z, y, x) and the
 /// field evaluations it spent.
 struct ActiveBricks {
@@ -51,6 +42,6 @@ struct ActiveBricks {
 /// that covers the grid down to single bricks: a block is dropped where |field(centre) - level|
 /// exceeds its half-diagonal (the field changes by at most the distance moved: its status and
 /// step_factor make it a bound the march relies on too) plus half a cell of margin.
-ActiveBricks find_active_bricks(const MeshGrid& grid, const FieldAt& field, double level);
+ActiveBricks find_active_bricks(const MeshGrid& grid, MeshField& field, double level);
 
 }  // namespace clmarch

@@ -5,13 +5,19 @@
 #include "common/errors.hpp"
 #include "mesh/chunked_file.hpp"
 #include "mesh/format_writers.hpp"
+#include "image/image_writer.hpp"
 
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
+#include <cmath>
 #include <iterator>
 #include <stdexcept>
+#include <vector>
 
 namespace clmarch {
 namespace {
@@ -35,7 +41,53 @@ void check_mesh(const TriangleMesh& mesh) {
   }
 }
 
+/// Records packed a block at a time: large enough to keep both cores busy, small enough to stay in
+/// cache.
+constexpr std::size_t kRecordsPerBlock = std::size_t{1} << 15;
+
+/// The code of lround(linear_to_srgb(x) * 255) for x in [0, 1].
+int srgb_code(float linear) { return static_cast<int>(std::lround(linear_to_srgb(linear) * 255.0f)); }
+
+/// For each code k = 1 ... 255 the least float in [0, 1] whose code is at least k, by bisection over
+/// the floats' bit patterns (which order non-negative floats as their values).
+std::array<float, 255> srgb_steps() {
+  std::array<float, 255> steps{};
+  for (int k = 1; k <= 255; ++k) {
+    std::uint32_t low = 0, high = std::bit_cast<std::uint32_t>(1.0f);
+    while (low < high) {
+      const std::uint32_t mid = low + (high - low) / 2;
+      if (srgb_code(std::bit_cast<float>(mid)) >= k) {
+        high = mid;
+      } else {
+        low = mid + 1;
+      }
+    }
+    steps[static_cast<std::size_t>(k - 1)] = std::bit_cast<float>(low);
+  }
+  return steps;
+}
+
 }  // namespace
+
+std::uint8_t srgb_byte(float linear) {
+  static const std::array<float, 255> steps = srgb_steps();
+  if (std::isnan(linear)) return 0;
+  return static_cast<std::uint8_t>(std::upper_bound(steps.begin(), steps.end(), linear) - steps.begin());
+}
+
+void append_records(ChunkedFile& file, std::size_t count, std::size_t record_bytes,
+                    const std::function<void(std::size_t i, char* at)>& pack) {
+  std::vector<char> block;
+  for (std::size_t first = 0; first < count; first += kRecordsPerBlock) {
+    const std::size_t n = std::min(kRecordsPerBlock, count - first);
+    block.resize(n * record_bytes);
+    using Range = tbb::blocked_range<std::size_t>;
+    tbb::parallel_for(Range(0, n, 2048), [&](const Range& range) {
+      for (std::size_t i = range.begin(); i < range.end(); ++i) pack(first + i, block.data() + i * record_bytes);
+    });
+    file.append(block.data(), block.size());
+  }
+}
 
 MeshFormat mesh_format_of(const std::filesystem::path& path, const std::string& option) {
   std::string extension = path.extension().string();

@@ -1,19 +1,13 @@
 // Binary little-endian PLY: positions in float or double, normals, 8-bit sRGB colours.
-#include "image/image_writer.hpp"
 #include "mesh/format_writers.hpp"
 
 #include <fmt/format.h>
 
-#include <array>
-#include <cmath>
 #include <cstdint>
 #include <string>
 
 namespace clmarch {
 namespace {
-
-/// The 8-bit sRGB code of a linear colour channel, as PLY viewers show colours.
-std::uint8_t srgb_byte(float linear) { return static_cast<std::uint8_t>(std::lround(linear_to_srgb(linear) * 255.0f)); }
 
 std::string ply_header(const TriangleMesh& mesh, MeshPrecision precision) {
   const char* coordinate = precision == MeshPrecision::Double ? "double" : "float";
@@ -33,13 +27,13 @@ std::string ply_header(const TriangleMesh& mesh, MeshPrecision precision) {
 void write_ply(ChunkedFile& file, const TriangleMesh& mesh, MeshPrecision precision) {
   const std::string header = ply_header(mesh, precision);
   file.append(header.data(), header.size());
-  // The largest vertex record: 3 doubles, 3 floats, 3 bytes.
-  std::array<char, 3 * sizeof(double) + 3 * sizeof(float) + 3> record{};
-  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-    char* at = record.data();
+  const bool in_double = precision == MeshPrecision::Double;
+  const std::size_t vertex_bytes = 3 * (in_double ? sizeof(double) : sizeof(float)) +
+                                   (mesh.normals.empty() ? 0 : 3 * sizeof(float)) + (mesh.colors.empty() ? 0 : 3);
+  append_records(file, mesh.positions.size(), vertex_bytes, [&](std::size_t i, char* at) {
     for (int axis = 0; axis < 3; ++axis) {
       const double coordinate = mesh.positions[i][axis];
-      if (precision == MeshPrecision::Double) {
+      if (in_double) {
         pack(at, coordinate);
       } else {
         pack(at, static_cast<float>(coordinate));
@@ -51,15 +45,11 @@ void write_ply(ChunkedFile& file, const TriangleMesh& mesh, MeshPrecision precis
     if (!mesh.colors.empty()) {
       for (int channel = 0; channel < 3; ++channel) pack(at, srgb_byte(mesh.colors[i][channel]));
     }
-    file.append(record.data(), static_cast<std::size_t>(at - record.data()));
-  }
-  std::array<char, 1 + 3 * sizeof(std::uint32_t)> face{};
-  for (const auto& triangle : mesh.triangles) {
-    char* at = face.data();
+  });
+  append_records(file, mesh.triangles.size(), 1 + 3 * sizeof(std::uint32_t), [&](std::size_t t, char* at) {
     pack(at, std::uint8_t{3});
-    for (const std::uint32_t index : triangle) pack(at, index);
-    file.append(face.data(), face.size());
-  }
+    for (const std::uint32_t index : mesh.triangles[t]) pack(at, index);
+  });
 }
 
 }  // namespace clmarch

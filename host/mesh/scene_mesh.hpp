@@ -1,16 +1,20 @@
 // A scene's surface as a triangle mesh (`clmarch mesh`, clmarch.mesh): the bricks of a grid over
 // the surface's box that the surface can cross (pruned with the field's bound), their samples,
-// marching tetrahedra, then each vertex moved onto the real field and given its normal and colour.
+// marching cubes (or tetrahedra) over them, then each vertex moved onto the real field and given
+// its normal and colour.
 #pragma once
 
+#include "mesh/cell_tables.hpp"
+#include "mesh/mesh_field.hpp"
 #include "mesh/mesh_grid.hpp"
 #include "mesh/triangle_mesh.hpp"
-#include "render/opencl_renderer.hpp"
 #include "scene/scene.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <string>
 
 namespace clmarch {
@@ -18,9 +22,16 @@ namespace clmarch {
 struct MeshSettings {
   /// Cells along the longest side of the surface's bounding box.
   int resolution = 256;
-  /// Most root-finding steps moving a vertex along its edge onto the field's level (most need 2-4).
-  int refine_steps = 24;
-  /// Points evaluated per batch (the samples of whole bricks, the vertices).
+  CellMethod cells = CellMethod::Cubes;
+  /// Whether bricks are pruned with the field's bound (false: every brick is sampled; the tests'
+  /// check that pruning drops nothing).
+  bool prune = true;
+  /// Most field evaluations moving a vertex along its edge onto the level (most need 1-3).
+  int refine_steps = 16;
+  /// A vertex is on the level once the field there is within this share of a cell of it: far below
+  /// what a mesh of that cell shows (the issue asks h / 20), above float rounding of coordinates.
+  double tolerance_cells = 1e-4;
+  /// Grid points sampled per call of the field; vertices placed per call are a quarter of it.
   std::size_t batch_points = std::size_t{1} << 20;
 };
 
@@ -28,22 +39,30 @@ struct MeshSettings {
 struct MeshStats {
   glm::ivec3 grid_cells{0};
   double cell = 0.0;
+  /// The box the surface lies in (surface_box), which the grid covers with a cell to spare.
+  glm::dvec3 box_low{0.0};
+  glm::dvec3 box_high{0.0};
   /// The level meshed: 0, or render.epsilon for fields that are estimates (fractals), whose sign
   /// is no inside/outside test; level_reason says why.
   double level = 0.0;
   std::string level_reason;
+  std::string cell_method;
   std::uint64_t cells = 0;
   std::uint64_t cells_sampled = 0;
   std::uint64_t cells_pruned = 0;
   std::uint64_t bricks = 0;
+  /// Bricks pruning dropped that the surface enters (sampled when a neighbour's face showed it).
+  std::uint64_t bricks_restored = 0;
   std::uint64_t surface_cells = 0;
   std::uint64_t vertices = 0;
   std::uint64_t triangles = 0;
   std::uint64_t evaluations = 0;
+  /// The field's set-up (the device's program built or found in the driver's cache).
+  double setup_ms = 0.0;
   double prune_ms = 0.0;
   double sample_ms = 0.0;
-  double refine_ms = 0.0;
-  double shade_ms = 0.0;
+  double march_ms = 0.0;
+  double place_ms = 0.0;
   /// Host memory predicted before sampling, and the process's peak resident memory after.
   std::uint64_t predicted_bytes = 0;
   std::uint64_t peak_resident_bytes = 0;
@@ -60,20 +79,17 @@ struct SceneMesh {
 /// (a plane, a tiling) or the box is empty.
 void surface_box(const Scene& scene, double level, glm::dvec3& low, glm::dvec3& high);
 
-/// The field on the device: eval_points of the scene's program, points offset from origin.
-FieldAt opencl_field(const Scene& scene, const OpenClOptions& options, const glm::dvec3& origin);
-/// The field on the CPU reference, in double.
-FieldAt reference_field(const Scene& scene, const glm::dvec3& origin);
-
 /// Host bytes a mesh of active bricks needs at its peak, predicted before any brick is sampled:
-/// the batches of samples and the surface's vertices and triangles at their measured share per
-/// brick (scene_mesh.cpp).
-std::uint64_t predicted_mesh_bytes(std::uint64_t active_bricks, std::size_t batch_points);
+/// the bricks' samples and records, the batches and the surface's vertices and triangles at their
+/// measured share per brick (scene_mesh.cpp).
+std::uint64_t predicted_mesh_bytes(std::uint64_t active_bricks, std::size_t batch_points, CellMethod cells);
+
+/// The field of a mesh whose grid starts at origin (opencl_field, reference_field).
+using MeshFieldFor = std::function<std::unique_ptr<MeshField>(const glm::dvec3& origin)>;
 
 /// Meshes scene on field_for(origin): the field evaluated at offsets from the grid's origin. Throws
 /// InputError (naming resolution_label) when the predicted memory exceeds what the machine has left.
-SceneMesh mesh_scene(const Scene& scene, const MeshSettings& settings,
-                     const std::function<FieldAt(const glm::dvec3& origin)>& field_for,
+SceneMesh mesh_scene(const Scene& scene, const MeshSettings& settings, const MeshFieldFor& field_for,
                      const std::string& resolution_label);
 
 }  // namespace clmarch

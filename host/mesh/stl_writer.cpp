@@ -36,17 +36,15 @@ void write_stl(ChunkedFile& file, const TriangleMesh& mesh) {
   }
   const auto count = static_cast<std::uint32_t>(mesh.triangles.size());
   file.append(&count, sizeof count);
-  std::array<char, 12 * sizeof(float) + sizeof(std::uint16_t)> record{};
-  for (const auto& triangle : mesh.triangles) {
+  append_records(file, mesh.triangles.size(), 12 * sizeof(float) + sizeof(std::uint16_t), [&](std::size_t t, char* at) {
+    const auto& triangle = mesh.triangles[t];
     const glm::dvec3& a = mesh.positions[triangle[0]];
     const glm::dvec3& b = mesh.positions[triangle[1]];
     const glm::dvec3& c = mesh.positions[triangle[2]];
-    char* at = record.data();
     pack_vec3(at, facet_normal(a, b, c));
     for (const glm::dvec3* corner : {&a, &b, &c}) pack_vec3(at, *corner);
     pack(at, std::uint16_t{0});
-    file.append(record.data(), record.size());
-  }
+  });
 }
 
 }  // namespace clmarch

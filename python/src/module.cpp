@@ -172,12 +172,15 @@ py::array_t<T> rows_of_three(const T* data, std::size_t rows, const std::shared_
 
 /// vertices (V x 3 float64), faces (V x 3 uint32), normals and colors (V x 3 float32), stats.
 py::tuple mesh(const PyScene& scene, int resolution, const std::string& backend_name, const std::string& precision,
-               std::optional<int> device) {
+               std::optional<int> device, const std::string& cells) {
   if (resolution < 8 || resolution > 8192) {
     throw InputError(fmt::format("resolution must be from 8 to 8192 (got {})", resolution));
   }
   if (precision != "float" && precision != "double") {
     throw InputError(fmt::format("precision must be 'float' or 'double' (got '{}')", precision));
+  }
+  if (cells != "cubes" && cells != "tetrahedra") {
+    throw InputError(fmt::format("cells must be 'cubes' or 'tetrahedra' (got '{}')", cells));
   }
   const Backend backend = parse_backend(backend_name, "backend");
   Scene meshed = scene.scene;
@@ -186,6 +189,7 @@ py::tuple mesh(const PyScene& scene, int resolution, const std::string& backend_
   cl.device = device;
   MeshSettings settings;
   settings.resolution = resolution;
+  settings.cells = cells == "tetrahedra" ? CellMethod::Tetrahedra : CellMethod::Cubes;
   auto result = std::make_shared<SceneMesh>(interruptible([&] {
     return mesh_scene(
         meshed, settings,
@@ -348,7 +352,7 @@ PYBIND11_MODULE(_clmarch, m) {
 
   m.def("field", &field, py::arg("scene"), py::arg("points"), py::arg("backend"), py::arg("device"), py::arg("lanes"));
   m.def("mesh", &mesh, py::arg("scene"), py::arg("resolution"), py::arg("backend"), py::arg("precision"),
-        py::arg("device"));
+        py::arg("device"), py::arg("cells"));
   m.def("check", &check, py::arg("scene"), py::arg("device"), py::arg("lanes"));
   m.def("bench", &bench, py::arg("scene"), py::arg("repeat"), py::arg("reference"), py::arg("device"),
         py::arg("lanes"));
