@@ -65,7 +65,7 @@ std::vector<double> evaluate_on_device(const glsl::Module& module, bool double_p
         "  out[i] = glsl0_distance(({0}3)(in[4 * i], in[4 * i + 1], in[4 * i + 2]), in[4 * i + 3]);\n}}\n",
         real);
   }
-  const DeviceProgram program = build_device_program(select_device(std::nullopt), source);
+  const DeviceProgram program = build_device_program(select_device(std::nullopt), source, testing::kLoggedBuildOptions);
   EXPECT_EQ(testing::compiler_warnings(program.build_log), "") << program.build_log << source;
   const size_t count = probes.size();
   const size_t outputs = count * (color ? 3 : 1);

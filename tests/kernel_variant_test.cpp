@@ -76,7 +76,7 @@ TEST(KernelVariant, FpContractionOnlyOnPocl) {
   options.fp_contraction = false;
   const std::string exact = generate_kernel_source(scene, options);
   EXPECT_NE(exact.find("#define NO_FP_CONTRACT\n"), std::string::npos);
-  const DeviceProgram program = build_device_program(select_device(std::nullopt), exact);
+  const DeviceProgram program = build_device_program(select_device(std::nullopt), exact, testing::kLoggedBuildOptions);
   EXPECT_EQ(testing::compiler_warnings(program.build_log), "") << program.build_log;
 }
 

@@ -6,6 +6,7 @@
 #   TEST_EXECUTABLE  the gtest executable       OUTPUT     the ctest file to write
 #   SERIAL           suites (regex) that run alone
 #   MAX_GROUP        most tests in one process  TIMEOUT    seconds a group may take
+#   COSTS            suite_costs.txt: a group's seconds, its ctest COST (the costliest start first)
 #   COVERAGE_DIR     (coverage builds) where each group's gcov counts go, a folder per group
 #                    (GCOV_PREFIX), for scripts/coverage-report.py
 execute_process(
@@ -30,6 +31,23 @@ foreach(line IN LISTS lines)
   endif()
 endforeach()
 
+file(STRINGS "${COSTS}" cost_lines REGEX "^[^#]")
+foreach(line IN LISTS cost_lines)
+  if(NOT line MATCHES "^([^ ]+) ([0-9]+)$")
+    message(FATAL_ERROR "register_suites.cmake: ${COSTS}: not 'group seconds': ${line}")
+  endif()
+  string(MAKE_C_IDENTIFIER "${CMAKE_MATCH_1}" var)
+  set(cost_${var} ${CMAKE_MATCH_2})
+endforeach()
+# The properties of the group named name: properties, and its COST where suite_costs.txt lists it.
+function(group_properties name properties out)
+  string(MAKE_C_IDENTIFIER "${name}" var)
+  if(DEFINED cost_${var})
+    string(APPEND properties " COST ${cost_${var}}")
+  endif()
+  set(${out} "${properties}" PARENT_SCOPE)
+endfunction()
+
 set(script "")
 foreach(suite IN LISTS suites)
   string(MAKE_C_IDENTIFIER "${suite}" var)
@@ -43,8 +61,9 @@ foreach(suite IN LISTS suites)
     string(APPEND properties " ENVIRONMENT [=[GCOV_PREFIX=${COVERAGE_DIR}/${folder}]=]")
   endif()
   if(count LESS_EQUAL MAX_GROUP)
+    group_properties("${suite}" "${properties}" suite_properties)
     string(APPEND script "add_test([=[${suite}]=] \"${TEST_EXECUTABLE}\" [=[--gtest_filter=${suite}.*]=])\n"
-           "set_tests_properties([=[${suite}]=] PROPERTIES ${properties})\n")
+           "set_tests_properties([=[${suite}]=] PROPERTIES ${suite_properties})\n")
     continue()
   endif()
   math(EXPR groups "(${count} + ${MAX_GROUP} - 1) / ${MAX_GROUP}")
@@ -57,12 +76,13 @@ foreach(suite IN LISTS suites)
       list(GET tests_${var} ${i} test)
       string(APPEND filter "${suite}.${test}:")
     endforeach()
-    set(group_properties "${properties}")
+    set(this_group_properties "${properties}")
     if(COVERAGE_DIR)
-      string(REPLACE "]=]" "_${group}]=]" group_properties "${properties}")
+      string(REPLACE "]=]" "_${group}]=]" this_group_properties "${properties}")
     endif()
+    group_properties("${suite}#${group}" "${this_group_properties}" this_group_properties)
     string(APPEND script "add_test([=[${suite}#${group}]=] \"${TEST_EXECUTABLE}\" [=[--gtest_filter=${filter}]=])\n"
-           "set_tests_properties([=[${suite}#${group}]=] PROPERTIES ${group_properties})\n")
+           "set_tests_properties([=[${suite}#${group}]=] PROPERTIES ${this_group_properties})\n")
   endforeach()
 endforeach()
 file(WRITE "${OUTPUT}" "${script}")

@@ -61,7 +61,8 @@ TEST_P(ShippedScene, BuildsWithoutWarnings) {
   for (KernelPurpose purpose : {KernelPurpose::DepthSteps, KernelPurpose::Normals, KernelPurpose::Shaded,
                                 KernelPurpose::Buffers, KernelPurpose::EvalPoints}) {
     for (int lanes : {1, 16}) {
-      const DeviceProgram program = build_device_program(device, generate_kernel_source(scene, {purpose, lanes}));
+      const DeviceProgram program =
+          build_device_program(device, generate_kernel_source(scene, {purpose, lanes}), testing::kLoggedBuildOptions);
       EXPECT_EQ(testing::compiler_warnings(program.build_log), "")
           << "purpose " << static_cast<int>(purpose) << " lanes " << lanes << ":\n"
           << program.build_log;

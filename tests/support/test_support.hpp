@@ -1,6 +1,7 @@
 // Helpers shared by the tests: scenes from inline YAML, running the clmarch executable, temp folders.
 #pragma once
 
+#include "cl/device_program.hpp"
 #include "scene/scene.hpp"
 #include "scene/scene_loader.hpp"
 
@@ -51,6 +52,12 @@ std::string read_text(const std::filesystem::path& path);
 /// NVIDIA's "Function F is a kernel, so overriding noinline attribute" that its drivers since 550
 /// print for every kernel of every source.
 std::string compiler_warnings(const std::string& build_log);
+
+/// Build options (kBuildOptions and a define of their own) for a build whose log is checked for
+/// warnings: PoCL's kernel cache keeps a program's binary but not its build log, so a build of the
+/// same source and options by another process (another test's render) would serve this one with
+/// an empty log.
+inline const std::string kLoggedBuildOptions = std::string(kBuildOptions) + " -DCLMARCH_LOGGED_BUILD";
 
 /// s in single quotes for /bin/sh.
 std::string shell_quote(const std::string& s);
