@@ -29,7 +29,9 @@
 
 /* The lane scalar: float, or double with DOUBLE_PRECISION (cl_khr_fp64); REAL_EPSILON is its
  * machine epsilon. Masks have the width of the scalar (select() wants long masks for double).
- * Buffers stay float either way: STORE_LANES and LOAD_LANES convert (a no-op for float). */
+ * Buffers stay float either way (STORE_LANES and LOAD_LANES convert, a no-op for float), except
+ * eval_points' points and distances, `real` buffers that STORE_REAL_LANES fills: a double program's
+ * field keeps its digits on the way to `clmarch field`. */
 #ifdef DOUBLE_PRECISION
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
 typedef double real;
@@ -73,6 +75,7 @@ typedef mask1 vint;
 #define LANE_Y 0
 #define TO_VFLOAT(x) convert_real(x)
 #define STORE_LANES(v, base, ptr) ((ptr)[base] = (float)(v))
+#define STORE_REAL_LANES(v, base, ptr) ((ptr)[base] = (v))
 #define ROUNDED_TO_FLOAT(v) ((real)(float)(v))
 #define STORE_INT_LANES(v, base, ptr) ((ptr)[base] = (int)(v))
 #define LOAD_LANES(base, ptr) convert_real((ptr)[base])
@@ -88,6 +91,7 @@ typedef mask4 vint;
 #define VSTORE_LANES vstore4
 #define VLOAD_LANES vload4
 #define STORE_LANES(v, base, ptr) vstore4(convert_float4(v), 0, (ptr) + (base))
+#define STORE_REAL_LANES(v, base, ptr) vstore4((v), 0, (ptr) + (base))
 #define ROUNDED_TO_FLOAT(v) convert_real4(convert_float4(v))
 #define STORE_INT_LANES(v, base, ptr) vstore4(convert_int4(v), 0, (ptr) + (base))
 #define LOAD_LANES(base, ptr) convert_real4(vload4(0, (ptr) + (base)))
@@ -103,6 +107,7 @@ typedef mask8 vint;
 #define VSTORE_LANES vstore8
 #define VLOAD_LANES vload8
 #define STORE_LANES(v, base, ptr) vstore8(convert_float8(v), 0, (ptr) + (base))
+#define STORE_REAL_LANES(v, base, ptr) vstore8((v), 0, (ptr) + (base))
 #define ROUNDED_TO_FLOAT(v) convert_real8(convert_float8(v))
 #define STORE_INT_LANES(v, base, ptr) vstore8(convert_int8(v), 0, (ptr) + (base))
 #define LOAD_LANES(base, ptr) convert_real8(vload8(0, (ptr) + (base)))
@@ -118,6 +123,7 @@ typedef mask16 vint;
 #define VSTORE_LANES vstore16
 #define VLOAD_LANES vload16
 #define STORE_LANES(v, base, ptr) vstore16(convert_float16(v), 0, (ptr) + (base))
+#define STORE_REAL_LANES(v, base, ptr) vstore16((v), 0, (ptr) + (base))
 #define ROUNDED_TO_FLOAT(v) convert_real16(convert_float16(v))
 #define STORE_INT_LANES(v, base, ptr) vstore16(convert_int16(v), 0, (ptr) + (base))
 #define LOAD_LANES(base, ptr) convert_real16(vload16(0, (ptr) + (base)))

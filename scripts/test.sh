@@ -68,7 +68,7 @@ fi
 # host paths over many programs for the kernels' sake (every kind far away and near, golden images,
 # random operand-grid trees: 0 lines of their own), and four that cost a minute or more under the
 # sanitizers for a dozen lines of their own (Verbosity 12 lines in 135 s, Scenes/CheckScene 28 in
-# 109 s, FrameSequence 12 in 44 s, Interrupt 2 in 57 s).
+# 109 s, since merged into Scenes/ShippedScene, FrameSequence 12 in 44 s, Interrupt 2 in 57 s).
 sanitized_suites=(
   MpiRender OperandGrid SweepCommand Cli/BadInput CheckFeatures SceneLimits Antialias Bench FarCamera FirstHour Cli
   ColorPattern HostMemory ExitCodes OutputFailure InstanceFile CheckCli ConePass SdfClosedForm ShadingLayers RayStatus

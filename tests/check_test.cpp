@@ -1,5 +1,5 @@
-// The cross-check: every shipped scene passes it on the OpenCL device, and so do features no
-// shipped scene uses (shadows under the cells tiling, two reflection bounces); it has teeth: a
+// The cross-check (every shipped scene passes it: scenes_test.cpp, beside the scene's other renders):
+// features no shipped scene uses (shadows under the cells tiling, two reflection bounces); it has teeth: a
 // perturbed OpenCL render fails it while the unperturbed one passes, and each criterion fails just
 // past its per-pixel tolerance and passes within it.
 #include "check/cross_check.hpp"
@@ -42,23 +42,6 @@ CheckReport check_against(const Scene& scene, const Scene& opencl_scene, int lan
   const FrameBuffers opencl = render_opencl(opencl_scene, options).buffers;
   return cross_check(scene, opencl, render_reference(scene), reshade_hits(scene, opencl));
 }
-
-class CheckScene : public ::testing::TestWithParam<std::string> {};
-
-TEST_P(CheckScene, PassesWithOneAndSixteenLanes) {
-  const Scene scene = small_scene(GetParam());
-  for (int lanes : {1, 16}) {
-    const CheckReport report = check_against(scene, scene, lanes);
-    EXPECT_TRUE(report.passed()) << "lanes " << lanes << "\n" << report.to_text();
-    EXPECT_GT(report.both_hit, 0);
-  }
-}
-
-INSTANTIATE_TEST_SUITE_P(Scenes, CheckScene, ::testing::ValuesIn(testing::shipped_scene_names()), [](const auto& info) {
-  std::string name = info.param;
-  for (char& ch : name) ch = std::isalnum(static_cast<unsigned char>(ch)) ? ch : '_';
-  return name;
-});
 
 // Shadow rays under the cells tiling start at min_t past the surface: the only rays of that march
 // with a start other than 0 (the cone pass is off with cells). No shipped tiled scene has shadows.

@@ -51,12 +51,13 @@ std::string csv_of(const std::vector<glm::dvec3>& points) {
 
 /// Runs `clmarch field` on scene and points in dir; the rows written.
 std::vector<Row> field_rows(const TempDir& dir, const std::string& scene, const std::vector<glm::dvec3>& points,
-                            const std::string& backend) {
+                            const std::string& backend, const std::string& precision = "float") {
   std::ofstream(dir / "scene.yaml") << scene;
   std::ofstream(dir / "points.csv") << csv_of(points);
   const std::filesystem::path out = dir / (backend + ".csv");
-  const CommandResult result = run_clmarch({"field", (dir / "scene.yaml").string(), "--points",
-                                            (dir / "points.csv").string(), "-o", out.string(), "--backend", backend});
+  const CommandResult result =
+      run_clmarch({"field", (dir / "scene.yaml").string(), "--points", (dir / "points.csv").string(), "-o",
+                   out.string(), "--backend", backend, "--precision", precision});
   EXPECT_EQ(result.exit_code, 0) << result.err;
   return read_rows(out);
 }
@@ -130,10 +131,36 @@ TEST(FieldCommand, EveryNumberReadsBackAsTheValueSampled) {
     ASSERT_EQ(rows.size(), points.size());
     for (std::size_t i = 0; i < points.size(); ++i) {
       for (int axis = 0; axis < 3; ++axis) EXPECT_EQ(parsed<double>(rows[i][axis]), points[i][axis]) << name;
-      EXPECT_EQ(parsed<float>(rows[i][3]), samples.distance[i]) << name << " row " << i;
+      // The reference's distances are doubles, the float program's floats.
+      if (backend == Backend::Reference) {
+        EXPECT_EQ(parsed<double>(rows[i][3]), samples.distance[i]) << name << " row " << i;
+      } else {
+        EXPECT_EQ(parsed<float>(rows[i][3]), samples.distance[i]) << name << " row " << i;
+      }
       for (int c = 0; c < 3; ++c) EXPECT_EQ(parsed<float>(rows[i][4 + c]), samples.color[3 * i + c]) << name;
     }
   }
+}
+
+// --precision double keeps what float cannot hold, in the points and in the distances: 3e-9 off a
+// unit sphere (float rounds 1 + 3e-9 to 1, and its answers to about 1e-7). Double's rounding of
+// |p| - 1 near 1 is a few 1e-16.
+TEST(FieldCommand, DoublePrecisionKeepsTheDigitsOfPointsAndDistances) {
+  const std::string scene = "sdf: {sphere: {radius: 1}}\n";
+  const double off = 3e-9;
+  const std::vector<glm::dvec3> points = {{1 + off, 0, 0}, {0, -(1 + off), 0}, {0, 0, 1 - off}};
+  const double expected[] = {off, off, -off};
+  TempDir dir;
+  for (const char* backend : {"opencl", "reference"}) {
+    const std::vector<Row> rows = field_rows(dir, scene, points, backend, "double");
+    ASSERT_EQ(rows.size(), points.size());
+    for (std::size_t i = 0; i < rows.size(); ++i)
+      EXPECT_NEAR(parsed<double>(rows[i][3]), expected[i], 1e-15) << backend << " row " << i;
+  }
+  // The same points in float lose the offset: the test tells the two apart.
+  const std::vector<Row> rows = field_rows(dir, scene, points, "opencl", "float");
+  ASSERT_EQ(rows.size(), points.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) EXPECT_GT(std::abs(parsed<double>(rows[i][3]) - expected[i]), 1e-9);
 }
 
 }  // namespace

@@ -41,8 +41,9 @@ constexpr double kFloatEpsilon = std::numeric_limits<float>::epsilon();
 // thousandth of the values' range: it would check nothing.
 constexpr double kFloatUlps = 64;
 // The double program against the double interpreter: the same formulas, another libm, so double
-// ulps of the scale (1024: the slope again), then each rounded once to float (sample_field returns
-// floats), which adds a float ulp of the value itself.
+// ulps of the scale (1024: the slope again); colours are then each rounded once to float
+// (sample_field's colours are floats), which adds a float ulp of the value itself. Distances come
+// back in double from both.
 constexpr double kDoubleUlps = 1024;
 constexpr double kDoubleEpsilon = std::numeric_limits<double>::epsilon();
 
@@ -111,9 +112,14 @@ double scale_of(const TruthRow& row, double value) {
 
 double float_tolerance(const TruthRow& row, double value) { return kFloatUlps * kFloatEpsilon * scale_of(row, value); }
 
-// The double program's value against the reference's, both rounded to float at the end.
+// The double program's distance against the reference's, both doubles.
 double double_tolerance(const TruthRow& row, double value) {
-  return kFloatEpsilon * std::abs(value) + kDoubleUlps * kDoubleEpsilon * scale_of(row, value);
+  return kDoubleUlps * kDoubleEpsilon * scale_of(row, value);
+}
+
+// The double program's colour against the reference's, both rounded to float at the end.
+double double_color_tolerance(const TruthRow& row, double value) {
+  return kFloatEpsilon * std::abs(value) + double_tolerance(row, value);
 }
 
 double range_of(const std::vector<double>& values) {
@@ -176,7 +182,7 @@ TEST_P(GlslCorpus, MatchesLlvmpipe) {
           << "OpenCL double against the reference: distance of " << where << ", point " << i;
       for (int c = 0; color && c < 3; ++c) {
         const double value_c = reference.color[3 * i + c];
-        EXPECT_NEAR(opencl_double.color[3 * i + c], value_c, double_tolerance(truth[i], value_c))
+        EXPECT_NEAR(opencl_double.color[3 * i + c], value_c, double_color_tolerance(truth[i], value_c))
             << "OpenCL double against the reference: colour channel " << c << " of " << where << ", point " << i;
       }
     }

@@ -1,8 +1,12 @@
 // Every scene shipped in scenes/ (enumerated, so a new scene is covered the day it is added): it
 // loads, its generated program builds without a single compiler warning for every purpose and
-// packet width, and its buffers hold no NaN or Inf and agree across packet widths.
+// packet width, its buffers hold no NaN or Inf and agree across packet widths, and it passes the
+// cross-check against the double reference with one and sixteen lanes (one test, so that the
+// renders share their programs in one process rather than compiling them in two at once).
+#include "check/cross_check.hpp"
 #include "cl/device_program.hpp"
 #include "codegen/kernel_source.hpp"
+#include "reference/reference_renderer.hpp"
 #include "render/opencl_renderer.hpp"
 #include "scene/scene_loader.hpp"
 #include "support/test_support.hpp"
@@ -70,8 +74,23 @@ TEST_P(ShippedScene, BuildsWithoutWarnings) {
   }
 }
 
-TEST_P(ShippedScene, FiniteBuffersThatAgreeAcrossPacketWidths) {
+TEST_P(ShippedScene, FiniteBuffersThatAgreeAcrossPacketWidthsAndPassTheCheck) {
   const Scene scene = load_small(GetParam());
+  {
+    SCOPED_TRACE("the cross-check at 96x54");
+    Scene checked = scene;
+    checked.render.width = 96;
+    checked.render.height = 54;
+    const FrameBuffers reference = render_reference(checked);
+    for (int lanes : {1, 16}) {
+      OpenClOptions options;
+      options.lanes = lanes;
+      const FrameBuffers opencl = render_opencl(checked, options).buffers;
+      const CheckReport report = cross_check(checked, opencl, reference, reshade_hits(checked, opencl));
+      EXPECT_TRUE(report.passed()) << "lanes " << lanes << "\n" << report.to_text();
+      EXPECT_GT(report.both_hit, 0);
+    }
+  }
   OpenClOptions scalar_options, packet_options;
   scalar_options.lanes = 1;
   packet_options.lanes = 16;

@@ -21,6 +21,7 @@ FieldSamples sample_field(const Scene& scene, const std::vector<glm::dvec3>& giv
   out.distance.resize(points.size());
   out.color.resize(points.size() * 3);
   out.id.resize(points.size());
+  out.distance_in_double = backend == Backend::Reference || scene.render.precision == Precision::Double;
   if (points.empty()) return out;
   if (backend == Backend::OpenCl) {
     OpenClOptions cl;
@@ -40,7 +41,7 @@ FieldSamples sample_field(const Scene& scene, const std::vector<glm::dvec3>& giv
     throw_if_cancelled();
     for (std::size_t i = range.begin(); i < range.end(); ++i) {
       const SdfSample sample = reference_sample(scene.sdf, points[i], material);
-      out.distance[i] = static_cast<float>(sample.distance);
+      out.distance[i] = sample.distance;
       for (int c = 0; c < 3; ++c) out.color[3 * i + c] = static_cast<float>(sample.color[c]);
       out.id[i] = static_cast<float>(sample.primitive);
     }

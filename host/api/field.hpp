@@ -13,7 +13,11 @@ namespace clmarch {
 
 /// One value per point, in the points' order.
 struct FieldSamples {
-  std::vector<float> distance;
+  /// As the backend computed it: the reference's and a double program's doubles, a float program's
+  /// floats.
+  std::vector<double> distance;
+  /// Whether distance holds doubles (the reference, a double program) rather than floats.
+  bool distance_in_double = false;
   /// r, g, b per point (linear albedo of the material there).
   std::vector<float> color;
   /// The primitive's number (the id channel's numbering).
@@ -21,8 +25,8 @@ struct FieldSamples {
 };
 
 /// The scene's SDF tree at the world points, repeated over the tiling's cell where the scene tiles
-/// space. OpenCL evaluates the generated map() and map_color() in the program's precision from
-/// float coordinates; the reference in double.
+/// space. OpenCL evaluates the generated map() and map_color() in the program's precision, from
+/// points rounded to it; the reference in double.
 FieldSamples sample_field(const Scene& scene, const std::vector<glm::dvec3>& points, Backend backend,
                           const SessionOptions& options = {});
 

@@ -29,8 +29,13 @@ std::string field_csv_text(const std::vector<glm::dvec3>& points, const FieldSam
   for (std::size_t i = 0; i < points.size(); ++i) {
     // fmt's "{}" is the shortest text that reads back as the same float or double (at most 9 and
     // 17 significant digits), so no value changes on its way through the file.
-    fmt::format_to(out, "{},{},{},{},{},{},{}\n", points[i].x, points[i].y, points[i].z, samples.distance[i],
-                   samples.color[3 * i], samples.color[3 * i + 1], samples.color[3 * i + 2]);
+    fmt::format_to(out, "{},{},{},", points[i].x, points[i].y, points[i].z);
+    if (samples.distance_in_double) {
+      fmt::format_to(out, "{},", samples.distance[i]);
+    } else {
+      fmt::format_to(out, "{},", static_cast<float>(samples.distance[i]));
+    }
+    fmt::format_to(out, "{},{},{}\n", samples.color[3 * i], samples.color[3 * i + 1], samples.color[3 * i + 2]);
   }
   return text;
 }

@@ -6,6 +6,7 @@
 #include "render/device_inputs.hpp"
 #include "render/dispatch_plan.hpp"
 #include "render/prepared_program.hpp"
+#include "render/real_plane.hpp"
 
 #include <algorithm>
 #include <array>
@@ -37,25 +38,29 @@ class DeviceField final : public MeshField {
     DeviceProgram& dp = prepared_.program;
     const Dispatch dispatch = plan_point_dispatch(dp.device, offsets.size(), prepared_.lanes);
     const std::size_t n = dispatch.plane_stride;
-    std::array<std::vector<float>, 3> planes;
-    for (int axis = 0; axis < 3; ++axis) {
-      planes[axis].assign(n, 0.0f);
-      for (std::size_t i = 0; i < offsets.size(); ++i) planes[axis][i] = static_cast<float>(offsets[i][axis]);
+    // Points and distances in the program's real (kernels/eval_points.cl), the rest float.
+    const bool in_double = prepared_.kernel_options.variant.precision == Precision::Double;
+    std::vector<RealPlane> planes(3, RealPlane(n, in_double));
+    for (std::size_t i = 0; i < offsets.size(); ++i) {
+      for (int axis = 0; axis < 3; ++axis) planes[axis].set(i, offsets[i][axis]);
     }
+    RealPlane distance(n, in_double);
     with_device_errors(dp.device, [&] {
       // The buffers live until the kernel is done: an argument does not hold its buffer.
       std::vector<cl::Buffer> buffers;
-      for (int axis = 0; axis < 3; ++axis) buffers.push_back(input(planes[axis]));
+      for (RealPlane& plane : planes)
+        buffers.emplace_back(dp.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, plane.size_bytes(), plane.data());
       // Distance, colour distance, red, green, blue, primitive number: only the first is read.
-      for (int k = 0; k < 6; ++k) buffers.emplace_back(dp.context, CL_MEM_WRITE_ONLY, n * sizeof(float));
+      for (int k = 0; k < 2; ++k) buffers.emplace_back(dp.context, CL_MEM_WRITE_ONLY, distance.size_bytes());
+      for (int k = 0; k < 4; ++k) buffers.emplace_back(dp.context, CL_MEM_WRITE_ONLY, n * sizeof(float));
       for (int k = 0; k < 9; ++k) eval_.setArg(k, buffers[static_cast<std::size_t>(k)]);
-      const cl::Buffer& distance = buffers[3];
       set_scene_values_arg(eval_, 9, values_);
       eval_.setArg(10, origin_hi_);
       eval_.setArg(11, origin_lo_);
       run(eval_, dispatch);
-      dp.queue.enqueueReadBuffer(distance, CL_TRUE, 0, out.size() * sizeof(float), out.data());
+      dp.queue.enqueueReadBuffer(buffers[3], CL_TRUE, 0, distance.size_bytes(), distance.data());
     });
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = static_cast<float>(distance.get(i));
     return out;
   }
 

@@ -11,6 +11,7 @@
 #include "render/device_inputs.hpp"
 #include "render/dispatch_plan.hpp"
 #include "render/prepared_program.hpp"
+#include "render/real_plane.hpp"
 
 #include <fmt/format.h>
 
@@ -339,47 +340,48 @@ PointSamples eval_points_opencl(const Scene& scene, const std::vector<glm::dvec3
   DeviceProgram& dp = prepared.program;
   const Dispatch dispatch = plan_point_dispatch(dp.device, points.size(), prepared.lanes);
   const std::size_t n = dispatch.plane_stride;
-  std::vector<float> xs(n, 0.0f), ys(n, 0.0f), zs(n, 0.0f);
+  const bool in_double = prepared.kernel_options.variant.precision == Precision::Double;
+  std::vector<RealPlane> coordinates(3, RealPlane(n, in_double));
   for (std::size_t i = 0; i < points.size(); ++i) {
-    xs[i] = static_cast<float>(points[i].x);
-    ys[i] = static_cast<float>(points[i].y);
-    zs[i] = static_cast<float>(points[i].z);
+    for (int axis = 0; axis < 3; ++axis) coordinates[axis].set(i, points[i][axis]);
   }
-  constexpr int kOutputs = 6;  // distance, color distance, albedo r, g, b, primitive number
-  std::vector<std::vector<float>> outputs(kOutputs, std::vector<float>(n, 0.0f));
+  // distance and color distance in the program's real, then albedo r, g, b and the primitive number.
+  std::vector<RealPlane> distances(2, RealPlane(n, in_double));
+  constexpr int kFloatOutputs = 4;
+  std::vector<std::vector<float>> outputs(kFloatOutputs, std::vector<float>(n, 0.0f));
   with_device_errors(dp.device, [&] {
     const auto in_flags = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
-    cl::Buffer bx(dp.context, in_flags, n * sizeof(float), xs.data());
-    cl::Buffer by(dp.context, in_flags, n * sizeof(float), ys.data());
-    cl::Buffer bz(dp.context, in_flags, n * sizeof(float), zs.data());
-    std::vector<cl::Buffer> out_buffers;
     cl::Kernel kernel(dp.program, "eval_points");
-    kernel.setArg(0, bx);
-    kernel.setArg(1, by);
-    kernel.setArg(2, bz);
-    for (int i = 0; i < kOutputs; ++i) {
-      out_buffers.emplace_back(dp.context, CL_MEM_WRITE_ONLY, n * sizeof(float));
-      kernel.setArg(3 + i, out_buffers.back());
-    }
+    // The buffers live until the kernel is done: an argument does not hold its buffer.
+    std::vector<cl::Buffer> buffers;
+    for (RealPlane& plane : coordinates) buffers.emplace_back(dp.context, in_flags, plane.size_bytes(), plane.data());
+    for (const RealPlane& plane : distances) buffers.emplace_back(dp.context, CL_MEM_WRITE_ONLY, plane.size_bytes());
+    for (int i = 0; i < kFloatOutputs; ++i) buffers.emplace_back(dp.context, CL_MEM_WRITE_ONLY, n * sizeof(float));
+    for (std::size_t i = 0; i < buffers.size(); ++i) kernel.setArg(static_cast<cl_uint>(i), buffers[i]);
+    const auto after_buffers = static_cast<cl_uint>(buffers.size());
     // eval_points programs spell every literal; their values hold only an operand grid's data.
     const std::optional<cl::Buffer> values = make_scene_values(prepared, scene);
-    set_scene_values_arg(kernel, 3 + kOutputs, values);
+    set_scene_values_arg(kernel, after_buffers, values);
     // origin = hi + lo, each a float: the double program adds them in double.
     const glm::vec3 hi(origin);
     const glm::vec3 lo(origin - glm::dvec3(hi));
-    kernel.setArg(4 + kOutputs, cl_float4{{hi.x, hi.y, hi.z, 0.0f}});
-    kernel.setArg(5 + kOutputs, cl_float4{{lo.x, lo.y, lo.z, 0.0f}});
+    kernel.setArg(after_buffers + 1, cl_float4{{hi.x, hi.y, hi.z, 0.0f}});
+    kernel.setArg(after_buffers + 2, cl_float4{{lo.x, lo.y, lo.z, 0.0f}});
     dp.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(dispatch.global_items),
                                   cl::NDRange(dispatch.local_items));
-    for (int i = 0; i < kOutputs; ++i)
-      dp.queue.enqueueReadBuffer(out_buffers[i], CL_TRUE, 0, n * sizeof(float), outputs[i].data());
+    for (std::size_t k = 0; k < distances.size(); ++k)
+      dp.queue.enqueueReadBuffer(buffers[3 + k], CL_TRUE, 0, distances[k].size_bytes(), distances[k].data());
+    for (int i = 0; i < kFloatOutputs; ++i)
+      dp.queue.enqueueReadBuffer(buffers[5 + static_cast<std::size_t>(i)], CL_TRUE, 0, n * sizeof(float),
+                                 outputs[i].data());
   });
   PointSamples samples;
-  samples.distance.assign(outputs[0].begin(), outputs[0].begin() + static_cast<std::ptrdiff_t>(points.size()));
-  samples.color_distance.assign(outputs[1].begin(), outputs[1].begin() + static_cast<std::ptrdiff_t>(points.size()));
-  for (std::size_t i = 0; i < points.size(); ++i)
-    samples.albedo.emplace_back(outputs[2][i], outputs[3][i], outputs[4][i]);
-  samples.primitive.assign(outputs[5].begin(), outputs[5].begin() + static_cast<std::ptrdiff_t>(points.size()));
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    samples.distance.push_back(distances[0].get(i));
+    samples.color_distance.push_back(distances[1].get(i));
+    samples.albedo.emplace_back(outputs[0][i], outputs[1][i], outputs[2][i]);
+    samples.primitive.push_back(outputs[3][i]);
+  }
   return samples;
 }
 

@@ -118,15 +118,16 @@ class OpenClRenderer {
 
 /// The scene's generated map() and map_color() evaluated at points on the device.
 struct PointSamples {
-  std::vector<float> distance;
+  /// In the program's precision: floats, or a double program's doubles.
+  std::vector<double> distance;
   /// Distance as map_color() computes it (must equal distance).
-  std::vector<float> color_distance;
+  std::vector<double> color_distance;
   std::vector<glm::vec3> albedo;
   /// The number of the primitive whose material map_color() gives (the id channel's).
   std::vector<float> primitive;
 };
 /// points are offsets from origin, which the program adds in its precision (a double program keeps
-/// the offsets' precision at a far origin); they travel as floats.
+/// the offsets' precision at a far origin); they travel in the program's precision too.
 PointSamples eval_points_opencl(const Scene& scene, const std::vector<glm::dvec3>& points, const OpenClOptions& options,
                                 const glm::dvec3& origin = glm::dvec3(0.0));
 

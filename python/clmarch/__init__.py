@@ -224,7 +224,8 @@ def field(scene: Union[Scene, SceneSource], points: np.ndarray, *, backend: str 
           device: Optional[int] = None, lanes: Optional[int] = None) -> dict:
     """The scene's field at points (an N x 3 array, world coordinates): {"distance": (N,),
     "color": (N, 3), "id": (N,)}, float32. Tiled scenes repeat their cell. OpenCL evaluates the
-    generated distance function from float coordinates; the reference in double."""
+    generated distance function in the scene's render.precision; the reference in double; either is
+    rounded to float32 here (`clmarch field` writes a double's digits)."""
     chosen = _scene(scene, None, None, None, None)
     array = np.asarray(points, dtype=np.float64)
     distance, color, ids = _call(_clmarch.field, chosen, array, _backend(backend), device, lanes)

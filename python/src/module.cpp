@@ -153,12 +153,18 @@ py::tuple field(const PyScene& scene, const py::array_t<double, py::array::c_sty
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
       throw InputError("points: every coordinate must be finite (got NaN or infinity)");
   }
-  auto samples =
-      std::make_shared<FieldSamples>(interruptible([&] { return sample_field(scene.scene, at, backend, options); }));
-  const std::shared_ptr<void> owner = samples;
+  // The arrays are float32 (the module's documented type); the distances are rounded to it.
+  struct Held {
+    FieldSamples samples;
+    std::vector<float> distance;
+  };
+  auto held = std::make_shared<Held>();
+  held->samples = interruptible([&] { return sample_field(scene.scene, at, backend, options); });
+  for (const double d : held->samples.distance) held->distance.push_back(static_cast<float>(d));
+  const std::shared_ptr<void> owner = held;
   const auto n = static_cast<py::ssize_t>(at.size());
-  return py::make_tuple(view_of(samples->distance, {n}, owner), view_of(samples->color, {n, 3}, owner),
-                        view_of(samples->id, {n}, owner));
+  return py::make_tuple(view_of(held->distance, {n}, owner), view_of(held->samples.color, {n, 3}, owner),
+                        view_of(held->samples.id, {n}, owner));
 }
 
 /// An N x 3 array of T over data (no copy), kept alive by owner.
