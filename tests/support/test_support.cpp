@@ -1,6 +1,7 @@
 // Test helpers.
 #include "support/test_support.hpp"
 
+#include "cl/devices.hpp"
 #include "common/cancellation.hpp"
 #include "common/errors.hpp"
 #include "frame/frame_buffers.hpp"
@@ -39,6 +40,18 @@ std::string compiler_warnings(const std::string& build_log) {
     warnings += line + "\n";
   }
   return warnings;
+}
+
+std::string front_end_warnings(const std::string& source) {
+  const DeviceEntry device = select_device(std::nullopt);
+  const cl::Context context(device.device);
+  cl::Program program(context, source);
+  try {
+    program.compile(kLoggedBuildOptions.c_str());
+  } catch (const cl::Error&) {
+    return "the source does not compile:\n" + program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device.device);
+  }
+  return compiler_warnings(program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device.device));
 }
 
 std::string shell_quote(const std::string& s) {
