@@ -21,6 +21,8 @@ import tempfile
 
 import numpy as np
 
+import mesh_ply
+
 PI = math.pi
 SCENES = [
     ("sphere", "sphere: {center: [0.3, -0.2, 0.1], radius: 1}", 4 / 3 * PI, 2),
@@ -31,20 +33,11 @@ SCENES = [
     ("disjoint", "union: [{sphere: {center: [-1, 0, 0], radius: 0.5}}, {sphere: {center: [1, 0.2, 0], radius: 0.5}}]",
      2 * 4 / 3 * PI * 0.125, 4),
 ]
-TYPES = {"float": "<f4", "double": "<f8", "uchar": "u1", "uint": "<u4", "int": "<i4"}
 
 
 def read_ply(path):
-    with open(path, "rb") as f:
-        elements = []
-        while (line := f.readline().decode().split())[0] != "end_header":
-            if line[0] == "element":
-                elements.append((line[1], int(line[2]), []))
-            elif line[0] == "property" and line[1] != "list":
-                elements[-1][2].append((line[2], TYPES[line[1]]))
-        vertex = np.fromfile(f, dtype=np.dtype(elements[0][2]), count=elements[0][1])
-        faces = np.fromfile(f, dtype=np.dtype([("n", "u1"), ("i", "<u4", 3)]), count=elements[1][1])
-    return np.stack([vertex["x"], vertex["y"], vertex["z"]], axis=1), faces["i"].astype(np.int64)
+    vertex, faces = mesh_ply.read_ply(path)
+    return np.stack([vertex["x"], vertex["y"], vertex["z"]], axis=1), faces.astype(np.int64)
 
 
 def topology(vertices, faces):

@@ -40,10 +40,7 @@ class DeviceField final : public MeshField {
     const std::size_t n = dispatch.plane_stride;
     // Points and distances in the program's real (kernels/eval_points.cl), the rest float.
     const bool in_double = prepared_.kernel_options.variant.precision == Precision::Double;
-    std::vector<RealPlane> planes(3, RealPlane(n, in_double));
-    for (std::size_t i = 0; i < offsets.size(); ++i) {
-      for (int axis = 0; axis < 3; ++axis) planes[axis].set(i, offsets[i][axis]);
-    }
+    std::vector<RealPlane> planes = coordinate_planes(offsets, n, in_double);
     RealPlane distance(n, in_double);
     with_device_errors(dp.device, [&] {
       // The buffers live until the kernel is done: an argument does not hold its buffer.

@@ -341,10 +341,7 @@ PointSamples eval_points_opencl(const Scene& scene, const std::vector<glm::dvec3
   const Dispatch dispatch = plan_point_dispatch(dp.device, points.size(), prepared.lanes);
   const std::size_t n = dispatch.plane_stride;
   const bool in_double = prepared.kernel_options.variant.precision == Precision::Double;
-  std::vector<RealPlane> coordinates(3, RealPlane(n, in_double));
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    for (int axis = 0; axis < 3; ++axis) coordinates[axis].set(i, points[i][axis]);
-  }
+  std::vector<RealPlane> coordinates = coordinate_planes(points, n, in_double);
   // distance and color distance in the program's real, then albedo r, g, b and the primitive number.
   std::vector<RealPlane> distances(2, RealPlane(n, in_double));
   constexpr int kFloatOutputs = 4;

@@ -2,6 +2,8 @@
 // built in double, as the device's buffer holds them.
 #pragma once
 
+#include <glm/glm.hpp>
+
 #include <cstddef>
 #include <cstring>
 #include <vector>
@@ -41,5 +43,14 @@ class RealPlane {
   bool in_double_;
   std::vector<unsigned char> bytes_;
 };
+
+/// The x, y and z planes of points, n values each (n >= points.size(); the rest zero).
+inline std::vector<RealPlane> coordinate_planes(const std::vector<glm::dvec3>& points, std::size_t n, bool in_double) {
+  std::vector<RealPlane> planes(3, RealPlane(n, in_double));
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    for (int axis = 0; axis < 3; ++axis) planes[axis].set(i, points[i][axis]);
+  }
+  return planes;
+}
 
 }  // namespace clmarch
