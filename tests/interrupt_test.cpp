@@ -170,6 +170,20 @@ TEST(Interrupt, OpenClRenderStopsAtTheNextChunkAndWritesNothing) {
   EXPECT_EQ(dir.files(), std::vector<std::string>{"scene.yaml"}) << "no image, no buffers, no temporary file";
 }
 
+// clmarch mesh (issue 44) stops at a signal too and leaves no file: the Mandelbulb at 1024 cells
+// samples for tens of seconds on 2 cores after its program is built; the signal comes once it is.
+TEST(Interrupt, MeshStopsAndWritesNothing) {
+  TempDir dir;
+  std::ofstream(dir / "scene.yaml") << testing::read_text(testing::source_path("scenes/mandelbulb.yaml"));
+  const Interrupted r = interrupt(
+      {"--verbose", "mesh", (dir / "scene.yaml").string(), "--resolution", "1024", "-o", (dir / "bulb.ply").string()},
+      "clmarch: build ", SIGINT);
+  EXPECT_EQ(r.exit_code, kExitInterrupted) << r.err;
+  EXPECT_TRUE(r.err.ends_with("\nclmarch: interrupted\n")) << r.err;
+  EXPECT_EQ(r.err.find("wrote"), std::string::npos) << r.err;
+  EXPECT_EQ(dir.files(), std::vector<std::string>{"scene.yaml"}) << "no mesh, no temporary file";
+}
+
 // The signal lands while the host allocates the image's planes (0.7 s for 4096x6144), before the
 // first chunk's wait; the coarse cone pass is enqueued by then, and with an empty PoCL cache PoCL
 // compiles it for its work-group size on its own threads. The process must leave with its exit
