@@ -40,14 +40,8 @@ set -u
 cd "$(dirname "$0")/.." || exit 2
 [ $# -le 1 ] || { echo "usage: $0 [CLMARCH]" >&2; exit 2; }
 clmarch=${1:-}
-if [ -z "$clmarch" ]; then
-  [ -x build/clmarch ] || scripts/build.sh >/dev/null || exit 2
-  cmake --build build --target clmarch >/dev/null || exit 2
-  clmarch=build/clmarch
-fi
-[ -x "$clmarch" ] || { echo "$0: $clmarch is not an executable" >&2; exit 2; }
-[ -x /usr/bin/time ] || { echo "$0: needs /usr/bin/time (Debian: apt-get install time)" >&2; exit 2; }
-clmarch=$(readlink -f "$clmarch")
+. scripts/clmarch-binary.sh
+clmarch=$(clmarch_binary "$clmarch") || exit 2
 ROUNDS=${ROUNDS:-1}
 REPLAY=${REPLAY:-1}
 VERBOSE=${VERBOSE:-0}

@@ -47,14 +47,8 @@ for arg in "$@"; do
     *) [ -z "$clmarch" ] || usage; clmarch=$arg ;;
   esac
 done
-if [ -z "$clmarch" ]; then
-  [ -x build/clmarch ] || scripts/build.sh >/dev/null || exit 2
-  cmake --build build --target clmarch >/dev/null || exit 2
-  clmarch=build/clmarch
-fi
-[ -x "$clmarch" ] || { echo "$0: $clmarch is not an executable" >&2; exit 2; }
-[ -x /usr/bin/time ] || { echo "$0: needs /usr/bin/time (Debian: apt-get install time)" >&2; exit 2; }
-clmarch=$(readlink -f "$clmarch")
+. scripts/clmarch-binary.sh
+clmarch=$(clmarch_binary "$clmarch") || exit 2
 folder=benchmarks/real_scenes
 peer=${GLSL_PEER:-${TMPDIR:-/tmp}/clmarch-glsl-peer}
 if [ ! -x "$peer" ]; then   # the peers' harness, built once; scripts/setup.sh --peers installs its libraries
