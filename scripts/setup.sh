@@ -10,7 +10,8 @@
 # `clmarch preview`, and nodejs runs its page's script in the tests; chromium, chromium-driver and
 # python3-selenium load that page in a real, headless browser for the tests (ctest PreviewBrowser)
 # and for scripts/preview-bench.py --browser. glslang-dev parses and type-checks users' GLSL (the
-# glsl node, host/glsl/).
+# glsl node, host/glsl/); glslang-tools only because glslang-dev's CMake package names its
+# glslangValidator, and find_package(glslang) fails on a machine without it.
 # clang-format and clang-tidy serve scripts/format.sh and scripts/tidy.sh. groff-base lets the
 # tests render the man page (dpkg-dev, which scripts/package.sh needs, comes with build-essential).
 # `setup.sh --plots` also installs python3-matplotlib for scripts/sweep-plot.py (run it with
@@ -32,7 +33,7 @@ packages=(
   libopenmpi-dev openmpi-bin
   python3 python3-dev python3-numpy python3-pytest pybind11-dev python3-openimageio groff-base
   libtinygltf-dev libassimp-dev libcpp-httplib-dev nodejs chromium chromium-driver python3-selenium
-  glslang-dev
+  glslang-dev glslang-tools
 )
 for arg in "$@"; do
   case "$arg" in
