@@ -18,9 +18,13 @@ namespace {
 using EdgeKey = std::tuple<int, int, int, int>;
 using KeyTriangle = std::array<EdgeKey, 3>;
 
-/// Values of a hash of the grid point: below 0 on about half the points of [2, 21]^3, 1 elsewhere.
-float noise_value(const glm::ivec3& p) {
-  if (glm::any(glm::lessThan(p, glm::ivec3(2))) || glm::any(glm::greaterThan(p, glm::ivec3(21)))) return 1.0f;
+/// The highest grid coordinate of the noise: the grid's points run up to 24, so the surface stays a
+/// cell inside it, as a scene's does.
+constexpr int kNoiseInside = 21;
+
+/// Values of a hash of the grid point: below 0 on about half the points of [2, high]^3, 1 elsewhere.
+float noise_value(const glm::ivec3& p, int high = kNoiseInside) {
+  if (glm::any(glm::lessThan(p, glm::ivec3(2))) || glm::any(glm::greaterThan(p, glm::ivec3(high)))) return 1.0f;
   std::uint32_t h = static_cast<std::uint32_t>(p.x) * 73856093u ^ static_cast<std::uint32_t>(p.y) * 19349663u ^
                     static_cast<std::uint32_t>(p.z) * 83492791u;
   h ^= h >> 13;
@@ -33,10 +37,11 @@ float noise_value(const glm::ivec3& p) {
 class GridNoiseField final : public MeshField {
  public:
   int bricks_sampled = 0;
+  int high = kNoiseInside;
 
   std::vector<float> distances(const std::vector<glm::dvec3>& offsets) override {
     std::vector<float> out;
-    for (const glm::dvec3& p : offsets) out.push_back(noise_value(glm::ivec3(glm::round(p))));
+    for (const glm::dvec3& p : offsets) out.push_back(noise_value(glm::ivec3(glm::round(p)), high));
     return out;
   }
   void sample_bricks(std::span<const glm::ivec3> corners, int side, double, std::span<float> out) override {
@@ -45,7 +50,7 @@ class GridNoiseField final : public MeshField {
       ++bricks_sampled;
       for (int z = 0; z < side; ++z)
         for (int y = 0; y < side; ++y)
-          for (int x = 0; x < side; ++x) out[i++] = noise_value(corner + glm::ivec3(x, y, z));
+          for (int x = 0; x < side; ++x) out[i++] = noise_value(corner + glm::ivec3(x, y, z), high);
     }
   }
   void place_vertices(std::span<const EdgeSeed>, double, const PlacementSettings&,
@@ -82,9 +87,12 @@ std::set<KeyTriangle> marched_by_brick_surface(CellMethod method, const std::vec
   }
   EXPECT_EQ(surface.vertices(), seeds.size());
   EXPECT_EQ(surface.dropped_triangles(), 0u);
-  testing::expect_watertight(surface.triangles());
+  std::vector<MeshTriangle> triangles;
+  surface.append_triangles(0, surface.bricks(), triangles);
+  EXPECT_EQ(triangles.size(), surface.triangles());
+  testing::expect_watertight(triangles);
   std::set<KeyTriangle> out;
-  for (const auto& t : surface.triangles()) {
+  for (const auto& t : triangles) {
     KeyTriangle keys;
     for (int k = 0; k < 3; ++k) {
       const EdgeSeed& s = seeds.at(t[static_cast<std::size_t>(k)]);
@@ -95,7 +103,7 @@ std::set<KeyTriangle> marched_by_brick_surface(CellMethod method, const std::vec
   return out;
 }
 
-std::set<KeyTriangle> marched_whole(CellMethod method) {
+std::set<KeyTriangle> marched_whole(CellMethod method, int high = kNoiseInside) {
   const CellTable& table = cell_table(method);
   std::set<KeyTriangle> out;
   for (int z = 0; z < 24; ++z)
@@ -103,7 +111,7 @@ std::set<KeyTriangle> marched_whole(CellMethod method) {
       for (int x = 0; x < 24; ++x) {
         int cell_case = 0;
         for (int c = 0; c < 8; ++c)
-          cell_case |= (noise_value({x + (c & 1), y + (c >> 1 & 1), z + (c >> 2 & 1)}) < 0) << c;
+          cell_case |= (noise_value({x + (c & 1), y + (c >> 1 & 1), z + (c >> 2 & 1)}, high) < 0) << c;
         const CellCase& cell = table[static_cast<std::size_t>(cell_case)];
         for (int t = 0; t < cell.count; ++t) {
           KeyTriangle keys;
@@ -140,6 +148,36 @@ TEST_P(BrickSurfaceNoise, BricksBesideCrossedFacesAreSampledToo) {
   const std::set<KeyTriangle> bricks = marched_by_brick_surface(GetParam(), {glm::ivec3(1)}, sampled);
   EXPECT_EQ(sampled, 27);
   EXPECT_TRUE(bricks == marched_whole(GetParam()));
+}
+
+TEST_P(BrickSurfaceNoise, TrianglesPastTheGridAreLeftOutAndTheCountIsExact) {
+  // The noise up to the grid's last points: cells of the last bricks use edges whose lower ends lie
+  // on the grid's upper faces, owned by bricks past the grid. Their triangles are left out, and
+  // the count announced before any triangle is made is the number made.
+  GridNoiseField field;
+  field.high = 24;
+  BrickSurface surface(noise_grid(), 0.0, GetParam());
+  std::vector<glm::ivec3> all;
+  for (int z = 0; z < 3; ++z)
+    for (int y = 0; y < 3; ++y)
+      for (int x = 0; x < 3; ++x) all.emplace_back(x, y, z);
+  surface.sample(field, all, std::size_t{1} << 12, nullptr);
+  surface.march();
+  std::vector<MeshTriangle> triangles;
+  surface.append_triangles(0, surface.bricks(), triangles);
+  ASSERT_EQ(triangles.size(), surface.triangles());
+  std::size_t past_the_grid = 0;
+  for (const KeyTriangle& t : marched_whole(GetParam(), 24)) {
+    past_the_grid += std::any_of(t.begin(), t.end(), [](const EdgeKey& e) {
+      return std::get<0>(e) == 24 || std::get<1>(e) == 24 || std::get<2>(e) == 24;
+    });
+  }
+  EXPECT_GT(past_the_grid, 100u);
+  EXPECT_EQ(surface.dropped_triangles(), past_the_grid);
+  EXPECT_EQ(triangles.size() + past_the_grid, marched_whole(GetParam(), 24).size());
+  for (const MeshTriangle& t : triangles) {
+    for (const std::uint32_t v : t) ASSERT_LT(v, surface.vertices());
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, BrickSurfaceNoise, ::testing::Values(CellMethod::Cubes, CellMethod::Tetrahedra),

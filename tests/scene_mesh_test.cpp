@@ -15,6 +15,8 @@
 #include <limits>
 #include <map>
 #include <set>
+#include <string>
+#include <vector>
 #include <tuple>
 #include <utility>
 
@@ -103,6 +105,62 @@ TEST(SceneMesh, NoBrickTheSurfaceCrossesIsPruned) {
   }
   EXPECT_GT(area, 9.0);
   EXPECT_LT(area, 9.87 + 2 * (0.6 * 0.4 + 0.6 * 1.0 + 0.4 * 1.0));
+}
+
+/// A sink that records the calls mesh_scene makes and keeps what they bring.
+class RecordingSink final : public MeshSink {
+ public:
+  MeshCollector kept;
+  MeshLayout layout;
+  std::vector<std::string> calls;
+  std::size_t largest_vertex_block = 0, largest_triangle_block = 0;
+
+  std::uint64_t kept_bytes_per_vertex() const override { return 0; }
+  std::uint64_t kept_bytes_per_triangle() const override { return 0; }
+  void begin(const MeshLayout& l) override {
+    calls.push_back("begin");
+    layout = l;
+    kept.begin(l);
+  }
+  void add_vertices(const VertexBlock& block) override {
+    if (calls.back() != "vertices") calls.push_back("vertices");
+    largest_vertex_block = std::max(largest_vertex_block, block.positions.size());
+    kept.add_vertices(block);
+  }
+  void add_triangles(std::span<const MeshTriangle> block) override {
+    if (calls.back() != "triangles") calls.push_back("triangles");
+    largest_triangle_block = std::max(largest_triangle_block, block.size());
+    kept.add_triangles(block);
+  }
+  void finish() override { calls.push_back("finish"); }
+};
+
+TEST(SceneMesh, TheMeshReachesTheSinkInBlocksAsItIsMade) {
+  const Scene scene = load_scene_text("sdf: {torus: {major_radius: 1, minor_radius: 0.3}}\n", "torus.yaml");
+  MeshSettings settings;
+  settings.resolution = 48;
+  const SceneMesh whole = mesh_scene(
+      scene, settings, [&](const glm::dvec3& origin) { return reference_field(scene, origin); }, "--resolution");
+  // Batches of 512 vertices and blocks of 1000 triangles at least: many of each.
+  settings.batch_points = 2048;
+  settings.triangles_per_block = 1000;
+  RecordingSink sink;
+  const MeshStats stats = mesh_scene(
+      scene, settings, [&](const glm::dvec3& origin) { return reference_field(scene, origin); }, "--resolution", sink);
+  EXPECT_EQ(sink.calls, (std::vector<std::string>{"begin", "vertices", "triangles", "finish"}));
+  EXPECT_EQ(sink.layout.vertices, stats.vertices);
+  EXPECT_EQ(sink.layout.triangles, stats.triangles);
+  EXPECT_TRUE(sink.layout.normals && sink.layout.colors);
+  ASSERT_GT(stats.triangles, 10'000u);
+  // A batch of vertices ends with the brick that reached 512; a block of triangles likewise.
+  EXPECT_LT(sink.largest_vertex_block, 512u + 8 * 8 * 8 * 3);
+  EXPECT_GE(sink.largest_triangle_block, 1000u);
+  EXPECT_LT(sink.largest_triangle_block, 1000u + 8 * 8 * 8 * 5);
+  const TriangleMesh& blocks = sink.kept.mesh;
+  EXPECT_EQ(blocks.positions, whole.mesh.positions);
+  EXPECT_EQ(blocks.normals, whole.mesh.normals);
+  EXPECT_EQ(blocks.triangles, whole.mesh.triangles) << "the triangles made again block by block are the same";
+  expect_watertight(blocks.triangles);
 }
 
 TEST(SceneMesh, UnboundedScenesAreRefused) {

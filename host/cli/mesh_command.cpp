@@ -16,6 +16,30 @@
 #include <iostream>
 
 namespace clmarch {
+namespace {
+
+/// The file's sink, refusing a mesh without triangles before the file begins: the scene's surface
+/// missed its box, which is the scene's fault (exit 2), not the file's.
+class SurfaceRequired final : public MeshSink {
+ public:
+  SurfaceRequired(MeshSink& file, std::string message) : file_(file), message_(std::move(message)) {}
+
+  std::uint64_t kept_bytes_per_vertex() const override { return file_.kept_bytes_per_vertex(); }
+  std::uint64_t kept_bytes_per_triangle() const override { return file_.kept_bytes_per_triangle(); }
+  void begin(const MeshLayout& layout) override {
+    if (layout.triangles == 0) throw InputError(message_);
+    file_.begin(layout);
+  }
+  void add_vertices(const VertexBlock& block) override { file_.add_vertices(block); }
+  void add_triangles(std::span<const MeshTriangle> block) override { file_.add_triangles(block); }
+  void finish() override { file_.finish(); }
+
+ private:
+  MeshSink& file_;
+  std::string message_;
+};
+
+}  // namespace
 
 CLI::App* add_mesh_command(CLI::App& app, MeshCommandOptions& options) {
   CLI::App* mesh =
@@ -82,32 +106,32 @@ int run_mesh_command(const MeshCommandOptions& options) {
   settings.resolution = options.resolution;
   settings.cells = options.cells == "tetrahedra" ? CellMethod::Tetrahedra : CellMethod::Cubes;
   const auto start = std::chrono::steady_clock::now();
-  SceneMesh result = mesh_scene(
-      scene, settings,
-      [&](const glm::dvec3& origin) {
-        return options.backend == "reference" ? reference_field(scene, origin) : opencl_field(scene, cl, origin);
-      },
-      fmt::format("--resolution {}", options.resolution));
-  if (!result.stats.level_reason.empty())
-    log_warning(fmt::format("{}: {}", scene.source_name, result.stats.level_reason));
-  if (result.mesh.triangles.empty()) {
-    throw InputError(fmt::format("{}: the surface is nowhere inside its box at --resolution {}: no triangle to write",
-                                 scene.source_name, options.resolution));
-  }
-  const auto written_at = std::chrono::steady_clock::now();
+  MeshStats stats;
   StagedFiles files;
-  write_mesh(files, output, result.mesh, format, in_double ? MeshPrecision::Double : MeshPrecision::Float);
+  stream_mesh(files, output, format, in_double ? MeshPrecision::Double : MeshPrecision::Float, [&](MeshSink& file) {
+    SurfaceRequired sink(file, fmt::format("{}: the surface is nowhere inside its box at --resolution {}: no "
+                                           "triangle to write",
+                                           scene.source_name, options.resolution));
+    stats = mesh_scene(
+        scene, settings,
+        [&](const glm::dvec3& origin) {
+          return options.backend == "reference" ? reference_field(scene, origin) : opencl_field(scene, cl, origin);
+        },
+        fmt::format("--resolution {}", options.resolution), sink);
+  });
+  if (!stats.level_reason.empty()) log_warning(fmt::format("{}: {}", scene.source_name, stats.level_reason));
+  const auto committed_at = std::chrono::steady_clock::now();
   files.commit();
   const auto end = std::chrono::steady_clock::now();
-  log_info(fmt::format("wrote {} ({} triangles, {} vertices)", output, result.stats.triangles, result.stats.vertices));
+  log_info(fmt::format("wrote {} ({} triangles, {} vertices)", output, stats.triangles, stats.vertices));
   if (options.stats) {
-    nlohmann::json line = result.stats.to_json();
+    nlohmann::json line = stats.to_json();
     line["scene"] = options.scene.scene_path;
     line["output"] = output;
     line["format"] = kMeshFormatNames[static_cast<int>(format)];
     line["backend"] = options.backend;
     line["precision"] = options.precision;
-    line["write_ms"] = std::chrono::duration<double, std::milli>(end - written_at).count();
+    line["write_ms"] = stats.write_ms + std::chrono::duration<double, std::milli>(end - committed_at).count();
     line["total_ms"] = std::chrono::duration<double, std::milli>(end - start).count();
     std::error_code error;
     line["bytes"] = std::filesystem::file_size(output, error);

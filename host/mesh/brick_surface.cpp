@@ -14,6 +14,7 @@
 #include <limits>
 #include <numeric>
 #include <span>
+#include <stdexcept>
 #include <tuple>
 
 namespace clmarch {
@@ -53,6 +54,13 @@ bool row_cases(const std::array<std::uint16_t, 81>& rows, int y, int z, std::arr
 }
 
 using BrickRange = tbb::blocked_range<std::size_t>;
+
+/// The most triangles a cell of table has.
+std::size_t max_triangles_per_cell(const CellTable& table) {
+  int most = 0;
+  for (const CellCase& cell : table) most = std::max(most, cell.count);
+  return static_cast<std::size_t>(most);
+}
 
 }  // namespace
 
@@ -189,7 +197,10 @@ void BrickSurface::march() {
     for (std::size_t id = range.begin(); id < range.end(); ++id) {
       const glm::ivec3 brick = corners_[order_[id]];
       for (int o = 0; o < 8; ++o) {
-        const auto it = slot_of_.find(key(brick + step_offset(o)));
+        // A brick past the grid has no key of its own (key() would wrap to another brick's).
+        const glm::ivec3 upper = brick + step_offset(o);
+        const auto it =
+            glm::any(glm::greaterThanEqual(upper, grid_.bricks)) ? slot_of_.end() : slot_of_.find(key(upper));
         upper_[id][o] = o == 0                 ? static_cast<std::int32_t>(id)
                         : it == slot_of_.end() ? -1
                                                : static_cast<std::int32_t>(id_of_slot[it->second]);
@@ -235,11 +246,9 @@ void BrickSurface::march() {
   surface_cells_ = surface_cells;
 
   first_vertex_.assign(n + 1, 0);
-  first_triangle_.assign(n + 1, 0);
   std::uint64_t vertices = 0;
   for (std::size_t id = 0; id < n; ++id) {
     first_vertex_[id] = static_cast<std::uint32_t>(vertices);
-    first_triangle_[id + 1] = first_triangle_[id] + triangle_count[id];
     vertices += vertex_count[id];
     if (vertices > std::numeric_limits<std::uint32_t>::max()) {
       throw OutputError(fmt::format("the mesh has more than {} vertices, which its 32-bit indices cannot number",
@@ -248,47 +257,68 @@ void BrickSurface::march() {
   }
   first_vertex_[n] = static_cast<std::uint32_t>(vertices);
 
-  // The triangles, each brick's at its place.
-  constexpr std::uint32_t kMissing = std::numeric_limits<std::uint32_t>::max();
-  triangles_.resize(first_triangle_[n]);
-  std::atomic<std::uint64_t> dropped{0};
-  tbb::parallel_for(BrickRange(0, n, 16), [&](const BrickRange& range) {
-    throw_if_cancelled();
-    for (std::size_t id = range.begin(); id < range.end(); ++id) {
-      const BelowRows rows = below_rows(samples_[order_[id]]);
-      std::array<std::uint32_t, 3>* out = triangles_.data() + first_triangle_[id];
-      for (int z = 0; z < kBrickCells; ++z) {
-        for (int y = 0; y < kBrickCells; ++y) {
-          std::array<int, 8> cases{};
-          if (!row_cases(rows, y, z, cases)) continue;
-          for (int x = 0; x < kBrickCells; ++x) {
-            const int cell_case = cases[static_cast<std::size_t>(x)];
-            const CellCase& cell = table_[static_cast<std::size_t>(cell_case)];
-            for (int t = 0; t < cell.count; ++t) {
-              std::array<std::uint32_t, 3>& triangle = *out++;
-              for (int k = 0; k < 3; ++k) {
-                const CellEdge& e = cell.triangles[static_cast<std::size_t>(t)][static_cast<std::size_t>(k)];
-                const glm::ivec3 end = glm::ivec3(x, y, z) + step_offset(e.from);
-                const glm::ivec3 o = end / kBrickCells;
-                const std::int32_t owner = upper_[id][static_cast<std::size_t>(o.x + 2 * o.y + 4 * o.z)];
-                if (owner < 0) {
-                  triangle = {kMissing, kMissing, kMissing};
-                  break;
-                }
-                const glm::ivec3 local = end - o * kBrickCells;
-                const int bit = brick_end_index(local.x, local.y, local.z) * steps + steps_.slot[e.step];
-                triangle[static_cast<std::size_t>(k)] = vertex_number(static_cast<std::uint32_t>(owner), bit);
-              }
-              if (triangle[0] == kMissing) ++dropped;
-            }
+  // Bricks on the grid's upper faces may have cells whose edges belong to a brick past the grid:
+  // their triangles are counted by writing them, so that the count is exact before any is written.
+  std::uint64_t dropped = 0;
+  std::vector<MeshTriangle> scratch(static_cast<std::size_t>(kBrickEnds) * max_triangles_per_cell(table_));
+  for (std::size_t id = 0; id < n; ++id) {
+    if (!glm::any(glm::equal(corners_[order_[id]], grid_.bricks - 1))) continue;
+    const std::uint64_t kept = brick_triangles(id, scratch.data());
+    dropped += triangle_count[id] - kept;
+    triangle_count[id] = kept;
+  }
+  dropped_triangles_ = dropped;
+  first_triangle_.assign(n + 1, 0);
+  for (std::size_t id = 0; id < n; ++id) first_triangle_[id + 1] = first_triangle_[id] + triangle_count[id];
+}
+
+std::uint64_t BrickSurface::brick_triangles(std::size_t id, MeshTriangle* out) const {
+  const BelowRows rows = below_rows(samples_[order_[id]]);
+  const int steps = steps_.count;
+  const MeshTriangle* const first = out;
+  for (int z = 0; z < kBrickCells; ++z) {
+    for (int y = 0; y < kBrickCells; ++y) {
+      std::array<int, 8> cases{};
+      if (!row_cases(rows, y, z, cases)) continue;
+      for (int x = 0; x < kBrickCells; ++x) {
+        const CellCase& cell = table_[static_cast<std::size_t>(cases[static_cast<std::size_t>(x)])];
+        for (int t = 0; t < cell.count; ++t) {
+          MeshTriangle triangle{};
+          bool kept = true;
+          for (int k = 0; k < 3 && kept; ++k) {
+            const CellEdge& e = cell.triangles[static_cast<std::size_t>(t)][static_cast<std::size_t>(k)];
+            const glm::ivec3 end = glm::ivec3(x, y, z) + step_offset(e.from);
+            const glm::ivec3 o = end / kBrickCells;
+            const std::int32_t owner = upper_[id][static_cast<std::size_t>(o.x + 2 * o.y + 4 * o.z)];
+            kept = owner >= 0;
+            if (!kept) break;
+            const glm::ivec3 local = end - o * kBrickCells;
+            const int bit = brick_end_index(local.x, local.y, local.z) * steps + steps_.slot[e.step];
+            triangle[static_cast<std::size_t>(k)] = vertex_number(static_cast<std::uint32_t>(owner), bit);
           }
+          if (kept) *out++ = triangle;
         }
       }
     }
+  }
+  return static_cast<std::uint64_t>(out - first);
+}
+
+void BrickSurface::append_triangles(std::size_t first_brick, std::size_t end_brick,
+                                    std::vector<MeshTriangle>& out) const {
+  const std::size_t base = out.size();
+  out.resize(base + (first_triangle_[end_brick] - first_triangle_[first_brick]));
+  std::atomic<bool> miscounted{false};
+  tbb::parallel_for(BrickRange(first_brick, end_brick, 16), [&](const BrickRange& range) {
+    throw_if_cancelled();
+    for (std::size_t id = range.begin(); id < range.end(); ++id) {
+      MeshTriangle* at = out.data() + base + (first_triangle_[id] - first_triangle_[first_brick]);
+      if (brick_triangles(id, at) != first_triangle_[id + 1] - first_triangle_[id]) miscounted = true;
+    }
   });
-  dropped_triangles_ = dropped;
-  if (dropped_triangles_ > 0) {
-    std::erase_if(triangles_, [](const std::array<std::uint32_t, 3>& t) { return t[0] == kMissing; });
+  // Fewer triangles than counted would leave indices of 0 in out.
+  if (miscounted) {
+    throw std::logic_error("BrickSurface: a cell inside the grid uses an edge of a brick that was not sampled");
   }
 }
 

@@ -17,6 +17,7 @@
 #include "mesh/cell_tables.hpp"
 #include "mesh/mesh_field.hpp"
 #include "mesh/mesh_grid.hpp"
+#include "mesh/triangle_mesh.hpp"
 
 #include <array>
 #include <cstdint>
@@ -36,7 +37,7 @@ class BrickSurface {
   std::uint64_t sample(MeshField& field, const std::vector<glm::ivec3>& bricks, std::size_t batch_points,
                        const std::function<void(std::size_t bricks)>& on_batch);
 
-  /// Numbers the vertices of every brick (sorting the bricks in z, y, x order) and writes the
+  /// Numbers the vertices of every brick (sorting the bricks in z, y, x order) and counts their
   /// triangles. Triangles that would use an edge outside the grid are left out (the surface reaches
   /// the grid's boundary: never for a scene's bounded surface, which has a cell of margin).
   void march();
@@ -48,11 +49,16 @@ class BrickSurface {
   /// Appends the edges of brick b's vertices to seeds, in their numbers' order.
   void append_seeds(std::size_t b, std::vector<EdgeSeed>& seeds) const;
 
-  std::vector<std::array<std::uint32_t, 3>>& triangles() { return triangles_; }
+  std::uint64_t triangles() const { return first_triangle_.empty() ? 0 : first_triangle_.back(); }
+  /// The first triangle of brick b; b's triangles run up to first_triangle(b + 1).
+  std::uint64_t first_triangle(std::size_t b) const { return first_triangle_[b]; }
+  /// Appends the triangles of bricks [first_brick, end_brick) to out, in the bricks' order: made
+  /// again from the samples at each call, so that no more than a block of them is ever held.
+  void append_triangles(std::size_t first_brick, std::size_t end_brick, std::vector<MeshTriangle>& out) const;
   std::uint64_t surface_cells() const { return surface_cells_; }
   std::uint64_t dropped_triangles() const { return dropped_triangles_; }
 
-  /// Frees the samples (after the last append_seeds).
+  /// Frees the samples (after the last append_seeds and append_triangles).
   void release_samples();
 
  private:
@@ -65,6 +71,9 @@ class BrickSurface {
   bool face_crossed(const BelowRows& rows, int axis, int side) const;
   /// The number of edge slot `bit` of brick id's set: its first vertex plus the set bits before it.
   std::uint32_t vertex_number(std::uint32_t id, int bit) const;
+  /// Writes brick id's triangles to out, leaving out those with an edge past the grid; returns how
+  /// many it wrote.
+  std::uint64_t brick_triangles(std::size_t id, MeshTriangle* out) const;
 
   MeshGrid grid_;
   double level_;
@@ -90,7 +99,6 @@ class BrickSurface {
   std::vector<std::uint16_t> bits_before_;
   std::vector<std::uint32_t> first_vertex_;
   std::vector<std::uint64_t> first_triangle_;
-  std::vector<std::array<std::uint32_t, 3>> triangles_;
   std::uint64_t surface_cells_ = 0;
   std::uint64_t dropped_triangles_ = 0;
 };

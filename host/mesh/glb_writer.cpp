@@ -134,8 +134,7 @@ tinygltf::Model mesh_model(const TriangleMesh& mesh) {
   return model;
 }
 
-}  // namespace
-
+/// Writes mesh as GLB to file.
 void write_glb(ChunkedFile& file, const TriangleMesh& mesh) {
   const std::uint64_t bytes = buffer_layout(mesh).size;
   if (bytes + kJsonAllowance > std::numeric_limits<std::uint32_t>::max()) {
@@ -152,5 +151,29 @@ void write_glb(ChunkedFile& file, const TriangleMesh& mesh) {
   std::ostream stream(&file);
   tinygltf::TinyGLTF().WriteGltfSceneToStream(&model, stream, false, true);
 }
+
+class GlbWriter final : public MeshFileWriter {
+ public:
+  using MeshFileWriter::MeshFileWriter;
+
+  // The mesh, and at finish tinygltf's binary chunk twice (float positions, normals and colours,
+  // and the indices).
+  std::uint64_t kept_bytes_per_vertex() const override {
+    return collector_.kept_bytes_per_vertex() + 2 * 3 * sizeof(glm::vec3);
+  }
+  std::uint64_t kept_bytes_per_triangle() const override { return 3 * sizeof(MeshTriangle); }
+
+ private:
+  void write_begin() override { collector_.begin(layout()); }
+  void write_vertices(const VertexBlock& block) override { collector_.add_vertices(block); }
+  void write_triangles(std::span<const MeshTriangle> block) override { collector_.add_triangles(block); }
+  void write_finish() override { write_glb(file(), collector_.mesh); }
+
+  MeshCollector collector_;
+};
+
+}  // namespace
+
+std::unique_ptr<MeshFileWriter> glb_writer(ChunkedFile& file) { return std::make_unique<GlbWriter>(file); }
 
 }  // namespace clmarch

@@ -17,29 +17,11 @@
 #include <cmath>
 #include <iterator>
 #include <stdexcept>
+#include <tuple>
 #include <vector>
 
 namespace clmarch {
 namespace {
-
-/// Throws std::logic_error unless mesh keeps TriangleMesh's rules: a writer would otherwise write
-/// a file that readers reject or read out of bounds.
-void check_mesh(const TriangleMesh& mesh) {
-  const std::size_t count = mesh.positions.size();
-  for (const auto& [name, size] :
-       {std::pair{"normals", mesh.normals.size()}, std::pair{"colors", mesh.colors.size()}}) {
-    if (size != 0 && size != count) {
-      throw std::logic_error(fmt::format("TriangleMesh: {} {} for {} positions", size, name, count));
-    }
-  }
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    for (const std::uint32_t index : mesh.triangles[t]) {
-      if (index >= count) {
-        throw std::logic_error(fmt::format("TriangleMesh: triangle {} has index {} of {} positions", t, index, count));
-      }
-    }
-  }
-}
 
 /// Records packed a block at a time: large enough to keep both cores busy, small enough to stay in
 /// cache.
@@ -100,29 +82,82 @@ MeshFormat mesh_format_of(const std::filesystem::path& path, const std::string& 
                                option, path.string(), path.extension().string()));
 }
 
-void write_mesh(StagedFiles& files, const std::filesystem::path& path, const TriangleMesh& mesh, MeshFormat format,
-                MeshPrecision precision) {
-  check_mesh(mesh);
-  if (mesh.triangles.empty())
-    throw OutputError(fmt::format("{}: cannot write: the mesh has no triangles", path.string()));
+void MeshFileWriter::begin(const MeshLayout& layout) {
+  if (layout.triangles == 0)
+    throw OutputError(fmt::format("{}: cannot write: the mesh has no triangles", file_.target().string()));
+  layout_ = layout;
+  write_begin();
+}
+
+void MeshFileWriter::add_vertices(const VertexBlock& block) {
+  const std::size_t count = block.positions.size();
+  for (const auto& [name, size, present] : {std::tuple{"normals", block.normals.size(), layout_.normals},
+                                            std::tuple{"colors", block.colors.size(), layout_.colors}}) {
+    if (size != (present ? count : 0)) {
+      throw std::logic_error(fmt::format("TriangleMesh: {} {} for {} positions", size, name, count));
+    }
+  }
+  if (triangles_ > 0 || vertices_ + count > layout_.vertices) {
+    throw std::logic_error(fmt::format("TriangleMesh: vertices {} to {} of {} announced, after {} triangles", vertices_,
+                                       vertices_ + count, layout_.vertices, triangles_));
+  }
+  write_vertices(block);
+  vertices_ += count;
+}
+
+void MeshFileWriter::add_triangles(std::span<const MeshTriangle> block) {
+  if (vertices_ != layout_.vertices || triangles_ + block.size() > layout_.triangles) {
+    throw std::logic_error(fmt::format("TriangleMesh: triangles {} to {} of {} announced, after {} of {} vertices",
+                                       triangles_, triangles_ + block.size(), layout_.triangles, vertices_,
+                                       layout_.vertices));
+  }
+  for (std::size_t t = 0; t < block.size(); ++t) {
+    for (const std::uint32_t index : block[t]) {
+      if (index >= layout_.vertices) {
+        throw std::logic_error(fmt::format("TriangleMesh: triangle {} has index {} of {} positions", triangles_ + t,
+                                           index, layout_.vertices));
+      }
+    }
+  }
+  write_triangles(block);
+  triangles_ += block.size();
+}
+
+void MeshFileWriter::finish() {
+  if (vertices_ != layout_.vertices || triangles_ != layout_.triangles) {
+    throw std::logic_error(fmt::format("TriangleMesh: {} vertices and {} triangles of {} and {} announced", vertices_,
+                                       triangles_, layout_.vertices, layout_.triangles));
+  }
+  write_finish();
+}
+
+void stream_mesh(StagedFiles& files, const std::filesystem::path& path, MeshFormat format, MeshPrecision precision,
+                 const std::function<void(MeshSink& sink)>& produce) {
   files.stage(path, [&](const std::filesystem::path& temp) {
     ChunkedFile file(temp, path);
+    std::unique_ptr<MeshFileWriter> writer;
     switch (format) {
       case MeshFormat::Ply:
-        write_ply(file, mesh, precision);
+        writer = ply_writer(file, precision);
         break;
       case MeshFormat::Stl:
-        write_stl(file, mesh);
+        writer = stl_writer(file);
         break;
       case MeshFormat::Obj:
-        write_obj(file, mesh, precision);
+        writer = obj_writer(file, precision);
         break;
       case MeshFormat::Glb:
-        write_glb(file, mesh);
+        writer = glb_writer(file);
         break;
     }
+    produce(*writer);
     file.close();
   });
+}
+
+void write_mesh(StagedFiles& files, const std::filesystem::path& path, const TriangleMesh& mesh, MeshFormat format,
+                MeshPrecision precision) {
+  stream_mesh(files, path, format, precision, [&](MeshSink& sink) { send_mesh(mesh, sink); });
 }
 
 }  // namespace clmarch

@@ -12,7 +12,8 @@
 //        alone), attribute 0. Positions only: no vertex normals, no colours, no shared vertices.
 //   OBJ  text: `v x y z` a vertex, `v x y z r g b` where the mesh has colours (the common
 //        extension; r, g, b the sRGB-encoded colour in [0, 1] to 6 digits, as for PLY), `vn nx ny
-//        nz` a normal where the mesh has normals, `f a//a b//b c//c` a triangle (1-based,
+//        nz` a normal where the mesh has normals (a block's `vn` lines after its `v` lines: OBJ
+//        numbers each kind apart, so vertex i has normal i), `f a//a b//b c//c` a triangle (1-based,
 //        counter-clockwise; `f a b c` without normals). Positions and normals are the shortest
 //        decimal that reads back as the same value: for positions the double (at most 17
 //        significant digits) with MeshPrecision::Double, else the float.
@@ -30,9 +31,11 @@
 #pragma once
 
 #include "common/atomic_file.hpp"
+#include "mesh/mesh_sink.hpp"
 #include "mesh/triangle_mesh.hpp"
 
 #include <filesystem>
+#include <functional>
 #include <string>
 
 namespace clmarch {
@@ -52,10 +55,16 @@ MeshFormat mesh_format_of(const std::filesystem::path& path, const std::string& 
 /// double) so that a far-from-origin mesh keeps its precision.
 enum class MeshPrecision { Float, Double };
 
-/// Writes mesh to path in format, staged into files (in place when they are committed). Throws
-/// OutputError with a one-line message naming path when writing fails or the mesh has no triangles,
-/// std::logic_error when the mesh breaks TriangleMesh's rules (attribute arrays of another length,
-/// an index past the end).
+/// Writes the mesh that produce gives its sink to path in format as it comes, staged into files (in
+/// place when they are committed; an exception from produce leaves no file). PLY and OBJ keep
+/// nothing of the mesh, STL its positions, glTF all of it until the end. Throws OutputError with a
+/// one-line message naming path when writing fails or the mesh has no triangles, std::logic_error
+/// when the mesh breaks TriangleMesh's rules (attribute arrays of another length, an index past the
+/// end, other counts than announced).
+void stream_mesh(StagedFiles& files, const std::filesystem::path& path, MeshFormat format, MeshPrecision precision,
+                 const std::function<void(MeshSink& sink)>& produce);
+
+/// Writes mesh to path in format, staged into files, as stream_mesh does.
 void write_mesh(StagedFiles& files, const std::filesystem::path& path, const TriangleMesh& mesh, MeshFormat format,
                 MeshPrecision precision);
 

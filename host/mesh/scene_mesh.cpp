@@ -45,13 +45,13 @@ std::uint64_t peak_resident_bytes() {
 // steps).
 constexpr std::uint64_t kBrickSampleBytes = kBrickSamples * kBrickSamples * kBrickSamples * 4;
 constexpr std::uint64_t kBrickRecordBytes = 80;
-// Bytes per vertex in the mesh (position 24, normal 12, colour 12) and per triangle (12).
-constexpr std::uint64_t kBytesPerVertex = 48;
-constexpr std::uint64_t kBytesPerTriangle = 12;
 // Bytes per point of a batch on the host: the brick samples' device copy (4) and the vertex
 // batches' 8 input and 8 output planes and their seeds and results (~96 a vertex, a quarter of the
-// points).
-constexpr std::uint64_t kBytesPerBatchPoint = 4 + 96 / 4;
+// points) and the block of placed vertices handed to the sink (48 a vertex).
+constexpr std::uint64_t kBytesPerBatchPoint = 4 + (96 + 48) / 4;
+// The most triangles a brick adds to a block past MeshSettings::triangles_per_block: 512 cells of
+// at most 12 triangles (tetrahedra).
+constexpr std::uint64_t kBrickTriangles = 512 * 12;
 // Vertices and triangles per sampled brick of 8^3 cells, twice the most measured (`clmarch mesh
 // --stats`, 2026-11-28: cubes 52 for the sphere at 1024 cells, 69 for the Mandelbulb at 256;
 // tetrahedra 192 for the Mandelbulb at 256), as the margin for curvier surfaces.
@@ -105,20 +105,20 @@ void surface_box(const Scene& scene, double level, glm::dvec3& low, glm::dvec3& 
   }
 }
 
-std::uint64_t predicted_mesh_bytes(std::uint64_t active_bricks, std::size_t batch_points, CellMethod cells) {
+std::uint64_t predicted_mesh_bytes(std::uint64_t active_bricks, std::size_t batch_points,
+                                   std::size_t triangles_per_block, CellMethod cells, const MeshSink& sink) {
   const std::uint64_t edge_set = 512 * static_cast<std::uint64_t>(edge_steps(cells).count) / 64 * 10;
   const bool cubes = cells == CellMethod::Cubes;
   const std::uint64_t vertices = cubes ? kCubeVerticesPerBrick : kTetraVerticesPerBrick;
   const std::uint64_t triangles = cubes ? kCubeTrianglesPerBrick : kTetraTrianglesPerBrick;
-  return batch_points * kBytesPerBatchPoint +
-         active_bricks * (kBrickSampleBytes + kBrickRecordBytes + edge_set + vertices * kBytesPerVertex +
-                          triangles * kBytesPerTriangle);
+  return batch_points * kBytesPerBatchPoint + (triangles_per_block + kBrickTriangles) * sizeof(MeshTriangle) +
+         active_bricks * (kBrickSampleBytes + kBrickRecordBytes + edge_set + vertices * sink.kept_bytes_per_vertex() +
+                          triangles * sink.kept_bytes_per_triangle());
 }
 
-SceneMesh mesh_scene(const Scene& scene, const MeshSettings& settings, const MeshFieldFor& field_for,
-                     const std::string& resolution_label) {
-  SceneMesh out;
-  MeshStats& stats = out.stats;
+MeshStats mesh_scene(const Scene& scene, const MeshSettings& settings, const MeshFieldFor& field_for,
+                     const std::string& resolution_label, MeshSink& sink) {
+  MeshStats stats;
   if (const Node* estimate = first_estimate(scene.sdf)) {
     stats.level = scene.render.epsilon;
     stats.level_reason = fmt::format(
@@ -150,7 +150,8 @@ SceneMesh mesh_scene(const Scene& scene, const MeshSettings& settings, const Mes
   }
   stats.prune_ms = ms_since(start);
   stats.evaluations += active.evaluations;
-  stats.predicted_bytes = predicted_mesh_bytes(active.bricks.size(), settings.batch_points, settings.cells);
+  stats.predicted_bytes = predicted_mesh_bytes(active.bricks.size(), settings.batch_points,
+                                               settings.triangles_per_block, settings.cells, sink);
   if (const std::optional<AvailableMemory> available = available_host_memory()) {
     if (stats.predicted_bytes > available->bytes) {
       throw InputError(fmt::format(
@@ -187,50 +188,84 @@ SceneMesh mesh_scene(const Scene& scene, const MeshSettings& settings, const Mes
   stats.march_ms = ms_since(start);
 
   // Each vertex onto the level, with its normal (four taps a tenth of a cell or
-  // normal_epsilon from it, whichever is smaller) and colour, a batch of bricks' vertices at a time.
+  // normal_epsilon from it, whichever is smaller) and colour, a batch of bricks' vertices at a time,
+  // each batch handed to the sink as it is placed.
   start = std::chrono::steady_clock::now();
+  const std::uint32_t vertices = surface.vertices();
+  const std::uint64_t triangles = surface.triangles();
+  auto write_start = std::chrono::steady_clock::now();
+  sink.begin({vertices, triangles, true, true});
+  stats.write_ms += ms_since(write_start);
   PlacementSettings placement;
   placement.level = stats.level;
   placement.tolerance = settings.tolerance_cells * grid.cell;
   placement.max_steps = settings.refine_steps;
   placement.normal_step = std::min(scene.render.normal_epsilon, 0.1 * grid.cell);
-  TriangleMesh& mesh = out.mesh;
-  const std::uint32_t vertices = surface.vertices();
-  mesh.positions.resize(vertices);
-  mesh.normals.resize(vertices);
-  mesh.colors.resize(vertices);
   {
     ProgressLine progress("mesh vertices", static_cast<long long>(vertices));
     const std::size_t per_batch = std::max<std::size_t>(1, settings.batch_points / 4);
     std::vector<EdgeSeed> seeds;
     std::vector<PlacedVertex> placed;
+    std::vector<glm::dvec3> positions;
+    std::vector<glm::vec3> normals, colors;
     for (std::size_t b = 0; b < surface.bricks();) {
       seeds.clear();
-      const std::uint32_t first = surface.first_vertex(b);
       for (; b < surface.bricks() && seeds.size() < per_batch; ++b) surface.append_seeds(b, seeds);
       placed.resize(seeds.size());
       field->place_vertices(seeds, grid.cell, placement, placed);
+      positions.resize(seeds.size());
+      normals.resize(seeds.size());
+      colors.resize(seeds.size());
       using Range = tbb::blocked_range<std::size_t>;
       tbb::parallel_for(Range(0, seeds.size(), 4096), [&](const Range& range) {
         for (std::size_t i = range.begin(); i < range.end(); ++i) {
           const EdgeSeed& s = seeds[i];
           const glm::dvec3 at =
               glm::dvec3(s.point) + static_cast<double>(placed[i].place) * glm::dvec3(step_offset(s.step));
-          mesh.positions[first + i] = grid.origin + at * grid.cell;
-          mesh.normals[first + i] = placed[i].normal;
-          mesh.colors[first + i] = placed[i].color;
+          positions[i] = grid.origin + at * grid.cell;
+          normals[i] = placed[i].normal;
+          colors[i] = placed[i].color;
         }
       });
       for (const PlacedVertex& v : placed) stats.evaluations += v.evaluations;
+      write_start = std::chrono::steady_clock::now();
+      sink.add_vertices({positions, normals, colors});
+      stats.write_ms += ms_since(write_start);
       progress.advance(static_cast<long long>(seeds.size()));
     }
   }
+  stats.place_ms = ms_since(start) - stats.write_ms;
+
+  // The triangles, made again from the samples a block of bricks at a time.
+  write_start = std::chrono::steady_clock::now();
+  {
+    std::vector<MeshTriangle> block;
+    for (std::size_t b = 0; b < surface.bricks();) {
+      std::size_t end = b + 1;
+      while (end < surface.bricks() &&
+             surface.first_triangle(end) - surface.first_triangle(b) < settings.triangles_per_block)
+        ++end;
+      block.clear();
+      surface.append_triangles(b, end, block);
+      sink.add_triangles(block);
+      b = end;
+    }
+  }
   surface.release_samples();
-  mesh.triangles = std::move(surface.triangles());
-  stats.place_ms = ms_since(start);
-  stats.vertices = mesh.positions.size();
-  stats.triangles = mesh.triangles.size();
+  sink.finish();
+  stats.write_ms += ms_since(write_start);
+  stats.vertices = vertices;
+  stats.triangles = triangles;
   stats.peak_resident_bytes = peak_resident_bytes();
+  return stats;
+}
+
+SceneMesh mesh_scene(const Scene& scene, const MeshSettings& settings, const MeshFieldFor& field_for,
+                     const std::string& resolution_label) {
+  MeshCollector collector;
+  SceneMesh out;
+  out.stats = mesh_scene(scene, settings, field_for, resolution_label, collector);
+  out.mesh = std::move(collector.mesh);
   return out;
 }
 

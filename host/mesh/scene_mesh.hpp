@@ -7,6 +7,7 @@
 #include "mesh/cell_tables.hpp"
 #include "mesh/mesh_field.hpp"
 #include "mesh/mesh_grid.hpp"
+#include "mesh/mesh_sink.hpp"
 #include "mesh/triangle_mesh.hpp"
 #include "scene/scene.hpp"
 
@@ -33,6 +34,9 @@ struct MeshSettings {
   double tolerance_cells = 1e-4;
   /// Grid points sampled per call of the field; vertices placed per call are a quarter of it.
   std::size_t batch_points = std::size_t{1} << 20;
+  /// Triangles handed to the sink a block at a time: at least this many (a block ends with a brick),
+  /// unless fewer are left.
+  std::size_t triangles_per_block = std::size_t{1} << 20;
 };
 
 /// Figures of one mesh (`clmarch mesh --stats`).
@@ -63,6 +67,8 @@ struct MeshStats {
   double sample_ms = 0.0;
   double march_ms = 0.0;
   double place_ms = 0.0;
+  /// Time in the sink (a file written as the mesh is made).
+  double write_ms = 0.0;
   /// Host memory predicted before sampling, and the process's peak resident memory after.
   std::uint64_t predicted_bytes = 0;
   std::uint64_t peak_resident_bytes = 0;
@@ -80,15 +86,22 @@ struct SceneMesh {
 void surface_box(const Scene& scene, double level, glm::dvec3& low, glm::dvec3& high);
 
 /// Host bytes a mesh of active bricks needs at its peak, predicted before any brick is sampled:
-/// the bricks' samples and records, the batches and the surface's vertices and triangles at their
-/// measured share per brick (scene_mesh.cpp).
-std::uint64_t predicted_mesh_bytes(std::uint64_t active_bricks, std::size_t batch_points, CellMethod cells);
+/// the bricks' samples and records, the batches and blocks, and what sink keeps of the surface's
+/// vertices and triangles at their measured share per brick (scene_mesh.cpp).
+std::uint64_t predicted_mesh_bytes(std::uint64_t active_bricks, std::size_t batch_points,
+                                   std::size_t triangles_per_block, CellMethod cells, const MeshSink& sink);
 
 /// The field of a mesh whose grid starts at origin (opencl_field, reference_field).
 using MeshFieldFor = std::function<std::unique_ptr<MeshField>(const glm::dvec3& origin)>;
 
-/// Meshes scene on field_for(origin): the field evaluated at offsets from the grid's origin. Throws
-/// InputError (naming resolution_label) when the predicted memory exceeds what the machine has left.
+/// Meshes scene on field_for(origin), the field evaluated at offsets from the grid's origin, into
+/// sink as the mesh is made: vertices a batch of bricks at a time as they are placed, then
+/// triangles a block of bricks at a time, made again from the samples. Throws InputError (naming
+/// resolution_label) when the predicted memory exceeds what the machine has left.
+MeshStats mesh_scene(const Scene& scene, const MeshSettings& settings, const MeshFieldFor& field_for,
+                     const std::string& resolution_label, MeshSink& sink);
+
+/// mesh_scene into a MeshCollector: the whole mesh in memory.
 SceneMesh mesh_scene(const Scene& scene, const MeshSettings& settings, const MeshFieldFor& field_for,
                      const std::string& resolution_label);
 

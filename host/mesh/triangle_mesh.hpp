@@ -5,6 +5,9 @@
 #include <cstdint>
 #include <vector>
 namespace clmarch {
+/// A triangle's vertex numbers.
+using MeshTriangle = std::array<std::uint32_t, 3>;
+
 struct TriangleMesh {
   /// World positions, in double so that far-from-origin scenes keep their precision.
   std::vector<glm::dvec3> positions;
@@ -12,6 +15,6 @@ struct TriangleMesh {
   std::vector<glm::vec3> normals;
   std::vector<glm::vec3> colors;
   /// Counter-clockwise seen from outside (the field's positive side).
-  std::vector<std::array<std::uint32_t, 3>> triangles;
+  std::vector<MeshTriangle> triangles;
 };
 }  // namespace clmarch
