@@ -84,6 +84,10 @@ CLI::App* add_mesh_command(CLI::App& app, MeshCommandOptions& options) {
           "--cells", options.cells,
           "cubes (default: marching cubes), or tetrahedra: marching tetrahedra, about three times the triangles")
       ->check(CLI::IsMember({"cubes", "tetrahedra"}));
+  mesh->add_flag("--sharp", options.sharp,
+                 "Keep sharp edges and corners: where a cell's normals spread wider than 30 degrees, its surface "
+                 "becomes a fan around the point where the tangent planes meet (cubes only; the whole mesh is then "
+                 "held in memory)");
   mesh->add_flag("--stats", options.stats,
                  "Print one JSON line of figures on stdout: cells sampled and pruned, vertices, triangles, time by "
                  "phase, peak memory");
@@ -105,6 +109,10 @@ int run_mesh_command(const MeshCommandOptions& options) {
   MeshSettings settings;
   settings.resolution = options.resolution;
   settings.cells = options.cells == "tetrahedra" ? CellMethod::Tetrahedra : CellMethod::Cubes;
+  if (options.sharp && settings.cells != CellMethod::Cubes) {
+    throw InputError("--sharp applies to --cells cubes: tetrahedra put vertices inside cells, which a fan would drop");
+  }
+  settings.sharp = options.sharp;
   const auto start = std::chrono::steady_clock::now();
   MeshStats stats;
   StagedFiles files;

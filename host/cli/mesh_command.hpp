@@ -17,6 +17,7 @@ struct MeshCommandOptions {
   std::string precision = "float";
   std::string backend = "opencl";
   std::string cells = "cubes";
+  bool sharp = false;
   bool stats = false;
 };
 

@@ -272,8 +272,9 @@ void BrickSurface::march() {
   for (std::size_t id = 0; id < n; ++id) first_triangle_[id + 1] = first_triangle_[id] + triangle_count[id];
 }
 
-std::uint64_t BrickSurface::brick_triangles(std::size_t id, MeshTriangle* out) const {
+std::uint64_t BrickSurface::brick_triangles(std::size_t id, MeshTriangle* out, std::uint64_t* cells) const {
   const BelowRows rows = below_rows(samples_[order_[id]]);
+  const glm::ivec3 corner = corners_[order_[id]] * kBrickCells;
   const int steps = steps_.count;
   const MeshTriangle* const first = out;
   for (int z = 0; z < kBrickCells; ++z) {
@@ -296,7 +297,9 @@ std::uint64_t BrickSurface::brick_triangles(std::size_t id, MeshTriangle* out) c
             const int bit = brick_end_index(local.x, local.y, local.z) * steps + steps_.slot[e.step];
             triangle[static_cast<std::size_t>(k)] = vertex_number(static_cast<std::uint32_t>(owner), bit);
           }
-          if (kept) *out++ = triangle;
+          if (!kept) continue;
+          *out++ = triangle;
+          if (cells) *cells++ = cell_key(grid_, corner + glm::ivec3(x, y, z));
         }
       }
     }
@@ -304,16 +307,19 @@ std::uint64_t BrickSurface::brick_triangles(std::size_t id, MeshTriangle* out) c
   return static_cast<std::uint64_t>(out - first);
 }
 
-void BrickSurface::append_triangles(std::size_t first_brick, std::size_t end_brick,
-                                    std::vector<MeshTriangle>& out) const {
+void BrickSurface::append_triangles(std::size_t first_brick, std::size_t end_brick, std::vector<MeshTriangle>& out,
+                                    std::vector<std::uint64_t>* cells) const {
   const std::size_t base = out.size();
   out.resize(base + (first_triangle_[end_brick] - first_triangle_[first_brick]));
+  if (cells) cells->resize(out.size());
   std::atomic<bool> miscounted{false};
   tbb::parallel_for(BrickRange(first_brick, end_brick, 16), [&](const BrickRange& range) {
     throw_if_cancelled();
     for (std::size_t id = range.begin(); id < range.end(); ++id) {
-      MeshTriangle* at = out.data() + base + (first_triangle_[id] - first_triangle_[first_brick]);
-      if (brick_triangles(id, at) != first_triangle_[id + 1] - first_triangle_[id]) miscounted = true;
+      const std::size_t at = base + (first_triangle_[id] - first_triangle_[first_brick]);
+      if (brick_triangles(id, out.data() + at, cells ? cells->data() + at : nullptr) !=
+          first_triangle_[id + 1] - first_triangle_[id])
+        miscounted = true;
     }
   });
   // Fewer triangles than counted would leave indices of 0 in out.

@@ -53,8 +53,10 @@ class BrickSurface {
   /// The first triangle of brick b; b's triangles run up to first_triangle(b + 1).
   std::uint64_t first_triangle(std::size_t b) const { return first_triangle_[b]; }
   /// Appends the triangles of bricks [first_brick, end_brick) to out, in the bricks' order: made
-  /// again from the samples at each call, so that no more than a block of them is ever held.
-  void append_triangles(std::size_t first_brick, std::size_t end_brick, std::vector<MeshTriangle>& out) const;
+  /// again from the samples at each call, so that no more than a block of them is ever held. With
+  /// cells, appends each triangle's cell_key there too (a cell's triangles are consecutive).
+  void append_triangles(std::size_t first_brick, std::size_t end_brick, std::vector<MeshTriangle>& out,
+                        std::vector<std::uint64_t>* cells = nullptr) const;
   std::uint64_t surface_cells() const { return surface_cells_; }
   std::uint64_t dropped_triangles() const { return dropped_triangles_; }
 
@@ -71,9 +73,9 @@ class BrickSurface {
   bool face_crossed(const BelowRows& rows, int axis, int side) const;
   /// The number of edge slot `bit` of brick id's set: its first vertex plus the set bits before it.
   std::uint32_t vertex_number(std::uint32_t id, int bit) const;
-  /// Writes brick id's triangles to out, leaving out those with an edge past the grid; returns how
-  /// many it wrote.
-  std::uint64_t brick_triangles(std::size_t id, MeshTriangle* out) const;
+  /// Writes brick id's triangles to out (and their cell_keys to cells, unless null), leaving out
+  /// those with an edge past the grid; returns how many it wrote.
+  std::uint64_t brick_triangles(std::size_t id, MeshTriangle* out, std::uint64_t* cells = nullptr) const;
 
   MeshGrid grid_;
   double level_;

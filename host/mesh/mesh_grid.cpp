@@ -76,4 +76,12 @@ ActiveBricks find_active_bricks(const MeshGrid& grid, MeshField& field, double l
   return out;
 }
 
+glm::u64vec3 cell_key_sides(const MeshGrid& grid) { return glm::u64vec3(grid.bricks) * std::uint64_t{kBrickCells}; }
+
+std::uint64_t cell_key(const MeshGrid& grid, const glm::ivec3& cell) {
+  const glm::u64vec3 side = cell_key_sides(grid);
+  const glm::u64vec3 c(cell);
+  return (c.z * side.y + c.y) * side.x + c.x;
+}
+
 }  // namespace clmarch

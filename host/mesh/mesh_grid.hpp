@@ -29,6 +29,12 @@ struct MeshGrid {
 /// side so that the surface never lies on the grid's boundary.
 MeshGrid mesh_grid(const glm::dvec3& low, const glm::dvec3& high, int resolution);
 
+/// The cells along each axis that cell_key numbers: the bricks' cells (MeshGrid::bricks times
+/// kBrickCells).
+glm::u64vec3 cell_key_sides(const MeshGrid& grid);
+/// The linear index of grid cell (x, y, z), x fastest, among cell_key_sides(grid).
+std::uint64_t cell_key(const MeshGrid& grid, const glm::ivec3& cell);
+
 /// What pruning found: the bricks left (their brick coordinates, ascending in z, y, x) and the
 /// field evaluations it spent.
 struct ActiveBricks {

@@ -7,6 +7,7 @@
 #include "common/progress.hpp"
 #include "common/log.hpp"
 #include "mesh/brick_surface.hpp"
+#include "mesh/sharp_features.hpp"
 #include "scene/scene_box.hpp"
 
 #include <fmt/format.h>
@@ -17,6 +18,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 
 namespace clmarch {
 namespace {
@@ -82,6 +84,11 @@ nlohmann::json MeshStats::to_json() const {
           {"sample_ms", sample_ms},
           {"march_ms", march_ms},
           {"place_ms", place_ms},
+          {"sharp", sharp},
+          {"feature_cells", feature_cells},
+          {"feature_cells_clamped", feature_cells_clamped},
+          {"flipped_edges", flipped_edges},
+          {"sharp_ms", sharp_ms},
           {"predicted_bytes", predicted_bytes},
           {"peak_resident_bytes", peak_resident_bytes}};
 }
@@ -106,19 +113,24 @@ void surface_box(const Scene& scene, double level, glm::dvec3& low, glm::dvec3& 
 }
 
 std::uint64_t predicted_mesh_bytes(std::uint64_t active_bricks, std::size_t batch_points,
-                                   std::size_t triangles_per_block, CellMethod cells, const MeshSink& sink) {
+                                   std::size_t triangles_per_block, CellMethod cells,
+                                   std::uint64_t kept_bytes_per_vertex, std::uint64_t kept_bytes_per_triangle) {
   const std::uint64_t edge_set = 512 * static_cast<std::uint64_t>(edge_steps(cells).count) / 64 * 10;
   const bool cubes = cells == CellMethod::Cubes;
   const std::uint64_t vertices = cubes ? kCubeVerticesPerBrick : kTetraVerticesPerBrick;
   const std::uint64_t triangles = cubes ? kCubeTrianglesPerBrick : kTetraTrianglesPerBrick;
   return batch_points * kBytesPerBatchPoint + (triangles_per_block + kBrickTriangles) * sizeof(MeshTriangle) +
-         active_bricks * (kBrickSampleBytes + kBrickRecordBytes + edge_set + vertices * sink.kept_bytes_per_vertex() +
-                          triangles * sink.kept_bytes_per_triangle());
+         active_bricks * (kBrickSampleBytes + kBrickRecordBytes + edge_set + vertices * kept_bytes_per_vertex +
+                          triangles * kept_bytes_per_triangle);
 }
 
 MeshStats mesh_scene(const Scene& scene, const MeshSettings& settings, const MeshFieldFor& field_for,
                      const std::string& resolution_label, MeshSink& sink) {
   MeshStats stats;
+  stats.sharp = settings.sharp;
+  if (settings.sharp && settings.cells != CellMethod::Cubes) {
+    throw std::invalid_argument("MeshSettings: sharp features need marching cubes' cells, not tetrahedra");
+  }
   if (const Node* estimate = first_estimate(scene.sdf)) {
     stats.level = scene.render.epsilon;
     stats.level_reason = fmt::format(
@@ -150,8 +162,15 @@ MeshStats mesh_scene(const Scene& scene, const MeshSettings& settings, const Mes
   }
   stats.prune_ms = ms_since(start);
   stats.evaluations += active.evaluations;
-  stats.predicted_bytes = predicted_mesh_bytes(active.bricks.size(), settings.batch_points,
-                                               settings.triangles_per_block, settings.cells, sink);
+  // With sharp features the whole mesh is kept (and its triangles' cells, and the triangles remade)
+  // before the sink has it.
+  MeshCollector kept;
+  MeshSink& receiver = settings.sharp ? kept : sink;
+  const std::uint64_t kept_per_triangle = sizeof(MeshTriangle) + sizeof(std::uint64_t);
+  stats.predicted_bytes =
+      predicted_mesh_bytes(active.bricks.size(), settings.batch_points, settings.triangles_per_block, settings.cells,
+                           sink.kept_bytes_per_vertex() + (settings.sharp ? kept.kept_bytes_per_vertex() : 0),
+                           sink.kept_bytes_per_triangle() + (settings.sharp ? 2 * kept_per_triangle : 0));
   if (const std::optional<AvailableMemory> available = available_host_memory()) {
     if (stats.predicted_bytes > available->bytes) {
       throw InputError(fmt::format(
@@ -194,7 +213,7 @@ MeshStats mesh_scene(const Scene& scene, const MeshSettings& settings, const Mes
   const std::uint32_t vertices = surface.vertices();
   const std::uint64_t triangles = surface.triangles();
   auto write_start = std::chrono::steady_clock::now();
-  sink.begin({vertices, triangles, true, true});
+  receiver.begin({vertices, triangles, true, true});
   stats.write_ms += ms_since(write_start);
   PlacementSettings placement;
   placement.level = stats.level;
@@ -229,7 +248,7 @@ MeshStats mesh_scene(const Scene& scene, const MeshSettings& settings, const Mes
       });
       for (const PlacedVertex& v : placed) stats.evaluations += v.evaluations;
       write_start = std::chrono::steady_clock::now();
-      sink.add_vertices({positions, normals, colors});
+      receiver.add_vertices({positions, normals, colors});
       stats.write_ms += ms_since(write_start);
       progress.advance(static_cast<long long>(seeds.size()));
     }
@@ -238,6 +257,7 @@ MeshStats mesh_scene(const Scene& scene, const MeshSettings& settings, const Mes
 
   // The triangles, made again from the samples a block of bricks at a time.
   write_start = std::chrono::steady_clock::now();
+  std::vector<std::uint64_t> cells;
   {
     std::vector<MeshTriangle> block;
     for (std::size_t b = 0; b < surface.bricks();) {
@@ -245,17 +265,35 @@ MeshStats mesh_scene(const Scene& scene, const MeshSettings& settings, const Mes
       while (end < surface.bricks() &&
              surface.first_triangle(end) - surface.first_triangle(b) < settings.triangles_per_block)
         ++end;
-      block.clear();
-      surface.append_triangles(b, end, block);
-      sink.add_triangles(block);
+      if (settings.sharp) {
+        surface.append_triangles(b, end, kept.mesh.triangles, &cells);
+      } else {
+        block.clear();
+        surface.append_triangles(b, end, block);
+        sink.add_triangles(block);
+      }
       b = end;
     }
   }
   surface.release_samples();
-  sink.finish();
-  stats.write_ms += ms_since(write_start);
   stats.vertices = vertices;
   stats.triangles = triangles;
+  if (settings.sharp) {
+    stats.write_ms += ms_since(write_start);
+    start = std::chrono::steady_clock::now();
+    const SharpStats sharp = sharpen_features(kept.mesh, cells, grid, SharpSettings{});
+    stats.feature_cells = sharp.feature_cells;
+    stats.feature_cells_clamped = sharp.clamped_cells;
+    stats.flipped_edges = sharp.flipped_edges;
+    stats.vertices = kept.mesh.positions.size();
+    stats.triangles = kept.mesh.triangles.size();
+    stats.sharp_ms = ms_since(start);
+    write_start = std::chrono::steady_clock::now();
+    send_mesh(kept.mesh, sink);
+  } else {
+    sink.finish();
+  }
+  stats.write_ms += ms_since(write_start);
   stats.peak_resident_bytes = peak_resident_bytes();
   return stats;
 }

@@ -34,6 +34,10 @@ struct MeshSettings {
   double tolerance_cells = 1e-4;
   /// Grid points sampled per call of the field; vertices placed per call are a quarter of it.
   std::size_t batch_points = std::size_t{1} << 20;
+  /// Whether feature cells become fans around their tangent planes' meeting point (sharp_features.hpp):
+  /// the whole mesh is then kept before the sink has it. Cubes only (tetrahedra put vertices inside
+  /// cells, which a fan would leave unused).
+  bool sharp = false;
   /// Triangles handed to the sink a block at a time: at least this many (a block ends with a brick),
   /// unless fewer are left.
   std::size_t triangles_per_block = std::size_t{1} << 20;
@@ -69,6 +73,13 @@ struct MeshStats {
   double place_ms = 0.0;
   /// Time in the sink (a file written as the mesh is made).
   double write_ms = 0.0;
+  /// MeshSettings::sharp, and what it did: cells made fans, those whose planes met outside them (the
+  /// fan's centre moved into the cell), edges flipped between fans, and its time.
+  bool sharp = false;
+  std::uint64_t feature_cells = 0;
+  std::uint64_t feature_cells_clamped = 0;
+  std::uint64_t flipped_edges = 0;
+  double sharp_ms = 0.0;
   /// Host memory predicted before sampling, and the process's peak resident memory after.
   std::uint64_t predicted_bytes = 0;
   std::uint64_t peak_resident_bytes = 0;
@@ -86,10 +97,12 @@ struct SceneMesh {
 void surface_box(const Scene& scene, double level, glm::dvec3& low, glm::dvec3& high);
 
 /// Host bytes a mesh of active bricks needs at its peak, predicted before any brick is sampled:
-/// the bricks' samples and records, the batches and blocks, and what sink keeps of the surface's
-/// vertices and triangles at their measured share per brick (scene_mesh.cpp).
+/// the bricks' samples and records, the batches and blocks, and the bytes kept for each of the
+/// surface's vertices and triangles (by the sink, and the whole mesh with sharp features) at their
+/// measured share per brick (scene_mesh.cpp).
 std::uint64_t predicted_mesh_bytes(std::uint64_t active_bricks, std::size_t batch_points,
-                                   std::size_t triangles_per_block, CellMethod cells, const MeshSink& sink);
+                                   std::size_t triangles_per_block, CellMethod cells,
+                                   std::uint64_t kept_bytes_per_vertex, std::uint64_t kept_bytes_per_triangle);
 
 /// The field of a mesh whose grid starts at origin (opencl_field, reference_field).
 using MeshFieldFor = std::function<std::unique_ptr<MeshField>(const glm::dvec3& origin)>;

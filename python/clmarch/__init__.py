@@ -234,18 +234,19 @@ def field(scene: Union[Scene, SceneSource], points: np.ndarray, *, backend: str 
 
 def mesh(scene: Union[Scene, SceneSource], *, resolution: int = 256, set: Overrides = None,
          time: Optional[float] = None, backend: str = "opencl", precision: str = "float",
-         device: Optional[int] = None, cells: str = "cubes") -> dict:
+         device: Optional[int] = None, cells: str = "cubes", sharp: bool = False) -> dict:
     """`clmarch mesh`: the scene's surface as a welded, watertight triangle mesh.
 
     Returns {"vertices": (V, 3) float64, "faces": (F, 3) uint32 (counter-clockwise seen from
     outside), "normals": (V, 3) float32, "colors": (V, 3) float32 (linear), "stats": dict}.
     resolution: grid cells along the longest side of the surface's box; precision "double"
     evaluates the field in double (for scenes far from the origin); cells "cubes" (marching cubes)
-    or "tetrahedra" (about three times the triangles).
+    or "tetrahedra" (about three times the triangles); sharp keeps edges and corners (`--sharp`,
+    cubes only).
     """
     chosen = _scene(scene, set, time, None, None)
     vertices, faces, normals, colors, stats = _call(_clmarch.mesh, chosen, int(resolution), _backend(backend),
-                                                    precision, device, cells)
+                                                    precision, device, cells, bool(sharp))
     return {"vertices": vertices, "faces": faces, "normals": normals, "colors": colors, "stats": json.loads(stats)}
 
 

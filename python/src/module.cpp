@@ -178,7 +178,7 @@ py::array_t<T> rows_of_three(const T* data, std::size_t rows, const std::shared_
 
 /// vertices (V x 3 float64), faces (V x 3 uint32), normals and colors (V x 3 float32), stats.
 py::tuple mesh(const PyScene& scene, int resolution, const std::string& backend_name, const std::string& precision,
-               std::optional<int> device, const std::string& cells) {
+               std::optional<int> device, const std::string& cells, bool sharp) {
   if (resolution < 8 || resolution > 8192) {
     throw InputError(fmt::format("resolution must be from 8 to 8192 (got {})", resolution));
   }
@@ -188,6 +188,9 @@ py::tuple mesh(const PyScene& scene, int resolution, const std::string& backend_
   if (cells != "cubes" && cells != "tetrahedra") {
     throw InputError(fmt::format("cells must be 'cubes' or 'tetrahedra' (got '{}')", cells));
   }
+  if (sharp && cells != "cubes") {
+    throw InputError("sharp applies to cells='cubes': tetrahedra put vertices inside cells, which a fan would drop");
+  }
   const Backend backend = parse_backend(backend_name, "backend");
   Scene meshed = scene.scene;
   if (precision == "double") meshed.render.precision = Precision::Double;
@@ -196,6 +199,7 @@ py::tuple mesh(const PyScene& scene, int resolution, const std::string& backend_
   MeshSettings settings;
   settings.resolution = resolution;
   settings.cells = cells == "tetrahedra" ? CellMethod::Tetrahedra : CellMethod::Cubes;
+  settings.sharp = sharp;
   auto result = std::make_shared<SceneMesh>(interruptible([&] {
     return mesh_scene(
         meshed, settings,
@@ -358,7 +362,7 @@ PYBIND11_MODULE(_clmarch, m) {
 
   m.def("field", &field, py::arg("scene"), py::arg("points"), py::arg("backend"), py::arg("device"), py::arg("lanes"));
   m.def("mesh", &mesh, py::arg("scene"), py::arg("resolution"), py::arg("backend"), py::arg("precision"),
-        py::arg("device"), py::arg("cells"));
+        py::arg("device"), py::arg("cells"), py::arg("sharp"));
   m.def("check", &check, py::arg("scene"), py::arg("device"), py::arg("lanes"));
   m.def("bench", &bench, py::arg("scene"), py::arg("repeat"), py::arg("reference"), py::arg("device"),
         py::arg("lanes"));

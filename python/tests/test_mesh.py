@@ -41,6 +41,19 @@ def test_tetrahedra_give_more_triangles_than_cubes():
     assert 2.5 < len(tetrahedra["faces"]) / len(cubes["faces"]) < 3.5
 
 
+def test_sharp_features_add_fans_on_a_box_and_keep_it_closed():
+    box = {"sdf": {"box": {"half_size": [0.5, 0.3, 0.4], "rotate": [10, 20, 30]}}}
+    plain = clmarch.mesh(box, resolution=24, backend="reference")
+    sharp = clmarch.mesh(box, resolution=24, backend="reference", sharp=True)
+    assert plain["stats"]["feature_cells"] == 0 and sharp["stats"]["feature_cells"] > 0
+    assert sharp["stats"]["sharp"] and len(sharp["vertices"]) > len(plain["vertices"])
+    edges = {}
+    for a, b, c in sharp["faces"].tolist():
+        for edge in ((a, b), (b, c), (c, a)):
+            edges[edge] = edges.get(edge, 0) + 1
+    assert all(count == 1 and edges.get((b, a)) == 1 for (a, b), count in edges.items())
+
+
 def test_bad_mesh_arguments():
     with pytest.raises(ValueError, match="resolution must be from 8 to 8192"):
         clmarch.mesh(SCENES / "torus.yaml", resolution=4)
@@ -48,5 +61,7 @@ def test_bad_mesh_arguments():
         clmarch.mesh(SCENES / "torus.yaml", precision="half")
     with pytest.raises(ValueError, match="cells must be 'cubes' or 'tetrahedra'"):
         clmarch.mesh(SCENES / "torus.yaml", resolution=16, cells="hexagons")
+    with pytest.raises(ValueError, match="sharp applies to cells='cubes'"):
+        clmarch.mesh(SCENES / "torus.yaml", resolution=16, cells="tetrahedra", sharp=True)
     with pytest.raises(ValueError, match="the surface is unbounded"):
         clmarch.mesh({"sdf": {"plane": {"normal": [0, 1, 0], "offset": 0}}}, resolution=8)
