@@ -29,4 +29,13 @@ for cells in cubes tetrahedra; do
   picture "$tmp/torus_$cells.ply" "docs/images/mesh_cells_$cells.png" --camera=-1.2,2.4,2.4 --look-at=0,-0.1,0 \
     --fov 40 --flat --edges --size 480x360
 done
+# Sharp features: the rotated box of the quality tests at 24 cells, without and with --sharp.
+printf 'sdf: {box: {half_size: [0.5, 0.3, 0.4], rotate: [10, 20, 30]}}\n' >"$tmp/box.yaml"
+for sharp in plain sharp; do
+  flag=()
+  [ "$sharp" = plain ] || flag=(--sharp)
+  mesh "$tmp/box.yaml" -o "$tmp/box_$sharp.ply" --resolution 24 "${flag[@]}"
+  picture "$tmp/box_$sharp.ply" "docs/images/mesh_box_$sharp.png" --camera=1.4,1.3,1.9 --look-at=0,0,0 --fov 36 \
+    --flat --edges --size 480x360
+done
 ls -l docs/images/mesh_*.png

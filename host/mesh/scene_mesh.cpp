@@ -87,6 +87,7 @@ nlohmann::json MeshStats::to_json() const {
           {"sharp", sharp},
           {"feature_cells", feature_cells},
           {"feature_cells_clamped", feature_cells_clamped},
+          {"feature_cells_folded", feature_cells_folded},
           {"flipped_edges", flipped_edges},
           {"sharp_ms", sharp_ms},
           {"predicted_bytes", predicted_bytes},
@@ -208,13 +209,18 @@ MeshStats mesh_scene(const Scene& scene, const MeshSettings& settings, const Mes
 
   // Each vertex onto the level, with its normal (four taps a tenth of a cell or
   // normal_epsilon from it, whichever is smaller) and colour, a batch of bricks' vertices at a time,
-  // each batch handed to the sink as it is placed.
+  // each batch handed to the sink as it is placed. write_ms is the time in the sink, when the sink
+  // is the caller's.
+  const auto timed = [&](const auto& call) {
+    const auto write_start = std::chrono::steady_clock::now();
+    call();
+    if (&receiver == &sink) stats.write_ms += ms_since(write_start);
+  };
   start = std::chrono::steady_clock::now();
+  const double write_before_place = stats.write_ms;
   const std::uint32_t vertices = surface.vertices();
   const std::uint64_t triangles = surface.triangles();
-  auto write_start = std::chrono::steady_clock::now();
-  receiver.begin({vertices, triangles, true, true});
-  stats.write_ms += ms_since(write_start);
+  timed([&] { receiver.begin({vertices, triangles, true, true}); });
   PlacementSettings placement;
   placement.level = stats.level;
   placement.tolerance = settings.tolerance_cells * grid.cell;
@@ -247,16 +253,13 @@ MeshStats mesh_scene(const Scene& scene, const MeshSettings& settings, const Mes
         }
       });
       for (const PlacedVertex& v : placed) stats.evaluations += v.evaluations;
-      write_start = std::chrono::steady_clock::now();
-      receiver.add_vertices({positions, normals, colors});
-      stats.write_ms += ms_since(write_start);
+      timed([&] { receiver.add_vertices({positions, normals, colors}); });
       progress.advance(static_cast<long long>(seeds.size()));
     }
   }
-  stats.place_ms = ms_since(start) - stats.write_ms;
+  stats.place_ms = ms_since(start) - (stats.write_ms - write_before_place);
 
-  // The triangles, made again from the samples a block of bricks at a time.
-  write_start = std::chrono::steady_clock::now();
+  // The triangles, made again from the samples a block of bricks at a time (marching's time).
   std::vector<std::uint64_t> cells;
   {
     std::vector<MeshTriangle> block;
@@ -265,13 +268,15 @@ MeshStats mesh_scene(const Scene& scene, const MeshSettings& settings, const Mes
       while (end < surface.bricks() &&
              surface.first_triangle(end) - surface.first_triangle(b) < settings.triangles_per_block)
         ++end;
+      start = std::chrono::steady_clock::now();
       if (settings.sharp) {
         surface.append_triangles(b, end, kept.mesh.triangles, &cells);
       } else {
         block.clear();
         surface.append_triangles(b, end, block);
-        sink.add_triangles(block);
       }
+      stats.march_ms += ms_since(start);
+      if (!settings.sharp) timed([&] { sink.add_triangles(block); });
       b = end;
     }
   }
@@ -279,21 +284,21 @@ MeshStats mesh_scene(const Scene& scene, const MeshSettings& settings, const Mes
   stats.vertices = vertices;
   stats.triangles = triangles;
   if (settings.sharp) {
-    stats.write_ms += ms_since(write_start);
     start = std::chrono::steady_clock::now();
     const SharpStats sharp = sharpen_features(kept.mesh, cells, grid, SharpSettings{});
     stats.feature_cells = sharp.feature_cells;
     stats.feature_cells_clamped = sharp.clamped_cells;
+    stats.feature_cells_folded = sharp.folded_cells;
     stats.flipped_edges = sharp.flipped_edges;
     stats.vertices = kept.mesh.positions.size();
     stats.triangles = kept.mesh.triangles.size();
     stats.sharp_ms = ms_since(start);
-    write_start = std::chrono::steady_clock::now();
+    const auto write_start = std::chrono::steady_clock::now();
     send_mesh(kept.mesh, sink);
+    stats.write_ms += ms_since(write_start);
   } else {
-    sink.finish();
+    timed([&] { sink.finish(); });
   }
-  stats.write_ms += ms_since(write_start);
   stats.peak_resident_bytes = peak_resident_bytes();
   return stats;
 }

@@ -78,6 +78,8 @@ struct MeshStats {
   bool sharp = false;
   std::uint64_t feature_cells = 0;
   std::uint64_t feature_cells_clamped = 0;
+  /// Feature cells left to marching's triangles, their fan folding (sharp_features.hpp).
+  std::uint64_t feature_cells_folded = 0;
   std::uint64_t flipped_edges = 0;
   double sharp_ms = 0.0;
   /// Host memory predicted before sampling, and the process's peak resident memory after.

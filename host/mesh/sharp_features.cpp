@@ -127,6 +127,27 @@ std::vector<std::uint32_t> boundary_loop(const std::vector<MeshTriangle>& piece)
   return loop.size() == next.size() ? loop : std::vector<std::uint32_t>{};
 }
 
+/// Twice the area of the triangle a, b, c along its normal (counter-clockwise).
+glm::dvec3 area_normal(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+  return glm::cross(b - a, c - a);
+}
+
+/// Whether a triangle with this area_normal is no sliver (sides of a thousandth of a cell: ten
+/// times the root finding's tolerance) and faces the way of the field's normal given.
+bool faces_along(const glm::dvec3& triangle, const glm::dvec3& field_normal, double cell) {
+  return glm::length(triangle) > 1e-6 * cell * cell && glm::dot(triangle, field_normal) > 0.0;
+}
+
+/// Whether two triangles with these area_normals turn by less than about 155 degrees across their
+/// edge: a sharper turn between two new triangles is a fold (a fractal's noise seen as features),
+/// not an edge of a model. Slivers (under a thousandth of a cell's area) are let be: their normals
+/// are rounding.
+bool no_fold(const glm::dvec3& first, const glm::dvec3& second, double cell) {
+  const double sliver = 2e-3 * cell * cell;
+  if (glm::length(first) < sliver || glm::length(second) < sliver) return true;
+  return glm::dot(first, second) > -0.9 * glm::length(first) * glm::length(second);
+}
+
 /// A fan triangle (a, b, centre): its edge a -> b lies on the cell's faces.
 struct Fan {
   std::size_t triangle;
@@ -167,7 +188,6 @@ SharpStats sharpen_features(TriangleMesh& mesh, std::vector<std::uint64_t>& cell
         keep();
         continue;
       }
-      ++stats.feature_cells;
       points.clear();
       normals.clear();
       for (const std::uint32_t v : loop) {
@@ -180,11 +200,28 @@ SharpStats sharpen_features(TriangleMesh& mesh, std::vector<std::uint64_t>& cell
       const glm::dvec3 inside = (centre - low) / grid.cell;
       // Planes meeting outside the cell (the feature passes a neighbour, or the planes are nearly
       // parallel): the cell's nearest point, so that fans stay in their cells.
-      if (!(glm::all(glm::greaterThanEqual(inside, glm::dvec3(0.0))) &&
-            glm::all(glm::lessThanEqual(inside, glm::dvec3(1.0))))) {
-        ++stats.clamped_cells;
-      }
+      const bool outside = !(glm::all(glm::greaterThanEqual(inside, glm::dvec3(0.0))) &&
+                             glm::all(glm::lessThanEqual(inside, glm::dvec3(1.0))));
       const glm::dvec3 clamped = low + glm::clamp(inside, 0.0, 1.0) * grid.cell;
+      // A fan triangle that is a sliver (the centre on a vertex: a cone's tip), turned against the
+      // field's normals at its two vertices, or folded onto its neighbour in the fan would fold the
+      // surface: marching's triangles stay.
+      bool sound = true;
+      glm::dvec3 previous = area_normal(mesh.positions[loop.back()], mesh.positions[loop.front()], clamped);
+      for (std::size_t i = 0; i < loop.size() && sound; ++i) {
+        const std::uint32_t a = loop[i], b = loop[(i + 1) % loop.size()];
+        const glm::dvec3 triangle = area_normal(mesh.positions[a], mesh.positions[b], clamped);
+        sound = faces_along(triangle, glm::dvec3(mesh.normals[a]) + glm::dvec3(mesh.normals[b]), grid.cell) &&
+                no_fold(previous, triangle, grid.cell);
+        previous = triangle;
+      }
+      if (!sound) {
+        ++stats.folded_cells;
+        keep();
+        continue;
+      }
+      ++stats.feature_cells;
+      stats.clamped_cells += outside ? 1 : 0;
       glm::vec3 normal(0.0f), color(0.0f);
       for (const std::uint32_t v : loop) {
         normal += mesh.normals[v];
@@ -221,6 +258,15 @@ SharpStats sharpen_features(TriangleMesh& mesh, std::vector<std::uint64_t>& cell
     const std::uint32_t c1 = fan.centre, c2 = other.centre;
     if (!joined.insert(edge_key(std::min(c1, c2), std::max(c1, c2))).second) continue;
     const std::uint32_t a = t[0], b = t[1];
+    // Each new triangle must face like the field at its one old vertex, and the two not fold.
+    const glm::dvec3 &pa = mesh.positions[a], &pb = mesh.positions[b];
+    const glm::dvec3 &p1 = mesh.positions[c1], &p2 = mesh.positions[c2];
+    const glm::dvec3 first = area_normal(pa, p2, p1), second = area_normal(p2, pb, p1);
+    if (!faces_along(first, glm::dvec3(mesh.normals[a]), grid.cell) ||
+        !faces_along(second, glm::dvec3(mesh.normals[b]), grid.cell) || !no_fold(first, second, grid.cell)) {
+      joined.erase(edge_key(std::min(c1, c2), std::max(c1, c2)));
+      continue;
+    }
     triangles[fan.triangle] = {a, c2, c1};
     triangles[other.triangle] = {c2, b, c1};
     flipped[fan.triangle] = flipped[other.triangle] = true;

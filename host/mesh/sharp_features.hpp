@@ -33,7 +33,11 @@ struct SharpStats {
   std::uint64_t feature_cells = 0;
   /// Feature cells whose planes met outside the cell: the new vertex moved to the cell's nearest point.
   std::uint64_t clamped_cells = 0;
-  /// Edges flipped to join two new vertices.
+  /// Feature cells whose fan would have had a sliver or a triangle turned against the field's
+  /// normals (a cone's tip, a fractal's folds): marching's triangles kept.
+  std::uint64_t folded_cells = 0;
+  /// Edges flipped to join two new vertices (a flip that would turn a triangle against the field's
+  /// normal at its old vertex is not made).
   std::uint64_t flipped_edges = 0;
 };
 
