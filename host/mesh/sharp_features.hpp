@@ -8,8 +8,10 @@
 //
 // Only a cell's inside changes: the edges on its faces stay, so the mesh stays closed, edge-manifold
 // and oriented as marching made it. Where the planes meet outside the cell, the new vertex is the
-// cell's nearest point to where they meet (keeping marching's triangles there instead left a third
-// of a cell's error on a box's edges at 32 cells, the nearest point a tenth).
+// cell's nearest point to where they meet (keeping marching's triangles there instead left a box's
+// edges up to 0.8 of a cell off at 32 cells, the nearest point 0.3). Fans and flips that would
+// make a sliver, turn a triangle against the field's normals or fold two triangles onto each
+// other are not made: those cells keep marching's triangles.
 #pragma once
 
 #include "mesh/mesh_grid.hpp"
@@ -33,11 +35,12 @@ struct SharpStats {
   std::uint64_t feature_cells = 0;
   /// Feature cells whose planes met outside the cell: the new vertex moved to the cell's nearest point.
   std::uint64_t clamped_cells = 0;
-  /// Feature cells whose fan would have had a sliver or a triangle turned against the field's
-  /// normals (a cone's tip, a fractal's folds): marching's triangles kept.
+  /// Feature cells whose fan would have had a sliver, a triangle turned against the field's normals
+  /// or two triangles folded onto each other (a cone's tip, a fractal's noise): marching's
+  /// triangles kept.
   std::uint64_t folded_cells = 0;
-  /// Edges flipped to join two new vertices (a flip that would turn a triangle against the field's
-  /// normal at its old vertex is not made).
+  /// Edges flipped to join two new vertices (a flip that would make a sliver, turn a triangle
+  /// against the field's normal at its old vertex or fold the two is not made).
   std::uint64_t flipped_edges = 0;
 };
 
