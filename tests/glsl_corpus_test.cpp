@@ -26,9 +26,12 @@ const std::filesystem::path kCorpus = source_path("tests/glsl_corpus");
 // uniform and the OpenCL program reads the time from its float literals even in double precision.
 const std::vector<std::pair<double, std::string>> kTimes = {{0.0, "0"}, {1.7f, "1.7"}};
 
-// One lane: the user's code runs a lane at a time whatever the packet's width, and PoCL compiles
-// the scalar program in half the time of the 16-lane one (the test's cost is its compiles).
+// One lane (the scalar translation, which GPUs run) in float and double, and packets of 16 in float
+// at the last time: the packet translation where the file has one (glsl/opencl_packets.hpp), else
+// the scalar one a lane at a time. PoCL compiles the scalar program in half the time of the 16-lane
+// one (the test's cost is its compiles), so packets are checked once per file.
 const SessionOptions kOneLane{std::nullopt, 1};
+const SessionOptions kPackets{std::nullopt, 16};
 
 constexpr double kFloatEpsilon = std::numeric_limits<float>::epsilon();
 // Against llvmpipe, in float ulps of the point's scale (scale_of). Two float implementations round
@@ -172,6 +175,10 @@ TEST_P(GlslCorpus, MatchesLlvmpipe) {
     expect_near_truth(where + " on the reference", truth, reference, color);
     expect_near_truth(where + " on OpenCL in float", truth, sample_field(scene, points, Backend::OpenCl, kOneLane),
                       color);
+    if (time_name == kTimes.back().second) {
+      expect_near_truth(where + " on OpenCL in float, packets of 16", truth,
+                        sample_field(scene, points, Backend::OpenCl, kPackets), color);
+    }
     if (!fp64) continue;
     const FieldSamples opencl_double =
         sample_field(corpus_scene(name, "double", time), points, Backend::OpenCl, kOneLane);

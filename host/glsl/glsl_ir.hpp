@@ -266,6 +266,13 @@ struct Expr {
   std::vector<double> constant;
 };
 
+/// The variable an lvalue names at its root (q in q.xy[1]), or -1.
+inline int root_variable(const Expr& expr) {
+  const Expr* e = &expr;
+  while (e->kind != ExprKind::Variable && !e->operands.empty()) e = &e->operands[0];
+  return e->kind == ExprKind::Variable ? e->variable : -1;
+}
+
 /// Kinds of statements.
 enum class StmtKind {
   /// expression;

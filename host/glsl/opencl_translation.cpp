@@ -31,13 +31,6 @@ bool reads_globals(const Module& module, const Expr& expr, const std::vector<boo
                      [&](const Expr& operand) { return reads_globals(module, operand, needs); });
 }
 
-// The variable an lvalue expression names at its root.
-int root_variable(const Expr& expr) {
-  const Expr* e = &expr;
-  while (e->kind != ExprKind::Variable && !e->operands.empty()) e = &e->operands[0];
-  return e->kind == ExprKind::Variable ? e->variable : -1;
-}
-
 bool is_global(const Module& module, int variable) {
   return variable >= 0 && (module.variables[variable].storage == Storage::Global ||
                            module.variables[variable].storage == Storage::GlobalConst);
