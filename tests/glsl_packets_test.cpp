@@ -2,11 +2,11 @@
 // different point (so lanes take different branches of an `if` on the point), evaluated on the
 // device in float and in double and held to the double-precision interpreter, which reads the same
 // IR without any translation; and the constructs that keep the lane-at-a-time path, by name.
-#include "cl/device_program.hpp"
+#include "cl/devices.hpp"
 #include "glsl/glsl_front_end.hpp"
 #include "glsl/glsl_interpreter.hpp"
 #include "glsl/opencl_packets.hpp"
-#include "support/test_support.hpp"
+#include "support/evaluate_kernel.hpp"
 
 #include <gtest/gtest.h>
 #include <fmt/format.h>
@@ -85,8 +85,6 @@ std::vector<double> evaluate_packets(const glsl::Module& module, bool double_pre
                     "  vstore4(c.x, 0, out + 12 * i);\n  vstore4(c.y, 0, out + 12 * i + 4);\n"
                     "  vstore4(c.z, 0, out + 12 * i + 8);\n}\n"
                   : "  vstore4(glsl0_distance_packet(x, y, z, t), 0, out + 4 * i);\n}\n";
-  const DeviceProgram program = build_device_program(select_device(std::nullopt), source, testing::kLoggedBuildOptions);
-  EXPECT_EQ(testing::compiler_warnings(program.build_log), "") << program.build_log << source;
   std::vector<double> in;
   for (const PointPacket& packet : packets) {
     for (int axis = 0; axis < 3; ++axis) {
@@ -94,25 +92,8 @@ std::vector<double> evaluate_packets(const glsl::Module& module, bool double_pre
     }
     in.push_back(packet.time);
   }
-  const size_t outputs = packets.size() * kPacketLanes * (color ? 3 : 1);
-  const size_t scalar = double_precision ? sizeof(double) : sizeof(float);
-  std::vector<float> in_float(in.begin(), in.end());
-  cl::Buffer input(program.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, in.size() * scalar,
-                   double_precision ? static_cast<void*>(in.data()) : static_cast<void*>(in_float.data()));
-  cl::Buffer output(program.context, CL_MEM_WRITE_ONLY, outputs * scalar);
-  cl::Kernel kernel(program.program, "evaluate");
-  kernel.setArg(0, input);
-  kernel.setArg(1, output);
-  program.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(packets.size()));
-  std::vector<double> out(outputs);
-  if (double_precision) {
-    program.queue.enqueueReadBuffer(output, CL_TRUE, 0, outputs * scalar, out.data());
-  } else {
-    std::vector<float> out_float(outputs);
-    program.queue.enqueueReadBuffer(output, CL_TRUE, 0, outputs * scalar, out_float.data());
-    out.assign(out_float.begin(), out_float.end());
-  }
-  return out;
+  return testing::run_evaluate_kernel(source, in, packets.size(), packets.size() * kPacketLanes * (color ? 3 : 1),
+                                      double_precision);
 }
 
 struct PacketSnippet {
@@ -160,6 +141,7 @@ float part(vec3 p) {
 float map(vec3 p) {
   float d = part(p);
   if (p.y > 0.0) glow += 1.0;
+  if (p.x > 0.5) d += part(p * 2.0);  // part's writes to glow and trap kept in these lanes only
   return d + 10.0 * glow + 100.0 * trap.x + 1000.0 * iTime;
 })"},
       {"uniform_loops_and_ints",

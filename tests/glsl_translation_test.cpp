@@ -5,6 +5,7 @@
 #include "glsl/glsl_front_end.hpp"
 #include "glsl/glsl_interpreter.hpp"
 #include "glsl/opencl_translation.hpp"
+#include "support/evaluate_kernel.hpp"
 #include "support/test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -65,30 +66,9 @@ std::vector<double> evaluate_on_device(const glsl::Module& module, bool double_p
         "  out[i] = glsl0_distance(({0}3)(in[4 * i], in[4 * i + 1], in[4 * i + 2]), in[4 * i + 3]);\n}}\n",
         real);
   }
-  const DeviceProgram program = build_device_program(select_device(std::nullopt), source, testing::kLoggedBuildOptions);
-  EXPECT_EQ(testing::compiler_warnings(program.build_log), "") << program.build_log << source;
-  const size_t count = probes.size();
-  const size_t outputs = count * (color ? 3 : 1);
-  const size_t scalar = double_precision ? sizeof(double) : sizeof(float);
   std::vector<double> in;
   for (const Probe& probe : probes) in.insert(in.end(), {probe.p.x, probe.p.y, probe.p.z, probe.t});
-  std::vector<float> in_float(in.begin(), in.end());
-  cl::Buffer input(program.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, in.size() * scalar,
-                   double_precision ? static_cast<void*>(in.data()) : static_cast<void*>(in_float.data()));
-  cl::Buffer output(program.context, CL_MEM_WRITE_ONLY, outputs * scalar);
-  cl::Kernel kernel(program.program, "evaluate");
-  kernel.setArg(0, input);
-  kernel.setArg(1, output);
-  program.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(count));
-  std::vector<double> out(outputs);
-  if (double_precision) {
-    program.queue.enqueueReadBuffer(output, CL_TRUE, 0, outputs * scalar, out.data());
-  } else {
-    std::vector<float> out_float(outputs);
-    program.queue.enqueueReadBuffer(output, CL_TRUE, 0, outputs * scalar, out_float.data());
-    out.assign(out_float.begin(), out_float.end());
-  }
-  return out;
+  return testing::run_evaluate_kernel(source, in, probes.size(), probes.size() * (color ? 3 : 1), double_precision);
 }
 
 glsl::Module compiled(const std::string& name, const std::string& code, const std::string& color_function = "") {

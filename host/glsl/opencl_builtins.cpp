@@ -32,51 +32,12 @@ Value FunctionEmitter::builtin(const Expr& expr, Lines& pre) {
                              parenthesised(texts[1], v[1].precedence, kShift)),
                  kUnary};
   };
+  if (const char* function = same_opencl_function(expr.builtin)) return call(function);
   switch (expr.builtin) {
-    case Builtin::Radians:
-      return call("radians");
-    case Builtin::Degrees:
-      return call("degrees");
-    case Builtin::Sin:
-      return call("sin");
-    case Builtin::Cos:
-      return call("cos");
-    case Builtin::Tan:
-      return call("tan");
-    case Builtin::Asin:
-      return call("asin");
-    case Builtin::Acos:
-      return call("acos");
-    case Builtin::Atan:
-      return call("atan");
     case Builtin::Atan2:
       return scalar ? call("atan2") : call(componentwise_helper(scope_, "atan2", x));
-    case Builtin::Sinh:
-      return call("sinh");
-    case Builtin::Cosh:
-      return call("cosh");
-    case Builtin::Tanh:
-      return call("tanh");
-    case Builtin::Asinh:
-      return call("asinh");
-    case Builtin::Acosh:
-      return call("acosh");
-    case Builtin::Atanh:
-      return call("atanh");
     case Builtin::Pow:
       return scalar ? call("pow") : call(componentwise_helper(scope_, "pow", x));
-    case Builtin::Exp:
-      return call("exp");
-    case Builtin::Log:
-      return call("log");
-    case Builtin::Exp2:
-      return call("exp2");
-    case Builtin::Log2:
-      return call("log2");
-    case Builtin::Sqrt:
-      return call("sqrt");
-    case Builtin::InverseSqrt:
-      return call("rsqrt");
     case Builtin::Abs:
       // OpenCL's abs of an int is a uint (abs(INT_MIN) = 2^31); GLSL's stays an int.
       if (x.scalar == Scalar::Int) return Value{fmt::format("as_int{}(abs({}))", n, texts[0])};
@@ -84,25 +45,10 @@ Value FunctionEmitter::builtin(const Expr& expr, Lines& pre) {
     case Builtin::Sign:
       if (x.scalar == Scalar::Int) return call(integer_sign_helper(scope_, x));
       return call("sign");
-    case Builtin::Floor:
-      return call("floor");
-    case Builtin::Trunc:
-      return call("trunc");
-    // GLSL lets round() take halves either way; Mesa's llvmpipe (the renders' ground truth)
-    // rounds them to even, as rint does.
-    case Builtin::Round:
-    case Builtin::RoundEven:
-      return call("rint");
-    case Builtin::Ceil:
-      return call("ceil");
     case Builtin::Fract:
       return call(fract_helper(scope_, x));
     case Builtin::Mod:
       return call(mod_helper(scope_, x, operands[1].type));
-    case Builtin::Min:
-      return call("min");
-    case Builtin::Max:
-      return call("max");
     case Builtin::Clamp:
       return Value{fmt::format("min(max({}, {}), {})", texts[0], texts[1], texts[2])};
     case Builtin::Mix:
@@ -201,6 +147,8 @@ Value FunctionEmitter::builtin(const Expr& expr, Lines& pre) {
     case Builtin::Not:
       return Value{fmt::format("{} ^ 1", parenthesised(texts[0], v[0].precedence, kBitAnd)), kBitXor};
     case Builtin::Modf:
+      break;
+    default:  // the built-ins same_opencl_function names, returned above
       break;
   }
   throw std::logic_error("opencl translation: unknown built-in");

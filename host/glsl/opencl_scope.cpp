@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include <stdexcept>
+
 #include <cmath>
 #include <cstdint>
 
@@ -19,6 +21,107 @@ std::string negated(const std::string& text, int precedence) {
 }
 
 char component_letter(int index) { return "xyzw"[index]; }
+
+const char* same_opencl_function(Builtin builtin) {
+  switch (builtin) {
+    case Builtin::Radians:
+      return "radians";
+    case Builtin::Degrees:
+      return "degrees";
+    case Builtin::Sin:
+      return "sin";
+    case Builtin::Cos:
+      return "cos";
+    case Builtin::Tan:
+      return "tan";
+    case Builtin::Asin:
+      return "asin";
+    case Builtin::Acos:
+      return "acos";
+    case Builtin::Atan:
+      return "atan";
+    case Builtin::Sinh:
+      return "sinh";
+    case Builtin::Cosh:
+      return "cosh";
+    case Builtin::Tanh:
+      return "tanh";
+    case Builtin::Asinh:
+      return "asinh";
+    case Builtin::Acosh:
+      return "acosh";
+    case Builtin::Atanh:
+      return "atanh";
+    case Builtin::Exp:
+      return "exp";
+    case Builtin::Log:
+      return "log";
+    case Builtin::Exp2:
+      return "exp2";
+    case Builtin::Log2:
+      return "log2";
+    case Builtin::Sqrt:
+      return "sqrt";
+    case Builtin::InverseSqrt:
+      return "rsqrt";
+    case Builtin::Floor:
+      return "floor";
+    case Builtin::Trunc:
+      return "trunc";
+    // GLSL lets round() take halves either way; Mesa's llvmpipe (the renders' ground truth)
+    // rounds them to even, as rint does.
+    case Builtin::Round:
+    case Builtin::RoundEven:
+      return "rint";
+    case Builtin::Ceil:
+      return "ceil";
+    case Builtin::Min:
+      return "min";
+    case Builtin::Max:
+      return "max";
+    default:
+      return nullptr;
+  }
+}
+
+const char* c_symbol(Operator op) {
+  switch (op) {
+    case Operator::Add:
+      return "+";
+    case Operator::Subtract:
+      return "-";
+    case Operator::Multiply:
+      return "*";
+    case Operator::Divide:
+      return "/";
+    case Operator::Modulo:
+      return "%";
+    case Operator::ShiftLeft:
+      return "<<";
+    case Operator::ShiftRight:
+      return ">>";
+    case Operator::BitwiseAnd:
+      return "&";
+    case Operator::BitwiseOr:
+      return "|";
+    case Operator::BitwiseXor:
+      return "^";
+    case Operator::Less:
+      return "<";
+    case Operator::Greater:
+      return ">";
+    case Operator::LessEqual:
+      return "<=";
+    case Operator::GreaterEqual:
+      return ">=";
+    case Operator::Equal:
+      return "==";
+    case Operator::NotEqual:
+      return "!=";
+    default:
+      throw std::logic_error("opencl translation: an operator C does not spell alike");
+  }
+}
 
 Scope::Scope(const Module& module, const TranslationOptions& options) : module_(module), options_(options) {}
 

@@ -47,6 +47,15 @@ inline bool is_single_vector(const Type& type) { return type.is_vector() && !typ
 /// The component letter of index 0-3 (x, y, z, w).
 char component_letter(int index);
 
+/// OpenCL C's function for a GLSL built-in that means the same, component by component, on floats
+/// (sin, floor, rsqrt for inversesqrt, rint for round, min, ...); nullptr for the others, which
+/// need a form of their own (mod, fract, mix, step, pow and atan2 of vectors, integer forms, ...).
+const char* same_opencl_function(Builtin builtin);
+
+/// C's symbol for a GLSL operator of two operands that C spells alike (+ - * / % << >> & | ^, the
+/// comparisons); throws std::logic_error for the others.
+const char* c_symbol(Operator op);
+
 /// Names, types, constants and helpers at program scope.
 class Scope {
  public:
