@@ -120,7 +120,10 @@ const std::vector<PacketSnippet>& packet_snippets() {
     p.z += 1.0;
   }
   if (d < res.x) res = vec2(d, 2.0);
-  return res.x + 10.0 * res.y + 100.0 * p.z;
+  if (p.z > 0.25) {
+    for (int i = 0; i < 3; i++) d += 0.25 * float(i) * p.y;  // a counter set afresh in the branch
+  }
+  return res.x + 10.0 * res.y + 100.0 * p.z + 1000.0 * d;
 })"},
       {"choices_and_logic",
        R"(float map(vec3 p) {
@@ -266,6 +269,12 @@ TEST(GlslPackets, WhatStaysOneLaneAtATimeIsNamed) {
        "line 2: an int or bool computed from the point"},
       {"struct Hit { float d; };\nfloat map(vec3 p) {\n  Hit h = Hit(p.x);\n  return h.d;\n}", "line 3:"},
       {"float map(vec3 p) {\n  float a[2] = float[2](p.x, p.y);\n  return a[1];\n}", "line 2:"},
+      {"bool inside(vec3 p) {\n  return p.x > 0.0;\n}\nfloat map(vec3 p) {\n  return inside(p) ? 1.0 : 2.0;\n}",
+       "line 2: a bool of the point returned"},
+      // k counts the iterations whose lane took the branch: it differs per lane.
+      {"float map(vec3 p) {\n  int k = 0;\n  for (int i = 0; i < 3; i++) {\n    if (p.x > float(i)) k += 1;\n  }\n"
+       "  return float(k);\n}",
+       "line 4: 'k', an int or bool written in an if whose condition depends on the point"},
   };
   for (const auto& [code, reason] : cases) {
     const glsl::PacketTranslation translation = glsl::translate_to_packets(compiled_module("lane", code), {});

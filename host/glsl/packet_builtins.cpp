@@ -88,6 +88,9 @@ PacketValue PacketEmitter::builtin(const Expr& expr, Lines& pre) {
       return each(
           [&](size_t i) { return fmt::format("{0} * {0} * ({1} - {2} * {0})", t.c[i], literal(3.0), literal(2.0)); });
     }
+    // GLSL's formulas, sqrt(dot(x, x)): the lane translation calls OpenCL's length and normalize,
+    // which rescale to survive components past 1e19 or below 1e-19; distance functions do not
+    // reach those, and a rescale per component would cost every packet two divisions.
     case Builtin::Length:
       return scalar(fmt::format("sqrt({})", sum([&](size_t i) { return fmt::format("{0} * {0}", arg(0, i)); })));
     case Builtin::Distance: {

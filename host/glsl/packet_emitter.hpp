@@ -128,6 +128,7 @@ class PacketEmitter {
   std::vector<PacketValue> in_order(const std::vector<Expr>& operands, Lines& pre);
   /// The places an lvalue names, one per component.
   std::vector<std::string> places(const Expr& expr);
+  /// Writes a value (not a mask: callers refuse those) to the places.
   void store(const std::vector<std::string>& places, const Type& type, PacketValue value, Lines& pre);
 
   /// Binds each component to a temporary (packet and mask values); uniform texts are kept.

@@ -294,7 +294,6 @@ std::vector<std::string> PacketEmitter::places(const Expr& expr) {
 }
 
 void PacketEmitter::store(const std::vector<std::string>& targets, const Type& type, PacketValue value, Lines& pre) {
-  if (value.kind == Kind::Mask) unsupported(SourceLocation{}, "a bool of the point stored");
   // q.xy = q.yx reads both before it writes either.
   if (targets.size() > 1) value = stabilised(std::move(value), type, pre);
   for (size_t i = 0; i < targets.size(); ++i) {

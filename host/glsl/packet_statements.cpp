@@ -2,6 +2,7 @@
 #include "glsl/packet_emitter.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <utility>
 
 namespace clmarch::glsl::packets {
@@ -39,6 +40,56 @@ void collect_expression_writes(const Module& module, const std::vector<std::set<
     }
   }
   for (const Expr& operand : expr.operands) collect_expression_writes(module, globals_written, operand, writes);
+}
+
+bool names(const Expr& expr, int variable) {
+  if (expr.kind == ExprKind::Variable && expr.variable == variable) return true;
+  return std::any_of(expr.operands.begin(), expr.operands.end(), [&](const Expr& e) { return names(e, variable); });
+}
+
+// The expressions a statement itself holds (not those of the statements in its body).
+std::vector<const Expr*> own_expressions(const Stmt& stmt) {
+  std::vector<const Expr*> expressions;
+  if (stmt.has_value || stmt.kind == StmtKind::Expression || stmt.kind == StmtKind::If ||
+      stmt.kind == StmtKind::Switch || (stmt.kind == StmtKind::Loop && stmt.has_condition)) {
+    expressions.push_back(&stmt.expression);
+  }
+  if (stmt.has_step) expressions.push_back(&stmt.step);
+  return expressions;
+}
+
+// Whether a statement of stmt outside `except` names the variable (a declaration without an
+// initializer aside: it only zeroes it).
+bool named_outside(const Stmt& stmt, const Stmt* except, int variable) {
+  if (&stmt == except) return false;
+  for (const Expr* expr : own_expressions(stmt)) {
+    if (names(*expr, variable)) return true;
+  }
+  if (stmt.kind == StmtKind::Declaration && stmt.variable == variable && stmt.has_value) return true;
+  return std::any_of(stmt.body.begin(), stmt.body.end(),
+                     [&](const Stmt& s) { return named_outside(s, except, variable); });
+}
+
+// Whether the first use of the variable in stmt, in the order it runs, sets it from values that do
+// not include it (`i = 0`, a declaration's initializer); nullopt where stmt does not name it.
+std::optional<bool> first_use_defines(const Stmt& stmt, int variable) {
+  if (stmt.kind == StmtKind::Block) {
+    for (const Stmt& s : stmt.body) {
+      if (const std::optional<bool> first = first_use_defines(s, variable)) return first;
+    }
+    return std::nullopt;
+  }
+  if (stmt.kind == StmtKind::Declaration && stmt.variable == variable) {
+    if (!stmt.has_value) return std::nullopt;
+    return !names(stmt.expression, variable);
+  }
+  const Expr& expr = stmt.expression;
+  if (stmt.kind == StmtKind::Expression && expr.kind == ExprKind::Assign && !expr.compound &&
+      expr.operands[0].kind == ExprKind::Variable && expr.operands[0].variable == variable) {
+    return !names(expr.operands[1], variable);
+  }
+  if (named_outside(stmt, nullptr, variable)) return false;
+  return std::nullopt;
 }
 
 }  // namespace
@@ -232,6 +283,7 @@ void PacketEmitter::statement(const Stmt& stmt, Writer& out) {
       const PacketValue value = emit(stmt.expression, pre);
       out.lines(pre, line);
       const Type& type = function_->return_type;
+      if (value.kind == Kind::Mask) unsupported(stmt.location, "a bool of the point returned");
       if (!is_real(type)) {
         out.line(fmt::format("return {};", value.c[0]), line);
       } else if (type.components() == 1) {
@@ -268,6 +320,13 @@ void PacketEmitter::masked_if(const Stmt& stmt, const std::string& mask, Writer&
   for (int variable : writes.written) {
     if (writes.declared.count(variable) != 0) continue;
     if (!is_real(module_.variables[variable].type)) {
+      // An int set afresh in the branch and used nowhere else (a loop's counter: its declaration
+      // stands at the top of the function) holds the same on every lane that reads it.
+      if (!named_outside(function_->body, &stmt, variable) &&
+          std::all_of(stmt.body.begin(), stmt.body.end(),
+                      [&](const Stmt& body) { return first_use_defines(body, variable).value_or(true); })) {
+        continue;
+      }
       unsupported(stmt.location,
                   fmt::format("'{}', an int or bool written in an if whose condition depends on the point",
                               module_.variables[variable].name));
@@ -342,6 +401,7 @@ void PacketEmitter::global_initialisers(Writer& out) {
     PacketValue value;
     if (stmt.has_value) {
       value = emit(stmt.expression, pre);
+      if (value.kind == Kind::Mask) unsupported(stmt.location, fmt::format("global '{}' of the point", variable.name));
     } else {
       value.c.assign(1, is_real(variable.type) ? literal(0.0) : "0");
     }
