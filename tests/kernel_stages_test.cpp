@@ -10,7 +10,6 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include <cstring>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -26,22 +25,6 @@ Scene with_stages(const std::string& yaml, const char* stages) {
   return testing::scene_from_yaml(text);
 }
 
-/// Every channel the render filled, compared as bits (NaN-safe, -0 apart from +0).
-void expect_same_planes(const FrameBuffers& got, const FrameBuffers& want, const std::string& what) {
-  ASSERT_EQ(got.width, want.width);
-  ASSERT_EQ(got.height, want.height);
-  int compared = 0;
-  for (int c = 0; c < kChannelCount; ++c) {
-    const std::vector<float>& a = got.planes[static_cast<std::size_t>(c)];
-    const std::vector<float>& b = want.planes[static_cast<std::size_t>(c)];
-    ASSERT_EQ(a.size(), b.size()) << what << " " << kChannelNames[c];
-    if (a.empty()) continue;
-    ++compared;
-    EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0) << what << ": " << kChannelNames[c];
-  }
-  EXPECT_GE(compared, 5) << what;
-}
-
 void expect_called_stages_render_the_inlined_image(const std::string& yaml, const std::string& what, int lanes = 16) {
   OpenClOptions options;
   options.purpose = KernelPurpose::Buffers;
@@ -50,7 +33,9 @@ void expect_called_stages_render_the_inlined_image(const std::string& yaml, cons
   const RenderResult called = render_opencl(with_stages(yaml, "called"), options);
   EXPECT_EQ(inlined.stats.stages, "inline") << what;
   EXPECT_EQ(called.stats.stages, lanes > 1 ? "called" : "inline") << what << ": one lane inlines every stage";
-  expect_same_planes(called.buffers, inlined.buffers, what);
+  const testing::PlaneComparison planes = testing::compare_planes(called.buffers, inlined.buffers);
+  EXPECT_EQ(planes.differing, "") << what;
+  EXPECT_GE(planes.compared, 5) << what;
 }
 
 // Every stage in one program: both marches (camera pair, mirror rays), soft shadows past the

@@ -7,9 +7,7 @@
 #include <numbers>
 
 namespace clmarch {
-namespace {
 
-/// The smallest sphere holding both spheres (their thresholds counted with the larger gain).
 BoundingSphere enclosing(const BoundingSphere& a, const BoundingSphere& b) {
   const double gain = std::max(a.gain, b.gain);
   const double distance = glm::length(b.center - a.center);
@@ -19,6 +17,8 @@ BoundingSphere enclosing(const BoundingSphere& a, const BoundingSphere& b) {
   const glm::dvec3 center = a.center + (b.center - a.center) * ((radius - a.radius) / distance);
   return {center, radius, gain};
 }
+
+namespace {
 
 /// A flat shape of these corners, thickened: about their mean, out to the farthest.
 BoundingSphere corners_bounds(std::initializer_list<glm::dvec3> corners, double thickness) {

@@ -18,6 +18,9 @@ struct BoundingSphere {
   double gain = 1.0;
 };
 
+/// The smallest sphere holding both spheres (their thresholds counted with the larger gain).
+BoundingSphere enclosing(const BoundingSphere& a, const BoundingSphere& b);
+
 /// The bound of node's field; nothing for unbounded fields (plane, terrain, repeat).
 std::optional<BoundingSphere> node_bounds(const Node& node);
 /// The same in the node's own frame, before its transform, step_factor and scale.

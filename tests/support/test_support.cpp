@@ -14,6 +14,7 @@
 #include <array>
 #include <cctype>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <random>
 #include <sstream>
@@ -168,6 +169,24 @@ double total_steps(const FrameBuffers& buffers) {
   double sum = 0.0;
   for (float s : buffers.plane(Channel::Steps)) sum += s;
   return sum;
+}
+
+PlaneComparison compare_planes(const FrameBuffers& got, const FrameBuffers& want) {
+  PlaneComparison result;
+  if (got.width != want.width || got.height != want.height) {
+    result.differing = "image sizes";
+    return result;
+  }
+  for (int c = 0; c < kChannelCount; ++c) {
+    const std::vector<float>& a = got.planes[static_cast<std::size_t>(c)];
+    const std::vector<float>& b = want.planes[static_cast<std::size_t>(c)];
+    if (a.size() != b.size() || std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) != 0) {
+      result.differing += std::string(result.differing.empty() ? "" : " ") + kChannelNames[c];
+    } else if (!a.empty()) {
+      ++result.compared;
+    }
+  }
+  return result;
 }
 
 CancellationReset::~CancellationReset() { cancellation_requested().store(false); }

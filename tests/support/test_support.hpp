@@ -100,6 +100,14 @@ Node leaf(NodeParams params, NodeKind kind);
 /// The sum of the Steps plane of a render: the march's work over the whole image.
 double total_steps(const FrameBuffers& buffers);
 
+/// Two renders' channels compared as bits (NaN-safe, -0 apart from +0): how many both filled, and
+/// the names of those that differ (empty: none), or why they cannot be compared.
+struct PlaneComparison {
+  int compared = 0;
+  std::string differing;
+};
+PlaneComparison compare_planes(const FrameBuffers& got, const FrameBuffers& want);
+
 /// Resets the process-wide cancellation flag (common/cancellation.hpp) however the test ends.
 struct CancellationReset {
   CancellationReset() = default;
