@@ -467,31 +467,17 @@ class SdfEmitter {
 
   /// A union's children in any order of evaluation (min is commutative, and the material follows
   /// the first child at the minimum whatever the order): children not worth a bound first, then
-  /// the others gated by the least distance so far; combined in the scene's order. Where at least
-  /// kMinGroupedOperands cheap children are bounded, those are evaluated by place instead
-  /// (emit_grouped), after the unbounded ones.
+  /// the others gated by the least distance so far; combined in the scene's order. In map() (no
+  /// material), where at least kMinGroupedOperands cheap children are bounded, those are evaluated
+  /// by place instead (emit_grouped), after the unbounded ones; map_color() runs once per hit, where
+  /// a gate saves nothing and costs PoCL's compile.
   Value emit_union(const Node& node, const std::string& p, const Material& color, const glm::dvec3& offset) {
+    if (std::optional<OperandGroup> groups = grouped_operands(node))
+      return emit_grouped(node, *groups, p, color, offset);
     const std::vector<int> firsts = child_first_ids(node, first_id_);
     std::vector<std::size_t> gated, plain;
-    std::vector<GroupedOperand> groupable;
-    for (std::size_t i = 0; i < node.children.size(); ++i) {
-      const Node& child = node.children[i];
-      if (worth_a_bound(child)) {
-        gated.push_back(i);
-        continue;
-      }
-      plain.push_back(i);
-      if (!gate_subtrees_) continue;
-      if (const std::optional<BoundingSphere> bounds = node_bounds(child))
-        groupable.push_back({i, *bounds, subtree_cost(child)});
-    }
-    if (groupable.size() < kMinGroupedOperands) groupable.clear();
-    std::optional<OperandGroup> groups;
-    if (!groupable.empty()) groups = group_operands(groupable);
-    // Without a group worth its bound (each costs about one sphere evaluation and a branch) the
-    // children stay in the scene's order, ungated: a table of five boxes was 10-15 % slower
-    // grouped (checker_floor, docs/performance.md). The unbounded children come before the groups.
-    if (groups && !has_gated_group(*groups, plain.size() > groupable.size())) groups.reset();
+    for (std::size_t i = 0; i < node.children.size(); ++i)
+      (worth_a_bound(node.children[i]) ? gated : plain).push_back(i);
     std::vector<std::optional<Value>> values(node.children.size());
     std::string least;  // the least distance of the children evaluated so far, while a gate needs it
     const auto fold = [&](const std::string& distance) {
@@ -504,14 +490,10 @@ class SdfEmitter {
       least = next;
     };
     for (std::size_t i : plain) {
-      if (groups &&
-          std::any_of(groupable.begin(), groupable.end(), [i](const GroupedOperand& g) { return g.index == i; }))
-        continue;
       first_id_ = firsts[i];
       values[i] = emit(node.children[i], p, color, offset);
-      if (!gated.empty() || groups) fold(values[i]->distance);
+      if (!gated.empty()) fold(values[i]->distance);
     }
-    if (groups) least = emit_grouped(node, *groups, firsts, p, color, offset, least, values);
     for (std::size_t i : gated) {
       first_id_ = firsts[i];
       values[i] = least.empty() ? emit(node.children[i], p, color, offset)
@@ -527,43 +509,72 @@ class SdfEmitter {
   /// nothing from a bound the single children are not worth).
   static constexpr std::size_t kMinGroupedOperands = 4;
 
-  /// The grouped children of a union, each group beyond the first evaluated only where a lane's
-  /// bound of it is at most the least distance so far (least; empty: none yet). Each child's value
-  /// lives in variables declared here, so that a group inside an if can set them; a skipped group
-  /// leaves its children at its bound and their materials unset. Returns the least distance after
-  /// them (a variable the groups lower as they go).
-  std::string emit_grouped(const Node& node, const OperandGroup& root, const std::vector<int>& firsts,
-                           const std::string& p, const Material& color, const glm::dvec3& offset, std::string least,
-                           std::vector<std::optional<Value>>& values) {
-    line(fmt::format("/* {} operands of the union by place, {} groups */", count_operands(root), count_groups(root)));
-    for_each_operand(root, [&](const GroupedOperand& operand) {
-      const std::string distance = fresh("d");
-      line(fmt::format("vfloat {};", distance));
-      values[operand.index] = value_with_unset_material(distance);
-    });
-    const std::string running = fresh("m");
-    if (least.empty()) {
-      line(fmt::format("vfloat {};", running));
-    } else {
-      line(fmt::format("vfloat {} = {};", running, least));
+  /// The hierarchy of a union's cheap bounded children in map(), or nothing where the union is
+  /// evaluated as emit_union does otherwise.
+  std::optional<OperandGroup> grouped_operands(const Node& node) const {
+    if (with_color_ || !gate_subtrees_) return std::nullopt;
+    std::vector<GroupedOperand> groupable;
+    bool unbounded = false;
+    for (std::size_t i = 0; i < node.children.size(); ++i) {
+      const Node& child = node.children[i];
+      if (worth_a_bound(child)) continue;
+      if (const std::optional<BoundingSphere> bounds = node_bounds(child)) {
+        groupable.push_back({i, *bounds, subtree_cost(child)});
+      } else {
+        unbounded = true;
+      }
     }
-    bool running_set = !least.empty();
-    emit_group(node, root, firsts, p, color, offset, running, running_set, values);
-    return running;
+    if (groupable.size() < kMinGroupedOperands) return std::nullopt;
+    OperandGroup groups = group_operands(std::move(groupable));
+    // Without a group worth its bound (each costs about one sphere evaluation and a branch) the
+    // children stay in the scene's order, ungated: a table of five boxes was 10-15 % slower
+    // grouped (checker_floor, docs/performance.md).
+    if (!has_gated_group(groups, unbounded)) return std::nullopt;
+    return groups;
+  }
+
+  /// A union's distance, its children evaluated in this order: the unbounded ones, the groups
+  /// (each beyond the first only where a lane's bound of it is at most the least distance so far),
+  /// then the expensive children behind their own bounds. Every child lowers one running minimum,
+  /// which is the union's value: a skipped group cannot lower it.
+  Value emit_grouped(const Node& node, const OperandGroup& groups, const std::string& p, const Material& color,
+                     const glm::dvec3& offset) {
+    line(fmt::format("/* {} operands of the union by place, {} groups */", count_operands(groups),
+                     count_groups(groups)));
+    const std::string running = fresh("m");
+    bool running_set = false;
+    const auto lower = [&](const std::string& distance) {
+      line(running_set ? fmt::format("{} = fmin({}, {});", running, running, distance)
+                       : fmt::format("vfloat {} = {};", running, distance));
+      running_set = true;
+    };
+    // A child's first primitive number still matters without ids: an operand grid below records it.
+    const std::vector<int> firsts = child_first_ids(node, first_id_);
+    std::vector<bool> grouped(node.children.size(), false);
+    for_each_operand(groups, [&](const GroupedOperand& operand) { grouped[operand.index] = true; });
+    for (std::size_t i = 0; i < node.children.size(); ++i) {
+      first_id_ = firsts[i];
+      if (!grouped[i] && !worth_a_bound(node.children[i])) lower(emit(node.children[i], p, color, offset).distance);
+    }
+    if (!running_set) line(fmt::format("vfloat {};", running));
+    emit_group(node, groups, firsts, p, color, offset, running, running_set);
+    for (std::size_t i = 0; i < node.children.size(); ++i) {
+      first_id_ = firsts[i];
+      if (worth_a_bound(node.children[i])) lower(emit_gated(node.children[i], p, color, offset, running).distance);
+    }
+    return {running, "", "", "", ""};
   }
 
   void emit_group(const Node& node, const OperandGroup& group, const std::vector<int>& firsts, const std::string& p,
-                  const Material& color, const glm::dvec3& offset, const std::string& running, bool& running_set,
-                  const std::vector<std::optional<Value>>& values) {
+                  const Material& color, const glm::dvec3& offset, const std::string& running, bool& running_set) {
     const auto contents = [&] {
       for (const OperandGroup& half : group.halves)
-        emit_group(node, half, firsts, p, color, offset, running, running_set, values);
+        emit_group(node, half, firsts, p, color, offset, running, running_set);
       for (const GroupedOperand& operand : group.operands) {
         first_id_ = firsts[operand.index];
-        const Value& out = *values[operand.index];
-        assign_value(out, emit(node.children[operand.index], p, color, offset));
-        line(running_set ? fmt::format("{} = fmin({}, {});", running, running, out.distance)
-                         : fmt::format("{} = {};", running, out.distance));
+        const std::string distance = emit(node.children[operand.index], p, color, offset).distance;
+        line(running_set ? fmt::format("{} = fmin({}, {});", running, running, distance)
+                         : fmt::format("{} = {};", running, distance));
         running_set = true;
       }
     };
@@ -579,39 +590,7 @@ class SdfEmitter {
     indent_ += "  ";
     contents();
     indent_.resize(indent_.size() - 2);
-    line("} else {");
-    for_each_operand(group, [&](const GroupedOperand& operand) {
-      line(fmt::format("  {} = {};", values[operand.index]->distance, bound));
-    });
     line("}");
-  }
-
-  /// A value whose distance is that variable and whose material variables (where the emitter tracks
-  /// them) are declared unset: what a gated child is where no lane needs it.
-  Value value_with_unset_material(const std::string& distance) {
-    Value out{distance, "", "", "", ""};
-    if (with_color_) {
-      out.color = fresh("c");
-      out.surface = fresh("s");
-      line(fmt::format("vec3v {} = v3_splat(0.0f), {} = v3_splat(0.0f);", out.color, out.surface));
-      if (materials_.emission) {
-        out.emission = fresh("e");
-        line(fmt::format("vec3v {} = v3_splat(0.0f);", out.emission));
-      }
-    }
-    if (with_color_ && ids_.on) {
-      out.id = fresh("i");
-      line(fmt::format("vfloat {} = (vfloat)(-1.0f);", out.id));
-    }
-    return out;
-  }
-
-  /// Sets the variables of to (declared before an if) from a value computed inside it.
-  void assign_value(const Value& to, const Value& from) {
-    line(fmt::format("{} = {};", to.distance, from.distance));
-    if (with_color_) line(fmt::format("{} = {}; {} = {};", to.color, from.color, to.surface, from.surface));
-    if (!to.emission.empty()) line(fmt::format("{} = {};", to.emission, from.emission));
-    if (!to.id.empty()) line(fmt::format("{} = {};", to.id, from.id));
   }
 
   /// Whether emit_group gates a group of this hierarchy: one that costs at least kGateCost, with a
@@ -647,14 +626,30 @@ class SdfEmitter {
                    const std::string& skip_limit) {
     if (!worth_a_bound(child)) return emit(child, p, color, offset);
     const BoundingSphere sphere = *node_bounds(child);
-    const std::string bound = fresh("d");
-    line(fmt::format("vfloat {} = sd_bound({}, {}, {}, {});  /* bound of {} */", bound, p,
+    Value out{fresh("d"), "", "", "", ""};
+    line(fmt::format("vfloat {} = sd_bound({}, {}, {}, {});  /* bound of {} */", out.distance, p,
                      lit_.f4(sphere.center - offset), lit_.f(sphere.radius), lit_.f(1.0 / sphere.gain),
                      node_kind_name(child.kind)));
-    const Value out = value_with_unset_material(bound);
+    if (with_color_) {
+      out.color = fresh("c");
+      out.surface = fresh("s");
+      line(fmt::format("vec3v {} = v3_splat(0.0f), {} = v3_splat(0.0f);", out.color, out.surface));
+      if (materials_.emission) {
+        out.emission = fresh("e");
+        line(fmt::format("vec3v {} = v3_splat(0.0f);", out.emission));
+      }
+    }
+    if (with_color_ && ids_.on) {
+      out.id = fresh("i");
+      line(fmt::format("vfloat {} = (vfloat)(-1.0f);", out.id));
+    }
     line(fmt::format("if (LANE_ANY(MASK({} <= {}))) {{", out.distance, skip_limit));
     indent_ += "  ";
-    assign_value(out, emit(child, p, color, offset));
+    const Value inside = emit(child, p, color, offset);
+    line(fmt::format("{} = {};", out.distance, inside.distance));
+    if (with_color_) line(fmt::format("{} = {}; {} = {};", out.color, inside.color, out.surface, inside.surface));
+    if (!out.emission.empty()) line(fmt::format("{} = {};", out.emission, inside.emission));
+    if (!out.id.empty()) line(fmt::format("{} = {};", out.id, inside.id));
     indent_.resize(indent_.size() - 2);
     line("}");
     return out;
