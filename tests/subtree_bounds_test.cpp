@@ -111,6 +111,28 @@ TEST(SubtreeBounds, UnionsOfManyCheapBoundedChildrenAreGroupedByPlace) {
             std::string::npos);
   const Scene off = scene_from_yaml("render: {subtree_bounds: none}\nsdf:\n  " + gallery_union());
   EXPECT_EQ(generate_kernel_source(off, {KernelPurpose::Shaded, 16}).find(kGrouped), std::string::npos);
+  // render.literals: buffer keys a program by the tree's shape alone: no groups that follow positions.
+  const Scene read = scene_from_yaml("render: {literals: buffer}\nsdf:\n  " + gallery_union());
+  EXPECT_EQ(generate_kernel_source(read, {KernelPurpose::Shaded, 16}).find(kGrouped), std::string::npos);
+}
+
+TEST(SubtreeBounds, ANanBeforeTheGroupsSkipsNone) {
+  // The one unbounded child, a glsl map that is NaN everywhere, comes first: fmin() ignores it, so
+  // the union is the least of the others, grouped or not.
+  const std::string gallery = gallery_union();
+  const Scene scene = scene_from_yaml("sdf:\n  union:\n" + gallery.substr(gallery.find("    - sphere")) +
+                                      "    - glsl: {code: 'float map(vec3 p) { return sqrt(-1.0 - p.x * p.x); }'}\n");
+  ASSERT_NE(generate_kernel_source(scene, {KernelPurpose::EvalPoints, 16}).find(kGrouped), std::string::npos);
+  const std::vector<glm::dvec3> points = {{-1.5, 0.8, -1}, {0.5, 0.2, 0}, {1.5, -0.1, 1}, {0, 3, 0}};
+  for (int lanes : {1, 16}) {
+    OpenClOptions options;
+    options.lanes = lanes;
+    const PointSamples samples = eval_points_opencl(scene, points, options);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      EXPECT_NEAR(samples.distance[i], reference_sample(scene.sdf, points[i]).distance, 1e-5)
+          << "lanes " << lanes << " point " << i;
+    }
+  }
 }
 
 std::vector<GroupedOperand> operands_in_a_row(int count, int axis) {
@@ -232,6 +254,12 @@ TEST(SubtreeBounds, GatedFieldsAndMaterialsEqualTheReference) {
       gallery_union() + "    - menger: {half_size: 0.6, translate: [0, 1.2, 0], color: [1, 0, 1]}",
       gallery_union().substr(gallery_union().find("    - sphere")).insert(0, "union:\n"),
       nested_gallery_union(),
+      // A group whose gain (the largest of its children's) overstates the bound inside: a negative
+      // least distance compares with 0. At (0.8, -0.1, 0) the plane gives -0.1, the sphere -0.194.
+      "union: [{plane: {normal: [0, 1, 0], offset: 0}}, {sphere: {radius: 1}}, {box: {center: [0.5, 0.5, 0], "
+      "half_size: [0.1, 0.1, 0.1], step_factor: 0.25}}, {box: {center: [-0.5, 0.5, 0], half_size: [0.1, 0.1, 0.1]}}, "
+      "{box: {center: [0, 0.5, 0.5], half_size: [0.1, 0.1, 0.1]}}, {box: {center: [0, 0.5, -0.5], half_size: [0.1, "
+      "0.1, 0.1]}}]",
       "union: [{sphere: {center: [3, 0, 0], color: [0, 0, 1]}}, {menger: {half_size: 0.8, translate: [-2, 0.5, 0], "
       "rotate: [10, 20, 30], color: [1, 1, 0]}}, {mandelbulb: {scale: 0.7, step_factor: 0.8, center: [0, 0, 2]}}]",
       "subtraction: [{box: {half_size: [3, 3, 3], color: [0.2, 0.4, 0.6]}}, {menger: {translate: [2.5, 0, 0], color: "

@@ -110,10 +110,19 @@ bool uses_group(const Node& node, bool (*in_group)(NodeKind)) {
 
 }  // namespace
 
+SubtreeGates subtree_gates(const Scene& scene) {
+  if (scene.render.subtree_bounds == SceneBounds::None) return SubtreeGates::None;
+  // render.literals: buffer promises a program keyed by the tree's shape alone, whatever its
+  // numbers, so the code must not follow where children are. Elsewhere a moved child may regroup
+  // the union: another program (an animation's frames, a session's edits), never a wrong one.
+  if (scene.render.literals == LiteralPlacement::Buffer) return SubtreeGates::Subtrees;
+  return SubtreeGates::SubtreesAndPlaces;
+}
+
 /// The scene's code as eval_points has it: world points, every literal spelled.
 SdfCode eval_points_scene_code(const Scene& scene) {
-  return generate_sdf_code(scene.sdf, glm::dvec3(0.0), scene.render.subtree_bounds == SceneBounds::Sphere,
-                           grid_union(scene), true, material_layout(scene));
+  return generate_sdf_code(scene.sdf, glm::dvec3(0.0), subtree_gates(scene), grid_union(scene), true,
+                           material_layout(scene));
 }
 
 SdfCode program_scene_code(const Scene& scene, const KernelOptions& options) {
@@ -229,8 +238,8 @@ namespace {
 SdfCode scene_code(const Scene& scene, bool with_ids) {
   Literals literals;
   SdfCode code;
-  code.source = sdf_functions(scene.sdf, map_frame_origin(scene), scene.render.subtree_bounds == SceneBounds::Sphere,
-                              literals, grid_union(scene), code.data, with_ids, material_layout(scene));
+  code.source = sdf_functions(scene.sdf, map_frame_origin(scene), subtree_gates(scene), literals, grid_union(scene),
+                              code.data, with_ids, material_layout(scene));
   code.literal_rounding = literals.distance_rounding();
   if (scene.tiling) {
     // The cell is the scene's geometry, like map()'s literals: an animation may vary it.

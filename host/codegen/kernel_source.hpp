@@ -101,6 +101,10 @@ int packets_per_item(const Scene& scene, int lanes);
 /// and for value slots in an eval_points program or outside the scene's literals.
 std::string generate_kernel_source(const Scene& scene, const KernelOptions& options);
 
+/// What the scene's map() skips behind bounding spheres: render.subtree_bounds, without groups by
+/// place under render.literals: buffer (a program for every scene of the tree's shape).
+SubtreeGates subtree_gates(const Scene& scene);
+
 /// The scene's code in its march programs, literals open: the distance functions (points relative
 /// to map_frame_origin, subtrees gated as render.subtree_bounds says) and the tiling's cell; with_ids,
 /// map_color numbers the primitive it hit. Each literal has the same index with and without the ids.

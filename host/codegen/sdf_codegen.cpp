@@ -170,10 +170,11 @@ struct IdNumbering {
 /// is of.
 class SdfEmitter {
  public:
-  SdfEmitter(bool with_color, bool gate_subtrees, Literals& literals, GridEmission* grid = nullptr,
+  SdfEmitter(bool with_color, SubtreeGates gates, Literals& literals, GridEmission* grid = nullptr,
              IdNumbering ids = {}, MaterialLayout materials = {})
       : with_color_(with_color),
-        gate_subtrees_(gate_subtrees),
+        gate_subtrees_(gates != SubtreeGates::None),
+        group_places_(gates == SubtreeGates::SubtreesAndPlaces && !with_color),
         lit_(literals),
         grid_(grid),
         ids_(std::move(ids)),
@@ -512,7 +513,7 @@ class SdfEmitter {
   /// The hierarchy of a union's cheap bounded children in map(), or nothing where the union is
   /// evaluated as emit_union does otherwise.
   std::optional<OperandGroup> grouped_operands(const Node& node) const {
-    if (with_color_ || !gate_subtrees_) return std::nullopt;
+    if (!group_places_) return std::nullopt;
     std::vector<GroupedOperand> groupable;
     bool unbounded = false;
     for (std::size_t i = 0; i < node.children.size(); ++i) {
@@ -586,7 +587,10 @@ class SdfEmitter {
     line(fmt::format("vfloat {} = sd_bound({}, {}, {}, {});  /* bound of {} operands */", bound, p,
                      lit_.f4(group.bounds.center - offset), lit_.f(group.bounds.radius),
                      lit_.f(1.0 / group.bounds.gain), count_operands(group)));
-    line(fmt::format("if (LANE_ANY(MASK({} <= {}))) {{", bound, running));
+    // The group's gain is its largest, a bound only where the distance is not negative: below 0 a
+    // child of smaller gain reaches lower, so a negative minimum compares with 0 (no child is
+    // negative outside the group's sphere). A NaN so far (a user's glsl) skips nothing, as fmin would.
+    line(fmt::format("if (LANE_ANY(MASK(({} <= fmax({}, (vfloat)(0.0f))) | isnan({})))) {{", bound, running, running));
     indent_ += "  ";
     contents();
     indent_.resize(indent_.size() - 2);
@@ -877,6 +881,7 @@ class SdfEmitter {
 
   bool with_color_;
   bool gate_subtrees_;
+  bool group_places_;  ///< map() only: the colour function runs once per hit, where a gate saves nothing
   Literals& lit_;
   GridEmission* grid_;
   IdNumbering ids_;
@@ -1018,9 +1023,11 @@ void GridEmission::emit(const Node& union_node, int first_id, const Material& co
   for (std::size_t i = 0; i < union_node.children.size(); ++i) {
     const Node& operand = union_node.children[i];
     Literals distance_literals, color_literals;
-    SdfEmitter distance(false, gate_subtrees, distance_literals);
+    // An operand's code is one function for all its copies in the grid, so no groups by place.
+    const SubtreeGates gates = gate_subtrees ? SubtreeGates::Subtrees : SubtreeGates::None;
+    SdfEmitter distance(false, gates, distance_literals);
     const SdfEmitter::Value d = distance.emit(operand, "p", color, offset);
-    SdfEmitter colored(true, gate_subtrees, color_literals, nullptr, record_ids, materials);
+    SdfEmitter colored(true, gates, color_literals, nullptr, record_ids, materials);
     if (color.pattern) colored.set_pattern_frame("p", offset);
     const SdfEmitter::Value c = colored.emit(operand, "p", color, offset);
     const std::uint32_t distance_shape =
@@ -1116,16 +1123,16 @@ std::string Literals::f4(const glm::dvec4& v) {
   return cl_float4_of(x, y, z, w);
 }
 
-std::string sdf_functions(const Node& root, const glm::dvec3& frame_origin, bool gate_subtrees, Literals& literals,
+std::string sdf_functions(const Node& root, const glm::dvec3& frame_origin, SubtreeGates gates, Literals& literals,
                           const Node* grid_node, std::shared_ptr<const std::vector<float>>& data, bool with_ids,
                           const MaterialLayout& materials) {
   GridEmission grid;
   grid.node = grid_node;
   // Both walks know the materials: the first to reach the operand grid writes its records.
-  SdfEmitter distance_only(false, gate_subtrees, literals, &grid, {}, materials);
+  SdfEmitter distance_only(false, gates, literals, &grid, {}, materials);
   const SdfEmitter::Value d = distance_only.emit(root, "p", materials.root, frame_origin);
   literals.end_distance();
-  SdfEmitter with_color(true, gate_subtrees, literals, &grid, IdNumbering{with_ids, ""}, materials);
+  SdfEmitter with_color(true, gates, literals, &grid, IdNumbering{with_ids, ""}, materials);
   const SdfEmitter::Value dc = with_color.emit(root, "p", materials.root, frame_origin);
   data = std::move(grid.data);
   const std::string frame =
@@ -1173,11 +1180,11 @@ bool takes_absolute_points(const Node& root, const glm::dvec3& frame_origin) {
                      [&](const Node& child) { return takes_absolute_points(child, frame_origin); });
 }
 
-SdfCode generate_sdf_code(const Node& root, const glm::dvec3& frame_origin, bool gate_subtrees, const Node* grid_node,
+SdfCode generate_sdf_code(const Node& root, const glm::dvec3& frame_origin, SubtreeGates gates, const Node* grid_node,
                           bool with_ids, const MaterialLayout& materials) {
   Literals literals;
   SdfCode code;
-  code.source = sdf_functions(root, frame_origin, gate_subtrees, literals, grid_node, code.data, with_ids, materials);
+  code.source = sdf_functions(root, frame_origin, gates, literals, grid_node, code.data, with_ids, materials);
   code.literal_rounding = literals.distance_rounding();
   code.literals = literals.take();
   return code;

@@ -69,9 +69,15 @@ struct MaterialLayout {
   bool emission = false;
 };
 
+/// What the generated map() skips behind bounding spheres (render.subtree_bounds, docs/scene-format.md
+/// "Subtree bounds"): nothing; expensive subtrees; or also a union's cheap bounded children grouped by
+/// place. The groups follow where the children are, so a moved child can change the code's shape:
+/// only for numbers that are spelled (subtree_gates(), kernel_source.hpp).
+enum class SubtreeGates { None, Subtrees, SubtreesAndPlaces };
+
 /// map and map_color for this tree, their literals written to literals and the operand grid's data
 /// to data (see generate_sdf_code).
-std::string sdf_functions(const Node& root, const glm::dvec3& frame_origin, bool gate_subtrees, Literals& literals,
+std::string sdf_functions(const Node& root, const glm::dvec3& frame_origin, SubtreeGates gates, Literals& literals,
                           const Node* grid_node, std::shared_ptr<const std::vector<float>>& data, bool with_ids,
                           const MaterialLayout& materials);
 
@@ -82,15 +88,15 @@ std::string sdf_functions(const Node& root, const glm::dvec3& frame_origin, bool
 bool takes_absolute_points(const Node& root, const glm::dvec3& frame_origin);
 
 /// The code of map and map_color for this tree, taking points relative to the world point
-/// frame_origin (its positions are baked relative to it, in double). With gate_subtrees, unions
-/// and subtractions evaluate an expensive bounded subtree only where its bounding sphere shows it
-/// can change their result (render.subtree_bounds). grid_node, a union of root's tree
-/// (grid_union), is evaluated from its operand grid rather than from code of every operand. With
-/// ids, map_color also returns the number of the primitive whose material it gives (the id
-/// channel; scene/scene.hpp, primitive_count), spelled in the code, so that literals keep their
-/// indices with and without.
-SdfCode generate_sdf_code(const Node& root, const glm::dvec3& frame_origin = glm::dvec3(0.0), bool gate_subtrees = true,
-                          const Node* grid_node = nullptr, bool with_ids = false, const MaterialLayout& materials = {});
+/// frame_origin (its positions are baked relative to it, in double). With gates, unions and
+/// subtractions evaluate an expensive bounded subtree only where its bounding sphere shows it can
+/// change their result, and (SubtreesAndPlaces) map() groups a union's cheap children by place. grid_node, a union of
+/// root's tree (grid_union), is evaluated from its operand grid rather than from code of every operand. With ids,
+/// map_color also returns the number of the primitive whose material it gives (the id channel; scene/scene.hpp,
+/// primitive_count), spelled in the code, so that literals keep their indices with and without.
+SdfCode generate_sdf_code(const Node& root, const glm::dvec3& frame_origin = glm::dvec3(0.0),
+                          SubtreeGates gates = SubtreeGates::SubtreesAndPlaces, const Node* grid_node = nullptr,
+                          bool with_ids = false, const MaterialLayout& materials = {});
 
 /// Indices into SdfCode::literals, ascending: the literals a program reads from its values
 /// (values[j] is the j-th of them that the source reads, in the source's order).
